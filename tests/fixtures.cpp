@@ -1,0 +1,111 @@
+#include "fixtures.h"
+
+#include <array>
+#include <cmath>
+#include <random>
+#include <utility>
+
+#include "volume/tet_tables.h"
+
+namespace hdimesh::fixtures
+{
+
+namespace
+{
+
+/// Adds tet v, flipping it when it comes negative (fixtures list vertices by construction).
+void add_positive_tet(TetMesh& mesh, TetVertices v)
+{
+    const auto& p = mesh.points;
+    if (signed_volume6(p[v[0]], p[v[1]], p[v[2]], p[v[3]]) < 0) std::swap(v[2], v[3]);
+    mesh.add_tet(v);
+}
+
+// The six Kuhn tets of a cube with corners numbered by bits (x = 1, y = 2, z = 4):
+// each walks from corner 0 to corner 7 along one permutation of the axes.
+constexpr std::array<std::array<int, 4>, 6> kKuhnTets = {{
+    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
+}};
+
+}  // namespace
+
+void rebuild_boundary(TetMesh& mesh)
+{
+    mesh.build_adjacency();
+    mesh.triangles.clear();
+    mesh.triangle_refs.clear();
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        if (mesh.is_dead(t)) continue;
+        for (int f = 0; f < 4; ++f)
+        {
+            if (mesh.neighbors[t][f] != kNoTet) continue;
+            const auto& fv = tet::kFaceVertices[f];
+            mesh.add_triangle({mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]]}, 1);
+        }
+    }
+    mesh.classify_vertices();
+}
+
+TetMesh single_tet()
+{
+    TetMesh mesh;
+    mesh.add_vertex({0, 0, 0});
+    mesh.add_vertex({1, 0, 0});
+    mesh.add_vertex({0, 1, 0});
+    mesh.add_vertex({0, 0, 1});
+    mesh.add_tet({0, 1, 2, 3});
+    rebuild_boundary(mesh);
+    return mesh;
+}
+
+TetMesh regular_tet()
+{
+    TetMesh mesh;
+    const double s = 1.0 / std::sqrt(8.0);  // (+-1,+-1,+-1) alternate corners scaled to edge 1
+    mesh.add_vertex({s, s, s});
+    mesh.add_vertex({s, -s, -s});
+    mesh.add_vertex({-s, s, -s});
+    mesh.add_vertex({-s, -s, s});
+    add_positive_tet(mesh, {0, 1, 2, 3});
+    rebuild_boundary(mesh);
+    return mesh;
+}
+
+TetMesh kuhn_cube() { return box_mesh(1); }
+
+TetMesh box_mesh(int n, double jitter, std::uint32_t seed)
+{
+    TetMesh mesh;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const double h = 1.0 / n;
+    auto id = [n](int i, int j, int k) { return i + (n + 1) * (j + (n + 1) * k); };
+    for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i)
+            {
+                Vec3 p(i * h, j * h, k * h);
+                const bool interior = i > 0 && i < n && j > 0 && j < n && k > 0 && k < n;
+                if (interior && jitter > 0)
+                    p += jitter * h * Vec3(unit(rng), unit(rng), unit(rng));
+                mesh.add_vertex(p);
+            }
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+            {
+                auto corner = [&](int bits) {
+                    return id(i + (bits & 1), j + ((bits >> 1) & 1), k + ((bits >> 2) & 1));
+                };
+                for (const auto& kt : kKuhnTets)
+                    add_positive_tet(mesh, {corner(kt[0]), corner(kt[1]), corner(kt[2]),
+                                            corner(kt[3])});
+            }
+    rebuild_boundary(mesh);
+    return mesh;
+}
+
+std::string data_path(const std::string& name) { return std::string(HDIMESH_DATA_DIR) + "/" + name; }
+
+}  // namespace hdimesh::fixtures

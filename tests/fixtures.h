@@ -1,0 +1,32 @@
+#pragma once
+// Tiny procedural meshes for tests. Each builds its tets positive, its adjacency, and its
+// boundary triangles (outward, ref 1), so check_mesh accepts it as is.
+
+#include <cstdint>
+#include <string>
+
+#include "volume/tet_mesh.h"
+
+namespace hdimesh::fixtures
+{
+
+/// The tet (0,0,0) (1,0,0) (0,1,0) (0,0,1).
+TetMesh single_tet();
+
+/// A regular tet of edge length 1 (every edge ties, every face is equilateral).
+TetMesh regular_tet();
+
+/// The unit cube cut into 6 Kuhn tets around the diagonal (0,0,0)-(1,1,1).
+TetMesh kuhn_cube();
+
+/// [0,1]^3 as n^3 Kuhn cubes; interior vertices moved by up to jitter * (1/n) with a fixed
+/// seed (jitter < 0.25 keeps every tet positive).
+TetMesh box_mesh(int n, double jitter = 0.0, std::uint32_t seed = 1);
+
+/// Sets mesh.triangles from the faces without a neighbour (ref 1) and classifies vertices.
+void rebuild_boundary(TetMesh& mesh);
+
+/// Path of a file in the project's data/ folder.
+std::string data_path(const std::string& name);
+
+}  // namespace hdimesh::fixtures
