@@ -1,0 +1,153 @@
+#include "coupling/adapt.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace hdimesh::coupling
+{
+
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double min_quality(const TetMesh& mesh)
+{
+    double worst = 1.0;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        if (!mesh.is_dead(t)) worst = std::min(worst, mesh.quality(t));
+    return worst;
+}
+
+std::string format_pass_row(const AdaptPassReport& p)
+{
+    char row[160];
+    std::snprintf(row, sizeof row, "%5d %10d %10d %10d %9d %9d %8.4f %8.3f\n", p.pass,
+                  p.edges_split, p.tets, p.vertices, p.projected, p.shortened, p.min_quality,
+                  p.seconds);
+    return row;
+}
+
+const char* kPassHeader =
+    " pass     split       tets   vertices projected shortened   min Qe     time\n";
+
+}  // namespace
+
+AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& options)
+{
+    AdaptReport report;
+    const auto start = Clock::now();
+    if (!mesh.has_adjacency()) mesh.build_adjacency();
+
+    std::unique_ptr<BoundaryProjector> projector;
+    if (options.project)
+    {
+        const auto t0 = Clock::now();
+        projector = std::make_unique<BoundaryProjector>(mesh, options.projection);
+        report.seconds_project += seconds_since(t0);
+    }
+    if (options.verbosity >= 2) std::cout << kPassHeader;
+
+    // refinement passes, each followed by projection and local repair
+    report.converged = !options.refine;
+    for (int pass = 1; options.refine && pass <= options.max_passes; ++pass)
+    {
+        AdaptPassReport row;
+        row.pass = pass;
+        const auto pass_start = Clock::now();
+
+        auto t0 = Clock::now();
+        const RefinePassResult refined = refine_pass(mesh, field);
+        report.seconds_refine += seconds_since(t0);
+        row.edges_split = refined.report.edges_split;
+        if (row.edges_split == 0)
+        {
+            report.converged = true;
+            break;
+        }
+
+        if (projector)
+        {
+            t0 = Clock::now();
+            const ProjectionReport moved = projector->project(mesh, refined.new_boundary_vertices);
+            report.seconds_project += seconds_since(t0);
+            row.projected = moved.projected;
+            row.shortened = moved.shortened;
+        }
+        if (options.optimize)
+        {
+            t0 = Clock::now();
+            improve_bad_elements(mesh, field, options.optimizer);
+            report.seconds_optimize += seconds_since(t0);
+        }
+
+        row.tets = mesh.num_live_tets();
+        row.vertices = mesh.num_vertices();
+        row.min_quality = min_quality(mesh);
+        row.seconds = seconds_since(pass_start);
+        report.passes.push_back(row);
+        if (options.verbosity >= 2) std::cout << format_pass_row(row) << std::flush;
+        if (options.verbosity >= 1 && isatty(STDERR_FILENO))
+            std::fprintf(stderr, "\radapt: pass %d, %d tets", pass, row.tets);
+    }
+
+    if (options.verbosity >= 1 && isatty(STDERR_FILENO) && !report.passes.empty())
+        std::fprintf(stderr, "\radapt: final optimization...\n");
+
+    // the final optimization, then the moves the guard had shortened
+    if (options.optimize)
+    {
+        const auto t0 = Clock::now();
+        optimize_mesh(mesh, field, options.optimizer);
+        report.seconds_optimize += seconds_since(t0);
+    }
+    if (projector)
+    {
+        auto t0 = Clock::now();
+        report.final_projection = projector->project_all(mesh);
+        report.seconds_project += seconds_since(t0);
+        if (options.optimize && report.final_projection.shortened + report.final_projection.projected > 0)
+        {
+            t0 = Clock::now();
+            improve_bad_elements(mesh, field, options.optimizer);
+            report.seconds_optimize += seconds_since(t0);
+        }
+    }
+    if (!mesh.has_adjacency()) mesh.build_adjacency();
+    report.seconds_total = seconds_since(start);
+    return report;
+}
+
+std::string format_adapt_report(const AdaptReport& report, bool with_passes)
+{
+    std::ostringstream out;
+    if (with_passes)
+    {
+        out << kPassHeader;
+        for (const auto& p : report.passes) out << format_pass_row(p);
+    }
+    char line[256];
+    const double rest = report.seconds_total - report.seconds_refine - report.seconds_project -
+                        report.seconds_optimize;
+    std::snprintf(line, sizeof line,
+                  "time: total %.3f s = refine %.3f + project %.3f + optimize %.3f + other %.3f\n",
+                  report.seconds_total, report.seconds_refine, report.seconds_project,
+                  report.seconds_optimize, rest);
+    out << line;
+    out << (report.converged ? "sizes: no edge too long\n"
+                             : "sizes: refinement stopped at the pass cap with edges too long\n");
+    return out.str();
+}
+
+}  // namespace hdimesh::coupling

@@ -1,0 +1,65 @@
+#pragma once
+// adapt(): the paper's coupled adaptation of a tet mesh and its boundary to a size field.
+//
+//   model  = HDI model of the input boundary                 (once)
+//   repeat                                                    (refinement passes)
+//       refine_pass        split every too-long edge, patterns from the 239-table
+//       project            new boundary vertices onto the model, never inverting a tet
+//       improve_bad        remove elements below Qe 0.2 around the changes
+//   until no edge is too long
+//   optimize_mesh          collapse too-short edges, swap and smooth to the end
+//   project_all            finish the moves that were shortened, then improve again
+
+#include <string>
+#include <vector>
+
+#include "coupling/boundary_projection.h"
+#include "volume/optimize.h"
+#include "volume/refine.h"
+#include "volume/size_field.h"
+#include "volume/tet_mesh.h"
+
+namespace hdimesh::coupling
+{
+
+struct AdaptOptions
+{
+    bool refine = true;    ///< split too-long edges (--noinsert turns it off)
+    bool optimize = true;  ///< improve after each pass and at the end (--no-optimize)
+    bool project = true;   ///< keep boundary vertices on the HDI model (--no-projection)
+    int max_passes = 40;   ///< refinement passes at most
+    OptimizeOptions optimizer;
+    ProjectionOptions projection;
+    /// 0 silent; 1 progress on stderr when it is a terminal; 2 also a table row per pass on
+    /// stdout as the passes run.
+    int verbosity = 1;
+};
+
+struct AdaptPassReport
+{
+    int pass = 0;
+    int edges_split = 0;
+    int tets = 0;
+    int vertices = 0;
+    int projected = 0;
+    int shortened = 0;
+    double min_quality = 0;
+    double seconds = 0;
+};
+
+struct AdaptReport
+{
+    std::vector<AdaptPassReport> passes;
+    bool converged = false;  ///< no edge too long when refinement stopped
+    double seconds_refine = 0, seconds_project = 0, seconds_optimize = 0, seconds_total = 0;
+    ProjectionReport final_projection;
+};
+
+/// Adapts mesh in place. \pre mesh passes check_mesh (positive tets, closed boundary).
+/// Throws InputError when the boundary cannot carry a surface model.
+AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& options = {});
+
+/// The time split and the size verdict, preceded by the per-pass table when with_passes.
+std::string format_adapt_report(const AdaptReport& report, bool with_passes = true);
+
+}  // namespace hdimesh::coupling

@@ -1,0 +1,137 @@
+#include "coupling/boundary_projection.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace hdimesh::coupling
+{
+
+namespace
+{
+
+/// Tets incident to each vertex (compressed rows), built from the live tets.
+struct VertexBalls
+{
+    std::vector<int> start;  // size num_vertices + 1
+    std::vector<int> tets;
+
+    explicit VertexBalls(const TetMesh& mesh)
+    {
+        start.assign(mesh.num_vertices() + 1, 0);
+        for (int t = 0; t < mesh.num_tet_slots(); ++t)
+            if (!mesh.is_dead(t))
+                for (int v : mesh.tets[t]) ++start[v + 1];
+        for (int v = 0; v < mesh.num_vertices(); ++v) start[v + 1] += start[v];
+        tets.resize(start.back());
+        std::vector<int> fill(start.begin(), start.end() - 1);
+        for (int t = 0; t < mesh.num_tet_slots(); ++t)
+            if (!mesh.is_dead(t))
+                for (int v : mesh.tets[t]) tets[fill[v]++] = t;
+    }
+};
+
+/// Worst quality of v's ball if v were at p.
+double ball_quality_at(const TetMesh& mesh, const VertexBalls& balls, int v, const Vec3& p)
+{
+    double worst = 1.0;
+    for (int k = balls.start[v]; k < balls.start[v + 1]; ++k)
+    {
+        const auto& tv = mesh.tets[balls.tets[k]];
+        const Vec3* q[4];
+        for (int i = 0; i < 4; ++i) q[i] = tv[i] == v ? &p : &mesh.points[tv[i]];
+        worst = std::min(worst, tet_quality(*q[0], *q[1], *q[2], *q[3]));
+    }
+    return worst;
+}
+
+}  // namespace
+
+BoundaryProjector::BoundaryProjector(const TetMesh& mesh, const ProjectionOptions& options)
+    : options_(options)
+{
+    // the model's nodes are the boundary vertices, renumbered densely
+    std::unordered_map<int, int> mesh2model;
+    std::vector<hdi::Vec3> points;
+    auto model_id = [&](int v) {
+        auto [it, inserted] = mesh2model.emplace(v, static_cast<int>(points.size()));
+        if (inserted) points.push_back(mesh.points[v]);
+        return it->second;
+    };
+    std::vector<std::array<int, 3>> triangles;
+    triangles.reserve(mesh.triangles.size());
+    for (const auto& tri : mesh.triangles)
+        triangles.push_back({model_id(tri[0]), model_id(tri[1]), model_id(tri[2])});
+
+    // features: detected on the input, plus the ridges and corners the file declares
+    hdi::FeatureSet features = hdi::detect_features(points, triangles, options.features);
+    for (int e : mesh.ridges)
+    {
+        const auto& edge = mesh.edges[e];
+        auto a = mesh2model.find(edge[0]), b = mesh2model.find(edge[1]);
+        if (a != mesh2model.end() && b != mesh2model.end())
+            features.ridge_edges.push_back({a->second, b->second});
+    }
+    for (int v : mesh.corners)
+        if (auto it = mesh2model.find(v); it != mesh2model.end()) features.corners.push_back(it->second);
+    std::sort(features.corners.begin(), features.corners.end());
+    features.corners.erase(std::unique(features.corners.begin(), features.corners.end()),
+                           features.corners.end());
+
+    model_ = std::make_unique<hdi::HdiSurface>(std::move(points), std::move(triangles), features,
+                                               options.model);
+}
+
+BoundaryProjector::~BoundaryProjector() = default;
+
+ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int>& vertices) const
+{
+    ProjectionReport report;
+    const VertexBalls balls(mesh);
+    for (int v : vertices)
+    {
+        const VertexClass cls = mesh.vertex_classes[v];
+        if (cls != VertexClass::Surface && cls != VertexClass::Ridge) continue;
+        const Vec3 from = mesh.points[v];
+        const hdi::Projection target =
+            cls == VertexClass::Ridge ? model_->project_to_ridge(from) : model_->project(from);
+        if (target.status == hdi::ProjectionStatus::Failed)
+        {
+            ++report.failed;
+            continue;
+        }
+        // shorten the move until no incident tet degenerates (the optimizer finishes later)
+        double step = 1.0;
+        for (int halving = 0; halving <= options_.max_halvings; ++halving, step *= 0.5)
+        {
+            const Vec3 candidate = from + step * (target.point - from);
+            if (ball_quality_at(mesh, balls, v, candidate) > options_.min_quality_after_move)
+            {
+                mesh.points[v] = candidate;
+                break;
+            }
+        }
+        if (step == 1.0)
+        {
+            ++report.projected;
+        }
+        else
+        {
+            ++report.shortened;
+            report.max_remaining_distance =
+                std::max(report.max_remaining_distance, (target.point - mesh.points[v]).norm());
+        }
+    }
+    return report;
+}
+
+ProjectionReport BoundaryProjector::project_all(TetMesh& mesh) const
+{
+    std::vector<int> boundary;
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+        if (mesh.vertex_classes[v] == VertexClass::Surface ||
+            mesh.vertex_classes[v] == VertexClass::Ridge)
+            boundary.push_back(v);
+    return project(mesh, boundary);
+}
+
+}  // namespace hdimesh::coupling

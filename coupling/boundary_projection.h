@@ -1,0 +1,57 @@
+#pragma once
+// Keeps the boundary vertices of a tet mesh on the HDI model of the input boundary (paper §4):
+// the model is built once from the input's boundary triangles; after every refinement pass
+// the new boundary vertices are projected onto it, never inverting a tet.
+
+#include <memory>
+#include <vector>
+
+#include "hdi/features.h"
+#include "hdi/hdi_surface.h"
+#include "volume/tet_mesh.h"
+
+namespace hdimesh::coupling
+{
+
+struct ProjectionOptions
+{
+    hdi::HdiOptions model;          ///< the meshfree model's neighbours, weights, tolerances
+    hdi::FeatureOptions features;   ///< ridge detection on the input boundary
+    /// A move that would push a tet's quality below this is shortened (halved until valid).
+    double min_quality_after_move = 1e-3;
+    int max_halvings = 6;
+};
+
+struct ProjectionReport
+{
+    int projected = 0;    ///< vertices moved all the way onto the model
+    int shortened = 0;    ///< vertices moved only part of the way (an incident tet would invert)
+    int failed = 0;       ///< the model gave no projection (status Failed)
+    double max_remaining_distance = 0;  ///< of the shortened vertices, from the model
+};
+
+/// The input boundary's meshfree model, and the guarded projection of tet-mesh vertices onto it.
+class BoundaryProjector
+{
+public:
+    /// Builds the model from mesh.triangles (all boundary and interface triangles), with the
+    /// mesh's ridges and corners as features plus those detected by dihedral angle.
+    BoundaryProjector(const TetMesh& mesh, const ProjectionOptions& options = {});
+    ~BoundaryProjector();
+
+    /// Moves each listed Surface/Ridge vertex onto the model (Ridge vertices onto the ridge
+    /// fit; Corner and Interior vertices are left alone). Requires mesh.neighbors-free access:
+    /// the vertex balls are computed here from mesh.tets.
+    ProjectionReport project(TetMesh& mesh, const std::vector<int>& vertices) const;
+
+    /// Projects every Surface/Ridge vertex of the mesh (finishes earlier shortened moves).
+    ProjectionReport project_all(TetMesh& mesh) const;
+
+    const hdi::HdiSurface& model() const { return *model_; }
+
+private:
+    ProjectionOptions options_;
+    std::unique_ptr<hdi::HdiSurface> model_;
+};
+
+}  // namespace hdimesh::coupling

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs the Debian packages hdimesh needs, only those missing (apt-get; run as root or with sudo).
+#   scripts/install_deps.sh          build dependencies
+#   scripts/install_deps.sh --tests  plus what the test suite uses (third-party readers)
+set -euo pipefail
+
+packages=(g++ cmake make libopenmesh-dev libeigen3-dev libflann-dev doctest-dev)
+if [[ "${1:-}" == "--tests" ]]; then
+    # meshio and gmsh read our outputs back as independent third-party readers;
+    # numpy/scipy serve the independent checker scripts.
+    packages+=(python3 python3-numpy python3-scipy python3-meshio gmsh)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "installing: ${missing[*]}"
+sudo=""
+[[ $(id -u) -ne 0 ]] && sudo="sudo"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

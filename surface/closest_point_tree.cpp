@@ -1,0 +1,178 @@
+#include "surface/closest_point_tree.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace hdimesh::surface
+{
+
+Vec3d closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c)
+{
+    const Vec3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = OpenMesh::dot(ab, ap), d2 = OpenMesh::dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return a;
+    const Vec3d bp = p - b;
+    const double d3 = OpenMesh::dot(ab, bp), d4 = OpenMesh::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
+    {
+        const double v = d1 / (d1 - d3);
+        return a + v * ab;
+    }
+    const Vec3d cp = p - c;
+    const double d5 = OpenMesh::dot(ab, cp), d6 = OpenMesh::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
+    {
+        const double w = d2 / (d2 - d6);
+        return a + w * ac;
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+    {
+        const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return b + w * (c - b);
+    }
+    const double sum = va + vb + vc;
+    if (!(sum > 0.0)) return closest_point_on_segment(p, a, b);  // degenerate triangle
+    const double v = vb / sum, w = vc / sum;
+    return a + v * ab + w * ac;
+}
+
+Vec3d closest_point_on_segment(const Vec3d& p, const Vec3d& a, const Vec3d& b)
+{
+    const Vec3d ab = b - a;
+    const double len2 = ab.sqrnorm();
+    if (len2 <= 0.0) return a;
+    const double t = std::clamp(OpenMesh::dot(p - a, ab) / len2, 0.0, 1.0);
+    return a + t * ab;
+}
+
+ClosestPointTree ClosestPointTree::from_triangles(std::vector<std::array<Vec3d, 3>> triangles)
+{
+    ClosestPointTree tree;
+    tree.primitives_ = std::move(triangles);
+    tree.segments_ = false;
+    tree.build();
+    return tree;
+}
+
+ClosestPointTree ClosestPointTree::from_segments(const std::vector<std::array<Vec3d, 2>>& segments)
+{
+    ClosestPointTree tree;
+    tree.primitives_.reserve(segments.size());
+    for (const auto& s : segments) tree.primitives_.push_back({s[0], s[1], s[1]});
+    tree.segments_ = true;
+    tree.build();
+    return tree;
+}
+
+void ClosestPointTree::build()
+{
+    order_.resize(primitives_.size());
+    for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
+    nodes_.clear();
+    nodes_.reserve(2 * primitives_.size() / 4 + 2);
+    if (!primitives_.empty()) build_node(0, static_cast<int>(primitives_.size()));
+}
+
+int ClosestPointTree::build_node(int first, int count)
+{
+    const int index = static_cast<int>(nodes_.size());
+    nodes_.push_back(Node{});
+    Vec3d lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (int i = first; i < first + count; ++i)
+        for (const Vec3d& q : primitives_[order_[i]])
+        {
+            lo.minimize(q);
+            hi.maximize(q);
+        }
+    nodes_[index].lo = lo;
+    nodes_[index].hi = hi;
+    constexpr int kLeafSize = 4;
+    if (count <= kLeafSize)
+    {
+        nodes_[index].first = first;
+        nodes_[index].count = count;
+        return index;
+    }
+    // Split at the median centroid along the widest axis.
+    const Vec3d extent = hi - lo;
+    const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0 : (extent[1] >= extent[2] ? 1 : 2);
+    auto centroid = [&](int prim) {
+        const auto& t = primitives_[prim];
+        return t[0][axis] + t[1][axis] + t[2][axis];
+    };
+    const int half = count / 2;
+    std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+                     [&](int a, int b) { return centroid(a) < centroid(b); });
+    const int left = build_node(first, half);
+    const int right = build_node(first + half, count - half);
+    nodes_[index].left = left;
+    nodes_[index].right = right;
+    return index;
+}
+
+Vec3d ClosestPointTree::closest_on(int primitive, const Vec3d& p) const
+{
+    const auto& t = primitives_[primitive];
+    return segments_ ? closest_point_on_segment(p, t[0], t[1]) : closest_point_on_triangle(p, t[0], t[1], t[2]);
+}
+
+ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p) const
+{
+    Hit best;
+    if (nodes_.empty()) return best;
+    double best_d2 = std::numeric_limits<double>::max();
+    auto box_d2 = [&](const Node& n) {
+        double d2 = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+            const double below = n.lo[k] - p[k], above = p[k] - n.hi[k];
+            const double d = std::max({below, above, 0.0});
+            d2 += d * d;
+        }
+        return d2;
+    };
+    // Depth-first, nearer child first, pruned by the best distance so far.
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+        const Node& n = nodes_[stack[--top]];
+        if (box_d2(n) >= best_d2) continue;
+        if (n.left < 0)
+        {
+            for (int i = n.first; i < n.first + n.count; ++i)
+            {
+                const Vec3d q = closest_on(order_[i], p);
+                const double d2 = (q - p).sqrnorm();
+                if (d2 < best_d2)
+                {
+                    best_d2 = d2;
+                    best.point = q;
+                    best.primitive = order_[i];
+                }
+            }
+            continue;
+        }
+        const double dl = box_d2(nodes_[n.left]), dr = box_d2(nodes_[n.right]);
+        if (dl < dr)
+        {
+            stack[top++] = n.right;
+            stack[top++] = n.left;
+        }
+        else
+        {
+            stack[top++] = n.left;
+            stack[top++] = n.right;
+        }
+    }
+    best.distance = std::sqrt(best_d2);
+    return best;
+}
+
+}  // namespace hdimesh::surface

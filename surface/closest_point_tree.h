@@ -1,0 +1,56 @@
+#pragma once
+// A bounding-volume tree over triangles or segments answering "closest point" queries exactly.
+// The surface model uses it to keep vertices on the input surface and ridge vertices on their
+// input ridge line; the quality report uses it for Hausdorff distances.
+
+#include <array>
+#include <vector>
+
+#include "surface/surface_mesh.h"
+
+namespace hdimesh::surface
+{
+
+/// Closest point on the triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5).
+Vec3d closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c);
+/// Closest point on the segment [a, b] to p.
+Vec3d closest_point_on_segment(const Vec3d& p, const Vec3d& a, const Vec3d& b);
+
+class ClosestPointTree
+{
+public:
+    struct Hit
+    {
+        Vec3d point{0, 0, 0};
+        double distance = -1.0;  // < 0: the tree is empty
+        int primitive = -1;      // index in the order primitives were given
+    };
+
+    ClosestPointTree() = default;
+    /// Triangles (three points each).
+    static ClosestPointTree from_triangles(std::vector<std::array<Vec3d, 3>> triangles);
+    /// Segments (two points each).
+    static ClosestPointTree from_segments(const std::vector<std::array<Vec3d, 2>>& segments);
+
+    Hit closest(const Vec3d& p) const;
+    bool empty() const { return primitives_.empty(); }
+    std::size_t size() const { return primitives_.size(); }
+
+private:
+    struct Node
+    {
+        Vec3d lo, hi;
+        int first = 0, count = 0;  // leaf: primitives [first, first+count) of order_
+        int left = -1, right = -1;
+    };
+    void build();
+    int build_node(int first, int count);
+    Vec3d closest_on(int primitive, const Vec3d& p) const;
+
+    std::vector<std::array<Vec3d, 3>> primitives_;
+    bool segments_ = false;
+    std::vector<int> order_;
+    std::vector<Node> nodes_;
+};
+
+}  // namespace hdimesh::surface

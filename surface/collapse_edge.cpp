@@ -1,0 +1,122 @@
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "surface/local_ops.h"
+#include "surface/local_ops_geometry.h"
+
+namespace hdimesh::surface
+{
+namespace
+{
+
+// Class layer: a corner never goes; a curve vertex goes only along its own curve; a smooth
+// vertex may go anywhere (but an unclassified mesh's boundary vertex is treated as a curve).
+bool class_allows_collapse(const OperatorContext& ctx, HalfedgeHandle h)
+{
+    const SurfaceMesh& mesh = ctx.mesh;
+    const VertexHandle v0 = mesh.from_vertex_handle(h);
+    const EdgeHandle e = mesh.edge_handle(h);
+    switch (ctx.vertex_class(v0))
+    {
+    case VertexClass::Corner: return false;
+    case VertexClass::Ridge:
+    case VertexClass::Boundary:
+        return ctx.edge_curve(e) != kNoCurve && ctx.edge_curve(e) == ctx.vertex_curve(v0);
+    case VertexClass::Smooth: return !mesh.is_boundary(v0);
+    }
+    return false;
+}
+
+}  // namespace
+
+OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain)
+{
+    using namespace detail;
+    SurfaceMesh& mesh = ctx.mesh;
+    OpResult result;
+    const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
+    if (!mesh.is_collapse_ok(h))
+        return result;  // Topology
+    if (!class_allows_collapse(ctx, h))
+    {
+        result.status = OpStatus::Class;
+        return result;
+    }
+
+    // Geometry and quality layers: the faces of v0 that survive, with v0 moved onto v1.
+    const Vec3d p1 = mesh.point(v1);
+    double old_min = 1.0, new_min = 1.0;
+    for (auto f : mesh.vf_range(v0)) old_min = std::min(old_min, qe(face_points(mesh, f)));
+    if (require_quality_gain)
+        for (auto f : mesh.vf_range(v1)) old_min = std::min(old_min, qe(face_points(mesh, f)));
+    for (auto f : mesh.vf_range(v0))
+    {
+        const auto fv = face_vertices(mesh, f);
+        if (std::find(fv.begin(), fv.end(), v1) != fv.end()) continue;  // removed by the collapse
+        const auto before = face_points(mesh, f);
+        const auto after = face_points_with(mesh, f, v0, p1);
+        if (!turn_ok(normal(before), normal(after), ctx.limits.max_normal_turn_deg))
+        {
+            result.status = OpStatus::Geometry;
+            return result;
+        }
+        const double q = qe(after);
+        if (q < ctx.limits.min_new_quality)
+        {
+            result.status = OpStatus::Quality;
+            return result;
+        }
+        new_min = std::min(new_min, q);
+        if (ctx.limits.max_model_distance > 0.0)
+        {
+            const Vec3d centroid = (after[0] + after[1] + after[2]) / 3.0;
+            const ProjectedPoint on_model = ctx.model.project(centroid, VertexClass::Smooth, kNoCurve);
+            if (on_model.ok && (on_model.point - centroid).norm() > ctx.limits.max_model_distance)
+            {
+                result.status = OpStatus::Geometry;
+                return result;
+            }
+        }
+    }
+    if (max_new_length > 0.0)
+        for (auto w : mesh.vv_range(v0))
+            if (w != v1 && (mesh.point(w) - p1).norm() > max_new_length)
+            {
+                result.status = OpStatus::Quality;
+                return result;
+            }
+    if (require_quality_gain && !(new_min > old_min + 1e-9))
+    {
+        result.status = OpStatus::Quality;
+        return result;
+    }
+    if (ctx.hooks.allow_collapse && !ctx.hooks.allow_collapse(mesh, h))
+    {
+        result.status = OpStatus::Hook;
+        return result;
+    }
+
+    // Commit. OpenMesh merges the edges (v0, x) and (v1, x) of the two removed faces and may keep
+    // either one, so the curve ids are recorded by end vertex and written back afterwards.
+    std::vector<std::pair<VertexHandle, int>> curve_by_end;
+    for (auto oh : mesh.voh_range(v0))
+        if (mesh.to_vertex_handle(oh) != v1) curve_by_end.emplace_back(mesh.to_vertex_handle(oh), ctx.edge_curve(mesh.edge_handle(oh)));
+    for (auto oh : mesh.voh_range(v1))
+        if (mesh.to_vertex_handle(oh) != v0) curve_by_end.emplace_back(mesh.to_vertex_handle(oh), ctx.edge_curve(mesh.edge_handle(oh)));
+    mesh.collapse(h);
+    for (auto oh : mesh.voh_range(v1))
+    {
+        const VertexHandle w = mesh.to_vertex_handle(oh);
+        int curve = kNoCurve;
+        for (const auto& [end, c] : curve_by_end)
+            if (end == w && c != kNoCurve) curve = c;
+        mesh.property(ctx.props.edge_curve, mesh.edge_handle(oh)) = curve;
+    }
+    if (ctx.hooks.on_collapse) ctx.hooks.on_collapse(mesh, v0, v1);
+    result.status = OpStatus::Done;
+    result.vertex = v1;
+    return result;
+}
+
+}  // namespace hdimesh::surface

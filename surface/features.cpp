@@ -1,0 +1,253 @@
+#include "surface/features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "surface/surface_quality.h"
+
+namespace hdimesh::surface
+{
+namespace
+{
+
+struct Chain
+{
+    std::vector<EdgeHandle> edges;
+    double length = 0.0;
+    bool boundary = false;
+};
+
+double angle_between_deg(const Vec3d& a, const Vec3d& b)
+{
+    const double na = a.norm(), nb = b.norm();
+    if (!(na > 0.0) || !(nb > 0.0)) return 0.0;
+    const double c = std::clamp(OpenMesh::dot(a, b) / (na * nb), -1.0, 1.0);
+    return std::acos(c) * 180.0 / M_PI;
+}
+
+class FeatureGraph
+{
+public:
+    FeatureGraph(const SurfaceMesh& mesh, const FeatureOptions& options, std::vector<char> sharp)
+        : mesh_(mesh), options_(options), sharp_(std::move(sharp))
+    {
+    }
+
+    /// Degree in the sharp-edge graph and the corner test (curves end, meet or turn).
+    void find_corners()
+    {
+        corner_.assign(mesh_.n_vertices(), 0);
+        for (auto v : mesh_.vertices())
+        {
+            std::vector<VertexHandle> ends;
+            for (auto h : mesh_.voh_range(v))
+                if (sharp_[mesh_.edge_handle(h).idx()]) ends.push_back(mesh_.to_vertex_handle(h));
+            if (ends.empty()) continue;
+            if (ends.size() != 2)
+            {
+                corner_[v.idx()] = 1;
+                continue;
+            }
+            const Vec3d p = mesh_.point(v);
+            const double turn = angle_between_deg(p - mesh_.point(ends[0]), mesh_.point(ends[1]) - p);
+            if (turn > options_.corner_turn_angle_deg) corner_[v.idx()] = 1;
+        }
+    }
+
+    /// Maximal runs of sharp edges between corners (closed loops have no corner).
+    std::vector<Chain> chains() const
+    {
+        std::vector<Chain> out;
+        std::vector<char> visited(mesh_.n_edges(), 0);
+        for (auto e : mesh_.edges())
+        {
+            if (!sharp_[e.idx()] || visited[e.idx()]) continue;
+            Chain chain;
+            chain.boundary = mesh_.is_boundary(e);
+            std::vector<EdgeHandle> forward, backward;
+            visited[e.idx()] = 1;
+            walk(mesh_.halfedge_handle(e, 0), visited, forward);
+            walk(mesh_.halfedge_handle(e, 1), visited, backward);
+            chain.edges.assign(backward.rbegin(), backward.rend());
+            chain.edges.push_back(e);
+            chain.edges.insert(chain.edges.end(), forward.begin(), forward.end());
+            for (auto ce : chain.edges) chain.length += mesh_.calc_edge_length(ce);
+            out.push_back(std::move(chain));
+        }
+        return out;
+    }
+
+    std::vector<char>& sharp() { return sharp_; }
+    const std::vector<char>& corner() const { return corner_; }
+
+private:
+    // Follows the curve from the tip of h through non-corner vertices of degree 2.
+    void walk(HalfedgeHandle h, std::vector<char>& visited, std::vector<EdgeHandle>& out) const
+    {
+        VertexHandle v = mesh_.to_vertex_handle(h);
+        EdgeHandle came = mesh_.edge_handle(h);
+        while (!corner_[v.idx()])
+        {
+            EdgeHandle next;
+            for (auto oh : mesh_.voh_range(v))
+            {
+                const EdgeHandle ne = mesh_.edge_handle(oh);
+                if (ne != came && sharp_[ne.idx()]) next = ne;
+            }
+            if (!next.is_valid() || visited[next.idx()]) return;
+            visited[next.idx()] = 1;
+            out.push_back(next);
+            const HalfedgeHandle nh = mesh_.halfedge_handle(next, 0);
+            v = mesh_.from_vertex_handle(nh) == v ? mesh_.to_vertex_handle(nh) : mesh_.from_vertex_handle(nh);
+            came = next;
+        }
+    }
+
+    const SurfaceMesh& mesh_;
+    const FeatureOptions& options_;
+    std::vector<char> sharp_;
+    std::vector<char> corner_;
+};
+
+}  // namespace
+
+FeatureSummary detect_features(SurfaceMesh& mesh, const FeatureOptions& options)
+{
+    SurfaceProperties props(mesh);
+    const double diagonal = bounding_box_diagonal(mesh);
+
+    std::vector<Vec3d> face_normal(mesh.n_faces());
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.fv_iter(f);
+        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
+        face_normal[f.idx()] = triangle_normal(a, b, c);
+    }
+    std::vector<char> sharp(mesh.n_edges(), 0);
+    for (auto e : mesh.edges())
+    {
+        if (mesh.is_boundary(e))
+        {
+            sharp[e.idx()] = 1;
+            continue;
+        }
+        const FaceHandle f0 = mesh.face_handle(mesh.halfedge_handle(e, 0));
+        const FaceHandle f1 = mesh.face_handle(mesh.halfedge_handle(e, 1));
+        if (mesh.property(props.face_ref, f0) != mesh.property(props.face_ref, f1))
+        {
+            sharp[e.idx()] = 1;  // a border between refs is kept like a ridge
+            continue;
+        }
+        if (!options.detect_ridges) continue;
+        const double angle = angle_between_deg(face_normal[f0.idx()], face_normal[f1.idx()]);
+        if (angle > options.ridge_angle_deg) sharp[e.idx()] = 1;
+        else if (angle > options.crease_angle_deg) sharp[e.idx()] = 2;  // a crease: kept only in long chains
+    }
+
+    FeatureSummary summary;
+    FeatureGraph graph(mesh, options, std::move(sharp));
+    std::vector<Chain> chains;
+    // Dropping a noise chain can turn a corner into a plain curve vertex and merge two chains,
+    // so classify again until nothing more is dropped.
+    for (int round = 0; round < 8; ++round)
+    {
+        graph.find_corners();
+        chains = graph.chains();
+        // A chain long enough is a ridge; a shorter one only when both its ends are ends of
+        // ridges (a short ridge between corners of a machined part); the rest is noise.
+        std::vector<char> kept(chains.size(), 0);
+        std::vector<char> ridge_end(mesh.n_vertices(), 0);
+        auto ends_of = [&](const Chain& c) {
+            const auto h0 = mesh.halfedge_handle(c.edges.front(), 0), h1 = mesh.halfedge_handle(c.edges.back(), 0);
+            const VertexHandle a0 = mesh.from_vertex_handle(h0), a1 = mesh.to_vertex_handle(h0);
+            const VertexHandle b0 = mesh.from_vertex_handle(h1), b1 = mesh.to_vertex_handle(h1);
+            // the free end of the first and of the last edge (the one not shared with the chain)
+            auto free_end = [&](VertexHandle x, VertexHandle y, EdgeHandle neighbour) {
+                if (c.edges.size() == 1) return std::make_pair(x, y);
+                const auto hn = mesh.halfedge_handle(neighbour, 0);
+                const bool x_shared = mesh.from_vertex_handle(hn) == x || mesh.to_vertex_handle(hn) == x;
+                return std::make_pair(x_shared ? y : x, x_shared ? y : x);
+            };
+            if (c.edges.size() == 1) return std::make_pair(a0, a1);
+            return std::make_pair(free_end(a0, a1, c.edges[1]).first, free_end(b0, b1, c.edges[c.edges.size() - 2]).first);
+        };
+        for (std::size_t i = 0; i < chains.size(); ++i)
+        {
+            const Chain& c = chains[i];
+            const bool crease_only = std::all_of(c.edges.begin(), c.edges.end(),
+                                                 [&](EdgeHandle e) { return graph.sharp()[e.idx()] == 2; });
+            const double needed = (crease_only ? 2.0 : 1.0) * options.min_ridge_length * diagonal;
+            if (c.boundary || c.length >= needed)
+            {
+                kept[i] = 1;
+                const auto [a, b] = ends_of(c);
+                ridge_end[a.idx()] = ridge_end[b.idx()] = 1;
+            }
+        }
+        for (bool grew = true; grew;)
+        {
+            grew = false;
+            for (std::size_t i = 0; i < chains.size(); ++i)
+            {
+                if (kept[i] || static_cast<int>(chains[i].edges.size()) < 1) continue;
+                const auto [a, b] = ends_of(chains[i]);
+                if (!ridge_end[a.idx()] || !ridge_end[b.idx()]) continue;
+                kept[i] = 1;
+                grew = true;
+            }
+        }
+        bool dropped = false;
+        for (std::size_t i = 0; i < chains.size(); ++i)
+        {
+            if (kept[i]) continue;
+            for (auto e : chains[i].edges) graph.sharp()[e.idx()] = 0;
+            ++summary.dropped_ridge_chains;
+            dropped = true;
+        }
+        if (!dropped) break;
+    }
+
+    for (auto v : mesh.vertices())
+    {
+        mesh.property(props.vertex_class, v) = VertexClass::Smooth;
+        mesh.property(props.vertex_curve, v) = kNoCurve;
+    }
+    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
+    int curve = 0;
+    for (const Chain& c : chains)
+    {
+        for (auto e : c.edges)
+        {
+            mesh.property(props.edge_curve, e) = curve;
+            for (int i = 0; i < 2; ++i)
+            {
+                const VertexHandle v = mesh.to_vertex_handle(mesh.halfedge_handle(e, i));
+                mesh.property(props.vertex_class, v) = c.boundary ? VertexClass::Boundary : VertexClass::Ridge;
+                mesh.property(props.vertex_curve, v) = curve;
+            }
+            (c.boundary ? summary.boundary_edges : summary.ridge_edges) += 1;
+        }
+        ++curve;
+    }
+    for (auto v : mesh.vertices())
+    {
+        if (!graph.corner()[v.idx()]) continue;
+        mesh.property(props.vertex_class, v) = VertexClass::Corner;
+        mesh.property(props.vertex_curve, v) = kNoCurve;
+    }
+    for (auto v : mesh.vertices())
+    {
+        switch (mesh.property(props.vertex_class, v))
+        {
+        case VertexClass::Ridge: ++summary.ridge_vertices; break;
+        case VertexClass::Boundary: ++summary.boundary_vertices; break;
+        case VertexClass::Corner: ++summary.corners; break;
+        case VertexClass::Smooth: break;
+        }
+    }
+    summary.curves = static_cast<std::size_t>(curve);
+    return summary;
+}
+
+}  // namespace hdimesh::surface

@@ -1,0 +1,103 @@
+#include <algorithm>
+#include <cstdlib>
+
+#include "surface/local_ops.h"
+#include "surface/local_ops_geometry.h"
+
+namespace hdimesh::surface
+{
+namespace
+{
+
+int target_valence(const SurfaceMesh& mesh, VertexHandle v) { return mesh.is_boundary(v) ? 4 : 6; }
+
+}  // namespace
+
+OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
+{
+    using namespace detail;
+    SurfaceMesh& mesh = ctx.mesh;
+    OpResult result;
+    if (ctx.is_feature(e))
+    {
+        result.status = OpStatus::Class;
+        return result;
+    }
+    if (!mesh.is_flip_ok(e)) return result;  // Topology
+    //        c                 c
+    //       / \               /|\      .
+    //      a---b     ->      a | b
+    //       \ /               \|/
+    //        d                 d
+    // faces (a, b, c) and (b, a, d) become (a, d, c) and (d, b, c).
+    const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+    const FaceHandle f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
+    if (mesh.property(ctx.props.face_ref, f0) != mesh.property(ctx.props.face_ref, f1))
+    {
+        result.status = OpStatus::Class;
+        return result;
+    }
+    const VertexHandle a = mesh.from_vertex_handle(h0), b = mesh.to_vertex_handle(h0);
+    const VertexHandle c = mesh.to_vertex_handle(mesh.next_halfedge_handle(h0));
+    const VertexHandle d = mesh.to_vertex_handle(mesh.next_halfedge_handle(h1));
+    const Vec3d pa = mesh.point(a), pb = mesh.point(b), pc = mesh.point(c), pd = mesh.point(d);
+
+    const std::array<Vec3d, 3> old0{pa, pb, pc}, old1{pb, pa, pd}, new0{pa, pd, pc}, new1{pd, pb, pc};
+    const Vec3d n_old0 = normal(old0), n_old1 = normal(old1), n_new0 = normal(new0), n_new1 = normal(new1);
+    Vec3d n_mean = n_old0 + n_old1;
+    if (n_mean.norm() > 0.0) n_mean.normalize();
+    // Geometry: neither new triangle turns much, and the pair does not fold more than it was
+    // (or than a gently curved surface would).
+    if (!turn_ok(n_mean, n_new0, ctx.limits.max_normal_turn_deg) ||
+        !turn_ok(n_mean, n_new1, ctx.limits.max_normal_turn_deg) ||
+        OpenMesh::dot(n_new0, n_new1) < std::min(OpenMesh::dot(n_old0, n_old1), cos_deg(20.0)) - 1e-12)
+    {
+        result.status = OpStatus::Geometry;
+        return result;
+    }
+    if (ctx.limits.max_model_distance > 0.0)
+    {
+        const Vec3d mid = 0.5 * (pc + pd);
+        const ProjectedPoint on_model = ctx.model.project(mid, VertexClass::Smooth, kNoCurve);
+        if (on_model.ok && (on_model.point - mid).norm() > ctx.limits.max_model_distance)
+        {
+            result.status = OpStatus::Geometry;
+            return result;
+        }
+    }
+    const double old_min = std::min(qe(old0), qe(old1)), new_min = std::min(qe(new0), qe(new1));
+    if (new_min < ctx.limits.min_new_quality)
+    {
+        result.status = OpStatus::Quality;
+        return result;
+    }
+    if (goal == FlipGoal::Valence)
+    {
+        auto deviation = [&](VertexHandle v, int delta) {
+            return std::abs(static_cast<int>(mesh.valence(v)) + delta - target_valence(mesh, v));
+        };
+        const int before = deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0);
+        const int after = deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1);
+        if (after >= before || new_min < 0.5 * old_min)
+        {
+            result.status = OpStatus::Quality;
+            return result;
+        }
+    }
+    else if (!(new_min > old_min + 1e-6))
+    {
+        result.status = OpStatus::Quality;
+        return result;
+    }
+    if (ctx.hooks.allow_flip && !ctx.hooks.allow_flip(mesh, e))
+    {
+        result.status = OpStatus::Hook;
+        return result;
+    }
+    mesh.flip(e);
+    if (ctx.hooks.on_flip) ctx.hooks.on_flip(mesh, a, b, c, d);
+    result.status = OpStatus::Done;
+    return result;
+}
+
+}  // namespace hdimesh::surface

@@ -1,0 +1,67 @@
+#include "surface/hdi_projection.h"
+
+#include <algorithm>
+#include <memory>
+
+#include "hdi/hdi_surface.h"
+
+namespace hdimesh::surface
+{
+
+void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input, const HdiProjectionOptions& options)
+{
+    OpenMesh::VPropHandleT<VertexClass> vertex_class;
+    OpenMesh::EPropHandleT<int> edge_curve;
+    const bool classified = input.get_property_handle(vertex_class, property_names::vertex_class) &&
+                            input.get_property_handle(edge_curve, property_names::edge_curve);
+    std::vector<hdi::Vec3> points;
+    points.reserve(input.n_vertices());
+    for (auto v : input.vertices())
+    {
+        const Vec3d p = input.point(v);
+        points.emplace_back(p[0], p[1], p[2]);
+    }
+    std::vector<hdi::Triangle3> triangles;
+    triangles.reserve(input.n_faces());
+    for (auto f : input.faces())
+    {
+        auto fv = input.cfv_iter(f);
+        const int a = fv->idx(), b = (++fv)->idx(), c = (++fv)->idx();
+        triangles.push_back({a, b, c});
+    }
+    hdi::FeatureSet features;
+    if (classified)
+    {
+        for (auto e : input.edges())
+        {
+            if (input.property(edge_curve, e) == kNoCurve || input.is_boundary(e)) continue;
+            const auto h = input.halfedge_handle(e, 0);
+            const int a = input.from_vertex_handle(h).idx(), b = input.to_vertex_handle(h).idx();
+            features.ridge_edges.push_back({std::min(a, b), std::max(a, b)});
+        }
+        for (auto v : input.vertices())
+            if (input.property(vertex_class, v) == VertexClass::Corner) features.corners.push_back(v.idx());
+        std::sort(features.ridge_edges.begin(), features.ridge_edges.end());
+    }
+    features.boundary_edges = hdi::open_boundary_edges(triangles);
+
+    hdi::HdiOptions hdi_options;
+    hdi_options.neighbours = options.neighbours;
+    auto surface = std::make_shared<const hdi::HdiSurface>(std::move(points), std::move(triangles), features, hdi_options);
+    const double max_deviation = options.max_deviation_fraction * model.diagonal();
+    const SurfaceModel* facets = &model;
+    model.set_smooth_projection([surface, facets, max_deviation](const Vec3d& p) {
+        ProjectedPoint out;
+        const hdi::Projection fit = surface->project(hdi::Vec3(p[0], p[1], p[2]));
+        if (fit.status == hdi::ProjectionStatus::Failed) return out;
+        out.point = Vec3d(fit.point.x(), fit.point.y(), fit.point.z());
+        out.normal = Vec3d(fit.normal.x(), fit.normal.y(), fit.normal.z());
+        out.k1 = fit.k1;
+        out.k2 = fit.k2;
+        const ProjectedPoint on_facets = facets->closest_on_input(out.point);
+        out.ok = on_facets.ok && (on_facets.point - out.point).norm() <= max_deviation;
+        return out;
+    });
+}
+
+}  // namespace hdimesh::surface

@@ -1,0 +1,25 @@
+#pragma once
+// The HDI model of an input surface as the smooth projection of a SurfaceModel: smooth vertices
+// go onto the meshfree Hermite diffuse surface (method.md §5) instead of the input's facets.
+// Feature curves stay the input's own polylines (exact ridge positions).
+
+#include "surface/surface_mesh.h"
+#include "surface/surface_model.h"
+
+namespace hdimesh::surface
+{
+
+struct HdiProjectionOptions
+{
+    int neighbours = 16;
+    /// A projection farther than this fraction of the bbox diagonal from the input's facets is
+    /// not trusted (a fit across a thin part): the facets are used there instead.
+    double max_deviation_fraction = 0.002;
+};
+
+/// Builds the HDI model of `input` (classified by detect_features: its ridges, boundary curves
+/// and corners are handed to the model) and installs it as `model`'s smooth projection.
+/// The model keeps its own copy of the input; `model` must outlive nothing else.
+void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input, const HdiProjectionOptions& options = {});
+
+}  // namespace hdimesh::surface

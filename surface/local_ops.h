@@ -1,0 +1,121 @@
+#pragma once
+// The local operators of the surface remesher: edge split, edge collapse, edge flip, vertex
+// removal and George's nodal shifting. Each checks in layers — topology (OpenMesh's own
+// is_collapse_ok / is_flip_ok), vertex classes, the hooks' veto, geometry (no folded or turned
+// triangle, distance to the model), quality — and only then commits and calls the on_* hook.
+// A refusal is an OpResult with the layer that refused, never an exception.
+
+#include <functional>
+#include <vector>
+
+#include "surface/projector.h"
+#include "surface/surface_mesh.h"
+
+namespace hdimesh::surface
+{
+
+/// Callbacks the coupling code uses to veto surface changes the tets cannot follow and to
+/// mirror accepted ones. Every member is optional. allow_* are asked after the surface's own
+/// checks pass; on_* are called right after the change is committed (before garbage collection).
+struct SurfaceHooks
+{
+    /// Split of edge e with the new vertex at `point`.
+    std::function<bool(const SurfaceMesh&, EdgeHandle e, const Vec3d& point)> allow_split;
+    /// Edge (a, b) was split by `inserted`.
+    std::function<void(const SurfaceMesh&, VertexHandle a, VertexHandle b, VertexHandle inserted)> on_split;
+    /// Collapse of halfedge h: its from-vertex goes away, its to-vertex stays.
+    std::function<bool(const SurfaceMesh&, HalfedgeHandle h)> allow_collapse;
+    std::function<void(const SurfaceMesh&, VertexHandle removed, VertexHandle kept)> on_collapse;
+    /// Flip of edge e (a, b) to (c, d).
+    std::function<bool(const SurfaceMesh&, EdgeHandle e)> allow_flip;
+    std::function<void(const SurfaceMesh&, VertexHandle a, VertexHandle b, VertexHandle c, VertexHandle d)> on_flip;
+    /// Move of v to `point`.
+    std::function<bool(const SurfaceMesh&, VertexHandle v, const Vec3d& point)> allow_move;
+    std::function<void(const SurfaceMesh&, VertexHandle v, const Vec3d& old_point)> on_move;
+    /// Removal of v and retriangulation of its hole by `new_faces` (already in the mesh).
+    std::function<bool(const SurfaceMesh&, VertexHandle v)> allow_remove_vertex;
+    std::function<void(const SurfaceMesh&, VertexHandle removed, const std::vector<FaceHandle>& new_faces)>
+        on_remove_vertex;
+};
+
+/// Why an operator did or did not act.
+enum class OpStatus
+{
+    Done,
+    Topology,   // OpenMesh refuses, or the configuration is not manifold-safe
+    Class,      // would move a corner, take a ridge vertex off its curve, cross a feature
+    Hook,       // vetoed by an allow_* hook
+    Geometry,   // a triangle would fold or turn too much, or leave the model
+    Quality,    // legal but not better
+};
+
+struct OpResult
+{
+    OpStatus status = OpStatus::Topology;
+    VertexHandle vertex;  // the inserted vertex (split), the kept one (collapse)
+    bool done() const { return status == OpStatus::Done; }
+};
+
+/// Geometric limits shared by every operator.
+struct OperatorLimits
+{
+    double max_normal_turn_deg = 35.0;  // a changed triangle may turn at most this much
+    double max_model_distance = 0.0;    // > 0: new edge midpoints / centroids must stay this close
+    double min_new_quality = 0.05;      // no operator creates a triangle with a lower Qe
+};
+
+/// Everything an operator needs; the remesher builds one per call.
+struct OperatorContext
+{
+    SurfaceMesh& mesh;
+    SurfaceProperties props;
+    const Projector& model;
+    const SurfaceHooks& hooks;
+    OperatorLimits limits;
+
+    OperatorContext(SurfaceMesh& m, const Projector& p, const SurfaceHooks& h, OperatorLimits l = {})
+        : mesh(m), props(m), model(p), hooks(h), limits(l)
+    {
+    }
+    VertexClass vertex_class(VertexHandle v) const { return mesh.property(props.vertex_class, v); }
+    int vertex_curve(VertexHandle v) const { return mesh.property(props.vertex_curve, v); }
+    int edge_curve(EdgeHandle e) const { return mesh.property(props.edge_curve, e); }
+    bool is_feature(EdgeHandle e) const { return edge_curve(e) != kNoCurve || mesh.is_boundary(e); }
+};
+
+/// Splits e at its midpoint projected onto the model (onto the edge's curve for a feature
+/// edge). The new vertex gets the edge's class, curve and the mean size of the ends.
+OpResult try_split(OperatorContext& ctx, EdgeHandle e);
+
+/// Collapses h (from-vertex removed, onto the to-vertex). Refused when a remaining edge would
+/// become longer than max_new_length (≤ 0: no bound), or when the from-vertex is a corner, or a
+/// curve vertex not collapsing along its own curve.
+/// `require_quality_gain`: the worst Qe around must rise (used by the final cleanup).
+OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
+                      bool require_quality_gain = false);
+
+/// What a flip must improve.
+enum class FlipGoal
+{
+    Valence,  // pmp rule: valence deviation from 6 (4 on a boundary) decreases, quality kept
+    Quality,  // the worst Qe of the two triangles rises
+};
+OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal);
+
+/// Removes a smooth interior vertex of valence 3..8 and fills its hole with the triangulation of
+/// the ring maximizing the worst Qe (dynamic program over the ring polygon); kept only if the
+/// worst Qe of the area rises.
+OpResult try_remove_vertex(OperatorContext& ctx, VertexHandle v);
+
+struct ShiftOptions
+{
+    double step = 0.5;  // α: fraction of the way to the optimal point
+    bool smart = true;  // reject a move that lowers the worst Qe of the ball
+};
+/// George's nodal shifting: the ideal point of each outer edge (apex of the equilateral
+/// triangle on it, in the tangent plane), weights 1/Qe², P += α(P_opt − P), then projection
+/// onto the model. Ridge/boundary vertices move along their curve toward the balanced point of
+/// their two curve neighbours; corners never move.
+OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& options = {});
+
+}  // namespace hdimesh::surface

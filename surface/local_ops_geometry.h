@@ -1,0 +1,47 @@
+#pragma once
+// Small geometric helpers shared by the operator files (split, collapse, flip, removal, shift):
+// a face's vertices and points, optionally with one vertex moved, and the angle tests.
+
+#include <array>
+#include <cmath>
+
+#include "surface/surface_mesh.h"
+#include "surface/surface_quality.h"
+
+namespace hdimesh::surface::detail
+{
+
+inline std::array<VertexHandle, 3> face_vertices(const SurfaceMesh& mesh, FaceHandle f)
+{
+    const HalfedgeHandle h = mesh.halfedge_handle(f);
+    return {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h), mesh.to_vertex_handle(mesh.next_halfedge_handle(h))};
+}
+
+/// The points of f with vertex `moved` (if it is one of f's) placed at `at`.
+inline std::array<Vec3d, 3> face_points_with(const SurfaceMesh& mesh, FaceHandle f, VertexHandle moved, const Vec3d& at)
+{
+    const auto v = face_vertices(mesh, f);
+    std::array<Vec3d, 3> p;
+    for (int i = 0; i < 3; ++i) p[i] = v[i] == moved ? at : mesh.point(v[i]);
+    return p;
+}
+
+inline std::array<Vec3d, 3> face_points(const SurfaceMesh& mesh, FaceHandle f)
+{
+    return face_points_with(mesh, f, VertexHandle(), Vec3d(0, 0, 0));
+}
+
+inline double qe(const std::array<Vec3d, 3>& p) { return triangle_qe(p[0], p[1], p[2]); }
+inline Vec3d normal(const std::array<Vec3d, 3>& p) { return triangle_normal(p[0], p[1], p[2]); }
+
+inline double cos_deg(double degrees) { return std::cos(degrees * M_PI / 180.0); }
+
+/// The new normal turned by at most the allowed angle from the old one (and is not degenerate).
+inline bool turn_ok(const Vec3d& old_normal, const Vec3d& new_normal, double max_turn_deg)
+{
+    if (!(new_normal.sqrnorm() > 0.5)) return false;
+    if (!(old_normal.sqrnorm() > 0.5)) return true;  // the old triangle was degenerate: no reference
+    return OpenMesh::dot(old_normal, new_normal) >= cos_deg(max_turn_deg);
+}
+
+}  // namespace hdimesh::surface::detail

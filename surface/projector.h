@@ -1,0 +1,54 @@
+#pragma once
+// What the remesher asks of the geometry: put a point back on the model, keeping its class.
+// Implemented by SurfaceModel (input mesh + HDI) and, for tests, by the analytic SphereProjector.
+
+#include <cmath>
+
+#include "surface/surface_mesh.h"
+
+namespace hdimesh::surface
+{
+
+struct ProjectedPoint
+{
+    Vec3d point{0, 0, 0};
+    Vec3d normal{0, 0, 0};   // unit surface normal at point (a ridge: either side's, or their mean)
+    double k1 = 0.0, k2 = 0.0;  // principal curvatures where known (0 otherwise)
+    bool ok = false;
+};
+
+class Projector
+{
+public:
+    virtual ~Projector() = default;
+    /// Projects p onto the model: a smooth vertex onto the surface, a ridge or boundary vertex
+    /// onto its feature curve `curve`, a corner stays where it is.
+    virtual ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const = 0;
+};
+
+/// The sphere of the given centre and radius (every class is projected radially): exact
+/// geometry for the operator tests.
+class SphereProjector final : public Projector
+{
+public:
+    SphereProjector(Vec3d centre, double radius) : centre_(centre), radius_(radius) {}
+    ProjectedPoint project(const Vec3d& p, VertexClass, int) const override
+    {
+        ProjectedPoint out;
+        Vec3d d = p - centre_;
+        const double len = d.norm();
+        if (!(len > 0.0)) return out;
+        d /= len;
+        out.point = centre_ + radius_ * d;
+        out.normal = d;
+        out.k1 = out.k2 = 1.0 / radius_;
+        out.ok = true;
+        return out;
+    }
+
+private:
+    Vec3d centre_;
+    double radius_;
+};
+
+}  // namespace hdimesh::surface

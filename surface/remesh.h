@@ -1,0 +1,78 @@
+#pragma once
+// The surface remesher (pmp-style loop on the model): split too-long edges, collapse too-short
+// ones, flip toward valence 6, George's nodal shifting with projection onto the model, repeated;
+// then a cleanup of the worst triangles (quality flips, collapses, vertex removals, smart
+// shifts). Vertex classes, curves and refs are kept: features survive by construction.
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "surface/features.h"
+#include "surface/local_ops.h"
+#include "surface/projector.h"
+#include "surface/sizing.h"
+#include "surface/surface_mesh.h"
+
+namespace hdimesh::surface
+{
+
+struct RemeshOptions
+{
+    /// Target edge length at a point (required). Edges longer than 4/3 of it are split, shorter
+    /// than 4/5 collapsed, which keeps Qt = min(h/L, L/h) ≥ 0.75 where the loop converges.
+    std::function<double(const Vec3d&)> size;
+    int iterations = 10;
+    int polish_passes = 3;  // after the iterations: quality flips + smart shifts over everything
+    /// Operators refuse a change whose new triangles stray farther from the model (≤ 0: none).
+    double max_model_distance = 0.0;
+    /// The worst-triangle cleanup works on triangles with a smaller angle than this.
+    double cleanup_angle_deg = 27.0;
+    int cleanup_rounds = 8;
+    OperatorLimits limits;
+    int verbosity = 0;  // > 0: one line per iteration on stderr
+};
+
+struct RemeshReport
+{
+    int iterations = 0;
+    std::size_t splits = 0, collapses = 0, flips = 0, removals = 0, shifts = 0;
+};
+
+/// Remeshes `mesh` (classified by detect_features, or carrying the properties of
+/// surface_mesh.h) on `model`. Hooks see every change; handles stay valid until the final
+/// garbage collection at the end of the call.
+RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model,
+                    const SurfaceHooks& hooks = {});
+
+/// Everything surfremesh needs, for one library call from an input surface.
+struct SurfaceRemeshSettings
+{
+    FeatureOptions features;
+    SizingOptions sizing;                // hsiz > 0: uniform; else curvature from hausd (default 0.002·diag)
+    std::vector<double> input_sizes;     // non-empty: a size per input vertex (--sol), bounded and graded
+    int iterations = 10;
+    /// With a uniform size: refine below it where the curvature needs it to stay within
+    /// hausd (if given) or this fraction of the bbox diagonal (≤ 0: strictly uniform).
+    double uniform_hausd_fraction = 0.001;
+    /// Smooth vertices on the HDI model instead of the input facets. Off by default: on fandisk it
+    /// is 4x slower and its projections near ridges left slivers (see the report of issue 6).
+    bool use_hdi = false;
+    double max_model_distance = -1.0;    // < 0: from hausd (or 0.002·diag for a uniform size)
+    int verbosity = 0;
+};
+
+struct SurfaceRemeshResult
+{
+    FeatureSummary features;
+    RemeshReport report;
+    double diagonal = 0.0;
+    double uniform_size = 0.0;  // the size used when uniform, else the mean of the input sizes
+    bool adaptive = false;
+};
+
+/// Detects features of `mesh`, builds the model from it, chooses the sizes and remeshes it in
+/// place. The vertex size property of the result holds the target size at each vertex.
+SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings);
+
+}  // namespace hdimesh::surface

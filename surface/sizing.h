@@ -1,0 +1,57 @@
+#pragma once
+// The target edge length of the surface remesher: uniform (--hsiz), given at the input
+// vertices (--sol), or curvature-adaptive from a geometric tolerance (--hausd, Mmg semantics:
+// the chord of an arc of curvature k and length h strays h²k/8 from it, so h = √(8·hausd/k)),
+// bounded by hmin/hmax and graded by hgrad.
+
+#include <string>
+#include <vector>
+
+#include "surface/surface_mesh.h"
+#include "surface/surface_model.h"
+
+namespace hdimesh::surface
+{
+
+struct SizingOptions
+{
+    double hsiz = 0.0;   // > 0: uniform size
+    double hausd = 0.0;  // > 0 (and hsiz = 0): curvature-adaptive size
+    double hmin = 0.0;   // ≤ 0: none
+    double hmax = 0.0;   // ≤ 0: none
+    double hgrad = 1.3;  // ≤ 1: no gradation; neighbouring sizes differ by at most (hgrad−1)·distance
+};
+
+/// A size at every point of the model: a constant, or per-input-vertex sizes interpolated on the
+/// closest input triangle.
+class SizeMap
+{
+public:
+    static SizeMap uniform(double size);
+    static SizeMap per_input_vertex(const SurfaceModel& model, std::vector<double> sizes);
+    double at(const Vec3d& p) const;
+    bool is_uniform() const { return model_ == nullptr; }
+    double uniform_size() const { return uniform_; }
+    const std::vector<double>& vertex_sizes() const { return sizes_; }
+
+private:
+    double uniform_ = 0.0;
+    const SurfaceModel* model_ = nullptr;
+    std::vector<double> sizes_;
+};
+
+/// Sizes at the input vertices from the curvature (smooth vertices: the model's quadric fit;
+/// curve vertices: the curve's turning angle per length), then bounded and graded.
+std::vector<double> curvature_sizes(const SurfaceMesh& input, const SurfaceModel& model, const SizingOptions& options);
+
+/// Bounds sizes to [hmin, hmax] and limits their growth along input edges to hgrad.
+void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const SizingOptions& options);
+
+/// Mean edge length of a mesh (the default size when none is given).
+double mean_edge_length(const SurfaceMesh& mesh);
+
+/// Reads a Medit .sol file with one scalar per vertex (SolAtVertices, type 1); throws
+/// SurfaceInputError naming the file and line when malformed or when the count is not `vertices`.
+std::vector<double> read_medit_sol(const std::string& path, std::size_t vertices);
+
+}  // namespace hdimesh::surface

@@ -1,0 +1,138 @@
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "surface/local_ops.h"
+#include "surface/local_ops_geometry.h"
+
+namespace hdimesh::surface
+{
+namespace
+{
+
+// George's optimal point for a smooth vertex: for each outer edge (a, b) of the ball, the apex
+// of the equilateral triangle on (a, b) in the tangent plane, on the vertex's side; weights
+// 1/Qe² so the worst triangles pull hardest.
+bool optimal_point_smooth(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& n, Vec3d& optimal)
+{
+    using namespace detail;
+    Vec3d sum(0, 0, 0);
+    double weight_sum = 0.0;
+    for (auto h : mesh.voh_range(v))
+    {
+        if (!mesh.face_handle(h).is_valid()) continue;
+        const Vec3d pa = mesh.point(mesh.to_vertex_handle(h));
+        const Vec3d pb = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+        Vec3d side = OpenMesh::cross(n, pb - pa);  // (a, b, v) is counter-clockwise about n
+        const double len = side.norm();
+        if (!(len > 0.0)) return false;
+        side /= len;
+        const Vec3d ideal = 0.5 * (pa + pb) + (std::sqrt(3.0) / 2.0) * (pb - pa).norm() * side;
+        const double q = std::max(qe({mesh.point(v), pa, pb}), 0.05);
+        const double w = 1.0 / (q * q);
+        sum += w * ideal;
+        weight_sum += w;
+    }
+    if (!(weight_sum > 0.0)) return false;
+    optimal = sum / weight_sum;
+    return true;
+}
+
+// A curve vertex moves toward the point of its curve that balances its two curve edges.
+bool optimal_point_curve(const OperatorContext& ctx, VertexHandle v, Vec3d& optimal)
+{
+    const SurfaceMesh& mesh = ctx.mesh;
+    std::vector<Vec3d> ends;
+    for (auto h : mesh.voh_range(v))
+        if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v)) ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
+    if (ends.size() != 2) return false;
+    optimal = 0.5 * (ends[0] + ends[1]);
+    return true;
+}
+
+// Worst Qe of the ball of v with v at p; -1 if a triangle turns too much or degenerates.
+double ball_quality(const OperatorContext& ctx, VertexHandle v, const Vec3d& p)
+{
+    using namespace detail;
+    double worst = 1.0;
+    for (auto f : ctx.mesh.vf_range(v))
+    {
+        const auto before = face_points(ctx.mesh, f);
+        const auto after = face_points_with(ctx.mesh, f, v, p);
+        if (!turn_ok(normal(before), normal(after), ctx.limits.max_normal_turn_deg)) return -1.0;
+        worst = std::min(worst, qe(after));
+    }
+    return worst;
+}
+
+}  // namespace
+
+OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& options)
+{
+    SurfaceMesh& mesh = ctx.mesh;
+    OpResult result;
+    const VertexClass cls = ctx.vertex_class(v);
+    if (cls == VertexClass::Corner || mesh.is_isolated(v))
+    {
+        result.status = OpStatus::Class;
+        return result;
+    }
+    if (cls == VertexClass::Smooth && mesh.is_boundary(v))
+    {
+        result.status = OpStatus::Class;  // an unclassified boundary vertex: leave it alone
+        return result;
+    }
+    const Vec3d p = mesh.point(v);
+    Vec3d optimal;
+    Vec3d n(0, 0, 0);
+    if (cls == VertexClass::Smooth)
+    {
+        // The tangent plane of the ball (its area-weighted normal): the vertex is on the model
+        // already, so this is the plane of the local fit without another projection.
+        for (auto f : mesh.vf_range(v))
+        {
+            const auto q = detail::face_points(mesh, f);
+            n += OpenMesh::cross(q[1] - q[0], q[2] - q[0]);
+        }
+        if (!(n.norm() > 0.0)) return result;
+        n.normalize();
+        if (!optimal_point_smooth(mesh, v, n, optimal))
+        {
+            result.status = OpStatus::Geometry;
+            return result;
+        }
+    }
+    else if (!optimal_point_curve(ctx, v, optimal))
+    {
+        result.status = OpStatus::Class;
+        return result;
+    }
+
+    const double old_quality = ball_quality(ctx, v, p);
+    for (double step = options.step; step > options.step / 5.0; step *= 0.5)
+    {
+        Vec3d target = p + step * (optimal - p);
+        if (cls == VertexClass::Smooth) target -= OpenMesh::dot(target - p, n) * n;  // stay in the plane
+        const ProjectedPoint projected = ctx.model.project(target, cls, ctx.vertex_curve(v));
+        if (!projected.ok) continue;
+        const Vec3d q = projected.point;
+        const double new_quality = ball_quality(ctx, v, q);
+        if (new_quality < ctx.limits.min_new_quality && new_quality < old_quality) continue;
+        if (new_quality < 0.0) continue;
+        if (options.smart && new_quality < old_quality - 1e-12) continue;
+        if (ctx.hooks.allow_move && !ctx.hooks.allow_move(mesh, v, q))
+        {
+            result.status = OpStatus::Hook;
+            return result;
+        }
+        mesh.set_point(v, q);
+        if (ctx.hooks.on_move) ctx.hooks.on_move(mesh, v, p);
+        result.status = OpStatus::Done;
+        result.vertex = v;
+        return result;
+    }
+    result.status = OpStatus::Quality;
+    return result;
+}
+
+}  // namespace hdimesh::surface

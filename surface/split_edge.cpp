@@ -1,0 +1,94 @@
+#include <algorithm>
+
+#include "surface/local_ops.h"
+#include "surface/local_ops_geometry.h"
+
+namespace hdimesh::surface
+{
+
+OpResult try_split(OperatorContext& ctx, EdgeHandle e)
+{
+    using namespace detail;
+    SurfaceMesh& mesh = ctx.mesh;
+    OpResult result;
+    const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+    const VertexHandle a = mesh.from_vertex_handle(h0), b = mesh.to_vertex_handle(h0);
+    const Vec3d pa = mesh.point(a), pb = mesh.point(b);
+    const double length = (pb - pa).norm();
+
+    // Class layer: the new vertex lies on the edge's curve, if any.
+    const int curve = ctx.edge_curve(e);
+    VertexClass cls = VertexClass::Smooth;
+    if (mesh.is_boundary(e)) cls = VertexClass::Boundary;
+    else if (curve != kNoCurve) cls = VertexClass::Ridge;
+
+    // Geometry layer: the projected midpoint must not jump away (a projection onto the wrong
+    // sheet or curve) and the new triangles must not turn.
+    const Vec3d mid = 0.5 * (pa + pb);
+    const ProjectedPoint projected = ctx.model.project(mid, cls, curve);
+    const Vec3d p = projected.ok ? projected.point : mid;
+    if ((p - mid).norm() > 0.5 * length)
+    {
+        result.status = OpStatus::Geometry;
+        return result;
+    }
+    const double max_turn = std::max(ctx.limits.max_normal_turn_deg, 60.0);
+    for (const HalfedgeHandle h : {h0, h1})
+    {
+        const FaceHandle f = mesh.face_handle(h);
+        if (!f.is_valid()) continue;
+        const Vec3d from = mesh.point(mesh.from_vertex_handle(h)), to = mesh.point(mesh.to_vertex_handle(h));
+        const Vec3d opposite = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+        const Vec3d old_normal = triangle_normal(from, to, opposite);
+        if (!turn_ok(old_normal, triangle_normal(from, p, opposite), max_turn) ||
+            !turn_ok(old_normal, triangle_normal(p, to, opposite), max_turn))
+        {
+            result.status = OpStatus::Geometry;
+            return result;
+        }
+    }
+    if (ctx.hooks.allow_split && !ctx.hooks.allow_split(mesh, e, p))
+    {
+        result.status = OpStatus::Hook;
+        return result;
+    }
+
+    // Commit. Each new face takes the ref of the face it was cut from (found by its opposite vertex).
+    VertexHandle opposite[2];
+    int ref[2] = {0, 0};
+    int side = 0;
+    for (const HalfedgeHandle h : {h0, h1})
+    {
+        const FaceHandle f = mesh.face_handle(h);
+        if (f.is_valid())
+        {
+            opposite[side] = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
+            ref[side] = mesh.property(ctx.props.face_ref, f);
+        }
+        ++side;
+    }
+    const VertexHandle v = mesh.add_vertex(p);
+    mesh.property(ctx.props.vertex_class, v) = cls;
+    mesh.property(ctx.props.vertex_curve, v) = cls == VertexClass::Smooth ? kNoCurve : curve;
+    mesh.property(ctx.props.vertex_size, v) =
+        0.5 * (mesh.property(ctx.props.vertex_size, a) + mesh.property(ctx.props.vertex_size, b));
+    mesh.split(e, v);
+    for (auto h : mesh.voh_range(v))
+    {
+        const VertexHandle w = mesh.to_vertex_handle(h);
+        mesh.property(ctx.props.edge_curve, mesh.edge_handle(h)) = (w == a || w == b) ? curve : kNoCurve;
+    }
+    for (auto f : mesh.vf_range(v))
+    {
+        const auto fv = face_vertices(mesh, f);
+        for (int s = 0; s < 2; ++s)
+            if (opposite[s].is_valid() && std::find(fv.begin(), fv.end(), opposite[s]) != fv.end())
+                mesh.property(ctx.props.face_ref, f) = ref[s];
+    }
+    if (ctx.hooks.on_split) ctx.hooks.on_split(mesh, a, b, v);
+    result.status = OpStatus::Done;
+    result.vertex = v;
+    return result;
+}
+
+}  // namespace hdimesh::surface

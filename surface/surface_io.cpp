@@ -1,0 +1,555 @@
+#include "surface/surface_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+
+#include "surface/surface_errors.h"
+#include "surface/surface_quality.h"
+
+namespace hdimesh::surface
+{
+namespace
+{
+
+std::string lower_extension(const std::string& path)
+{
+    const auto dot = path.find_last_of('.');
+    const auto slash = path.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+// Whitespace tokens with their line numbers ('#' starts a comment).
+struct Tokens
+{
+    std::string path;
+    std::vector<std::string> words;
+    std::vector<int> lines;
+    std::size_t next = 0;
+
+    explicit Tokens(const std::string& file) : path(file)
+    {
+        std::ifstream in(file);
+        if (!in) throw SurfaceIoError(file + ": cannot open for reading");
+        std::string line;
+        int number = 0;
+        while (std::getline(in, line))
+        {
+            ++number;
+            const auto hash = line.find('#');
+            if (hash != std::string::npos) line.erase(hash);
+            std::istringstream s(line);
+            std::string w;
+            while (s >> w)
+            {
+                words.push_back(w);
+                lines.push_back(number);
+            }
+        }
+    }
+    bool done() const { return next >= words.size(); }
+    int line() const { return next < lines.size() ? lines[next] : (lines.empty() ? 0 : lines.back()); }
+    [[noreturn]] void fail(const std::string& what) const
+    {
+        throw SurfaceInputError(path + ":" + std::to_string(line()) + ": " + what);
+    }
+    const std::string& word()
+    {
+        if (done()) fail("unexpected end of file");
+        return words[next++];
+    }
+    double number()
+    {
+        const std::string& w = word();
+        try
+        {
+            std::size_t used = 0;
+            const double v = std::stod(w, &used);
+            if (used == w.size()) return v;
+        }
+        catch (const std::logic_error&)
+        {
+        }
+        --next;
+        fail("expected a number, found '" + w + "'");
+    }
+    long integer()
+    {
+        const double v = number();
+        if (v != static_cast<double>(static_cast<long>(v)))
+        {
+            --next;
+            fail("expected an integer");
+        }
+        return static_cast<long>(v);
+    }
+};
+
+void check_index(Tokens& t, long index, std::size_t count)
+{
+    if (index < 0 || static_cast<std::size_t>(index) >= count)
+        t.fail("vertex index " + std::to_string(index + 1) + " out of range (1.." + std::to_string(count) + ")");
+}
+
+TriangleSoup read_obj(const std::string& path)
+{
+    std::ifstream in(path);
+    if (!in) throw SurfaceIoError(path + ": cannot open for reading");
+    TriangleSoup soup;
+    std::string line;
+    int number = 0;
+    auto fail = [&](const std::string& what) {
+        throw SurfaceInputError(path + ":" + std::to_string(number) + ": " + what);
+    };
+    while (std::getline(in, line))
+    {
+        ++number;
+        std::istringstream s(line);
+        std::string key;
+        if (!(s >> key)) continue;
+        if (key == "v")
+        {
+            Vec3d p;
+            if (!(s >> p[0] >> p[1] >> p[2])) fail("a vertex needs three coordinates");
+            soup.points.push_back(p);
+        }
+        else if (key == "f")
+        {
+            std::vector<int> poly;
+            std::string w;
+            while (s >> w)
+            {
+                long index = 0;
+                try
+                {
+                    index = std::stol(w.substr(0, w.find('/')));
+                }
+                catch (const std::logic_error&)
+                {
+                    fail("bad face index '" + w + "'");
+                }
+                if (index < 0) index += static_cast<long>(soup.points.size()) + 1;  // relative index
+                if (index < 1 || static_cast<std::size_t>(index) > soup.points.size())
+                    fail("face index " + std::to_string(index) + " out of range");
+                poly.push_back(static_cast<int>(index - 1));
+            }
+            if (poly.size() < 3) fail("a face needs at least three vertices");
+            for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+            {
+                soup.triangles.push_back({poly[0], poly[k], poly[k + 1]});
+                soup.refs.push_back(0);
+            }
+        }
+    }
+    return soup;
+}
+
+TriangleSoup read_off(const std::string& path)
+{
+    Tokens t(path);
+    TriangleSoup soup;
+    std::string head = t.word();
+    if (head != "OFF") t.next = 0;  // the header keyword is optional
+    const long nv = t.integer(), nf = t.integer();
+    t.integer();  // edges
+    if (nv < 0 || nf < 0) t.fail("negative counts");
+    for (long i = 0; i < nv; ++i)
+    {
+        Vec3d p;
+        for (int k = 0; k < 3; ++k) p[k] = t.number();
+        soup.points.push_back(p);
+    }
+    for (long i = 0; i < nf; ++i)
+    {
+        const int line = t.line();
+        const long k = t.integer();
+        if (k < 3) t.fail("a face needs at least three vertices");
+        std::vector<int> poly;
+        for (long j = 0; j < k; ++j)
+        {
+            const long idx = t.integer();
+            check_index(t, idx, soup.points.size());
+            poly.push_back(static_cast<int>(idx));
+        }
+        // Colour values may follow on the same line.
+        while (!t.done() && t.lines[t.next] == line) t.next++;
+        for (std::size_t j = 1; j + 1 < poly.size(); ++j)
+        {
+            soup.triangles.push_back({poly[0], poly[j], poly[j + 1]});
+            soup.refs.push_back(0);
+        }
+    }
+    return soup;
+}
+
+TriangleSoup read_medit(const std::string& path)
+{
+    Tokens t(path);
+    TriangleSoup soup;
+    // Entries per record of the sections we skip.
+    const std::map<std::string, int> widths = {
+        {"Edges", 3}, {"Quadrilaterals", 5}, {"Tetrahedra", 5}, {"Hexahedra", 9}, {"Ridges", 1},
+        {"Corners", 1}, {"RequiredVertices", 1}, {"RequiredEdges", 1}, {"RequiredTriangles", 1},
+        {"Normals", 3}, {"NormalAtVertices", 2}, {"Tangents", 3}, {"TangentAtVertices", 2}};
+    bool has_vertices = false;
+    while (!t.done())
+    {
+        const std::string key = t.word();
+        if (key == "MeshVersionFormatted")
+            t.integer();
+        else if (key == "Dimension")
+        {
+            if (t.integer() != 3) t.fail("only Dimension 3 is supported");
+        }
+        else if (key == "Vertices")
+        {
+            const long n = t.integer();
+            for (long i = 0; i < n; ++i)
+            {
+                Vec3d p;
+                for (int k = 0; k < 3; ++k) p[k] = t.number();
+                t.integer();  // ref
+                soup.points.push_back(p);
+            }
+            has_vertices = true;
+        }
+        else if (key == "Triangles")
+        {
+            if (!has_vertices) t.fail("Triangles before Vertices");
+            const long n = t.integer();
+            for (long i = 0; i < n; ++i)
+            {
+                std::array<int, 3> tri;
+                for (int k = 0; k < 3; ++k)
+                {
+                    const long idx = t.integer() - 1;
+                    check_index(t, idx, soup.points.size());
+                    tri[k] = static_cast<int>(idx);
+                }
+                soup.triangles.push_back(tri);
+                soup.refs.push_back(static_cast<int>(t.integer()));
+            }
+        }
+        else if (key == "End")
+            break;
+        else if (auto it = widths.find(key); it != widths.end())
+        {
+            const long n = t.integer();
+            for (long i = 0; i < n * it->second; ++i) t.number();
+        }
+        else
+        {
+            --t.next;
+            t.fail("unknown keyword '" + key + "'");
+        }
+    }
+    return soup;
+}
+
+TriangleSoup read_with_openmesh(const std::string& path)
+{
+    {
+        std::ifstream probe(path);
+        if (!probe) throw SurfaceIoError(path + ": cannot open for reading");
+    }
+    OpenMesh::TriMesh_ArrayKernelT<SurfaceTraits> mesh;
+    OpenMesh::IO::Options options;
+    if (!OpenMesh::IO::read_mesh(mesh, path, options)) throw SurfaceInputError(path + ": cannot parse as a surface mesh");
+    TriangleSoup soup;
+    for (auto v : mesh.vertices()) soup.points.push_back(mesh.point(v));
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.cfv_iter(f);
+        const int a = fv->idx(), b = (++fv)->idx(), c = (++fv)->idx();
+        soup.triangles.push_back({a, b, c});
+        soup.refs.push_back(0);
+    }
+    return soup;
+}
+
+// Consistent orientation per component by a breadth-first walk over shared edges; then a
+// closed component with negative signed volume is turned outward.
+std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& components)
+{
+    const std::size_t nf = soup.triangles.size();
+    std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
+    for (std::size_t f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k)
+        {
+            const int a = soup.triangles[f][k], b = soup.triangles[f][(k + 1) % 3];
+            faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
+        }
+    for (const auto& [edge, faces] : faces_of_edge)
+        if (faces.size() > 2)
+            throw SurfaceInputError(source + ": non-manifold edge between vertices " + std::to_string(edge.first + 1) +
+                                    " and " + std::to_string(edge.second + 1) + " (" + std::to_string(faces.size()) +
+                                    " triangles share it)");
+    auto has_directed = [&](int f, int a, int b) {
+        const auto& t = soup.triangles[f];
+        for (int k = 0; k < 3; ++k)
+            if (t[k] == a && t[(k + 1) % 3] == b) return true;
+        return false;
+    };
+    std::vector<int> component(nf, -1);
+    std::size_t flipped = 0;
+    components = 0;
+    for (std::size_t seed = 0; seed < nf; ++seed)
+    {
+        if (component[seed] >= 0) continue;
+        const int id = static_cast<int>(components++);
+        std::vector<int> queue{static_cast<int>(seed)}, members;
+        component[seed] = id;
+        while (!queue.empty())
+        {
+            const int f = queue.back();
+            queue.pop_back();
+            members.push_back(f);
+            for (int k = 0; k < 3; ++k)
+            {
+                const int a = soup.triangles[f][k], b = soup.triangles[f][(k + 1) % 3];
+                for (int g : faces_of_edge[{std::min(a, b), std::max(a, b)}])
+                {
+                    if (g == f) continue;
+                    const bool same_direction = has_directed(g, a, b);
+                    if (component[g] >= 0)
+                    {
+                        if (same_direction)
+                            throw SurfaceInputError(source + ": non-orientable surface (at triangle " +
+                                                    std::to_string(g + 1) + ")");
+                        continue;
+                    }
+                    if (same_direction)
+                    {
+                        std::swap(soup.triangles[g][1], soup.triangles[g][2]);
+                        ++flipped;
+                    }
+                    component[g] = id;
+                    queue.push_back(g);
+                }
+            }
+        }
+        // Outward: a closed component must enclose a positive volume.
+        bool closed = true;
+        double volume = 0.0;
+        for (int f : members)
+        {
+            const auto& t = soup.triangles[f];
+            for (int k = 0; k < 3 && closed; ++k)
+            {
+                const int a = t[k], b = t[(k + 1) % 3];
+                if (faces_of_edge[{std::min(a, b), std::max(a, b)}].size() != 2) closed = false;
+            }
+            volume += OpenMesh::dot(soup.points[t[0]], OpenMesh::cross(soup.points[t[1]], soup.points[t[2]]));
+        }
+        if (closed && volume < 0.0)
+        {
+            for (int f : members) std::swap(soup.triangles[f][1], soup.triangles[f][2]);
+            flipped += members.size();
+        }
+    }
+    return flipped;
+}
+
+}  // namespace
+
+SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadReport* report_out)
+{
+    ReadReport report;
+    if (soup.refs.size() != soup.triangles.size()) soup.refs.assign(soup.triangles.size(), 0);
+    // Merge vertices with identical coordinates.
+    std::map<std::array<double, 3>, int> first_at;
+    std::vector<int> old2new_vertex(soup.points.size());
+    for (std::size_t i = 0; i < soup.points.size(); ++i)
+    {
+        const auto& p = soup.points[i];
+        const auto [it, inserted] = first_at.emplace(std::array<double, 3>{p[0], p[1], p[2]}, static_cast<int>(i));
+        old2new_vertex[i] = it->second;
+        if (!inserted) ++report.merged_vertices;
+    }
+    // Drop degenerate and repeated triangles.
+    std::map<std::array<int, 3>, int> seen;
+    TriangleSoup clean;
+    for (std::size_t f = 0; f < soup.triangles.size(); ++f)
+    {
+        std::array<int, 3> t;
+        for (int k = 0; k < 3; ++k) t[k] = old2new_vertex[soup.triangles[f][k]];
+        const double area = OpenMesh::cross(soup.points[t[1]] - soup.points[t[0]], soup.points[t[2]] - soup.points[t[0]]).norm();
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(area > 0.0))
+        {
+            ++report.degenerate_faces;
+            continue;
+        }
+        std::array<int, 3> key = t;
+        std::sort(key.begin(), key.end());
+        if (!seen.emplace(key, static_cast<int>(f)).second)
+        {
+            ++report.duplicate_faces;
+            continue;
+        }
+        clean.triangles.push_back(t);
+        clean.refs.push_back(soup.refs[f]);
+    }
+    if (clean.triangles.empty()) throw SurfaceInputError(source + ": no triangles");
+    // Compact the vertices to those used.
+    std::vector<int> old2new_used(soup.points.size(), -1);
+    for (auto& t : clean.triangles)
+        for (int& v : t)
+        {
+            if (old2new_used[v] < 0)
+            {
+                old2new_used[v] = static_cast<int>(clean.points.size());
+                clean.points.push_back(soup.points[v]);
+            }
+            v = old2new_used[v];
+        }
+    report.unused_vertices = soup.points.size() - report.merged_vertices - clean.points.size();
+    report.reoriented_faces = orient(clean, source, report.components);
+
+    SurfaceMesh mesh;
+    SurfaceProperties props(mesh);
+    std::vector<VertexHandle> handles;
+    handles.reserve(clean.points.size());
+    for (const auto& p : clean.points) handles.push_back(mesh.add_vertex(p));
+    for (std::size_t f = 0; f < clean.triangles.size(); ++f)
+    {
+        const auto& t = clean.triangles[f];
+        const FaceHandle fh = mesh.add_face(handles[t[0]], handles[t[1]], handles[t[2]]);
+        if (!fh.is_valid())
+            throw SurfaceInputError(source + ": triangle " + std::to_string(f + 1) + " (vertices " +
+                                    std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
+                                    std::to_string(t[2] + 1) + ") makes a non-manifold vertex");
+        mesh.property(props.face_ref, fh) = clean.refs[f];
+    }
+    for (auto v : mesh.vertices())
+    {
+        mesh.property(props.vertex_class, v) = VertexClass::Smooth;
+        mesh.property(props.vertex_curve, v) = kNoCurve;
+        mesh.property(props.vertex_size, v) = 0.0;
+    }
+    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
+
+    auto warn = [&](std::size_t count, const std::string& what) {
+        if (count) report.warnings.push_back(source + ": warning: " + std::to_string(count) + " " + what);
+    };
+    warn(report.merged_vertices, "duplicate vertices merged");
+    warn(report.degenerate_faces, "degenerate triangles dropped");
+    warn(report.duplicate_faces, "repeated triangles dropped");
+    warn(report.unused_vertices, "unused vertices dropped");
+    warn(report.reoriented_faces, "triangles reoriented");
+    if (report.components > 1) warn(report.components, "components (each remeshed on its own)");
+    if (report_out) *report_out = report;
+    return mesh;
+}
+
+SurfaceMesh read_surface(const std::string& path, ReadReport* report)
+{
+    const std::string ext = lower_extension(path);
+    TriangleSoup soup;
+    if (ext == "obj") soup = read_obj(path);
+    else if (ext == "off") soup = read_off(path);
+    else if (ext == "mesh") soup = read_medit(path);
+    else if (ext == "stl" || ext == "ply") soup = read_with_openmesh(path);
+    else throw SurfaceInputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
+    return build_surface(std::move(soup), path, report);
+}
+
+namespace
+{
+
+void write_medit(const SurfaceMesh& mesh, const std::string& path)
+{
+    std::ofstream out(path);
+    if (!out) throw SurfaceIoError(path + ": cannot open for writing");
+    out.precision(17);
+    OpenMesh::VPropHandleT<VertexClass> vertex_class;
+    OpenMesh::EPropHandleT<int> edge_curve;
+    OpenMesh::FPropHandleT<int> face_ref;
+    const bool classes = mesh.get_property_handle(vertex_class, property_names::vertex_class);
+    const bool curves = mesh.get_property_handle(edge_curve, property_names::edge_curve);
+    const bool refs = mesh.get_property_handle(face_ref, property_names::face_ref);
+    std::vector<int> index(mesh.n_vertices(), -1);
+    int n = 0;
+    for (auto v : mesh.vertices()) index[v.idx()] = ++n;
+    out << "MeshVersionFormatted 2\nDimension 3\nVertices\n" << n << "\n";
+    for (auto v : mesh.vertices())
+    {
+        const Vec3d p = mesh.point(v);
+        out << p[0] << " " << p[1] << " " << p[2] << " 0\n";
+    }
+    out << "Triangles\n" << mesh.n_faces() << "\n";
+    for (auto f : mesh.faces())
+    {
+        for (auto v : mesh.fv_range(f)) out << index[v.idx()] << " ";
+        out << (refs ? mesh.property(face_ref, f) : 0) << "\n";
+    }
+    std::vector<EdgeHandle> features;
+    for (auto e : mesh.edges())
+        if ((curves && mesh.property(edge_curve, e) != kNoCurve) || mesh.is_boundary(e)) features.push_back(e);
+    if (!features.empty())
+    {
+        out << "Edges\n" << features.size() << "\n";
+        for (auto e : features)
+        {
+            const auto h = mesh.halfedge_handle(e, 0);
+            out << index[mesh.from_vertex_handle(h).idx()] << " " << index[mesh.to_vertex_handle(h).idx()] << " "
+                << (curves ? mesh.property(edge_curve, e) + 1 : 0) << "\n";
+        }
+        std::vector<int> ridges;
+        for (std::size_t i = 0; i < features.size(); ++i)
+            if (!mesh.is_boundary(features[i])) ridges.push_back(static_cast<int>(i) + 1);
+        out << "Ridges\n" << ridges.size() << "\n";
+        for (int r : ridges) out << r << "\n";
+    }
+    if (classes)
+    {
+        std::vector<int> corners;
+        for (auto v : mesh.vertices())
+            if (mesh.property(vertex_class, v) == VertexClass::Corner) corners.push_back(index[v.idx()]);
+        out << "Corners\n" << corners.size() << "\n";
+        for (int c : corners) out << c << "\n";
+    }
+    out << "End\n";
+    out.flush();
+    if (!out) throw SurfaceIoError(path + ": write failed");
+}
+
+}  // namespace
+
+void write_surface(const SurfaceMesh& mesh, const std::string& path)
+{
+    const std::string ext = lower_extension(path);
+    if (ext != "obj" && ext != "off" && ext != "stl" && ext != "ply" && ext != "mesh")
+        throw SurfaceInputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
+    // Same folder (rename stays on one file system), same extension (OpenMesh picks the writer by it).
+    const std::string temp = path + ".tmp" + std::to_string(::getpid()) + "." + ext;
+    if (ext == "mesh")
+        write_medit(mesh, temp);
+    else
+    {
+        OpenMesh::IO::Options options;
+        std::ofstream probe(temp);
+        if (!probe) throw SurfaceIoError(path + ": cannot open for writing");
+        probe.close();
+        if (!OpenMesh::IO::write_mesh(mesh, temp, options, 17))
+        {
+            std::remove(temp.c_str());
+            throw SurfaceIoError(path + ": write failed");
+        }
+    }
+    if (std::rename(temp.c_str(), path.c_str()) != 0)
+    {
+        std::remove(temp.c_str());
+        throw SurfaceIoError(path + ": cannot rename the temporary file into place");
+    }
+}
+
+}  // namespace hdimesh::surface

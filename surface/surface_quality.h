@@ -1,0 +1,64 @@
+#pragma once
+// Triangle quality in real space (paper §5): shape Qe = 2√3·ρ/h (inradius over longest edge, 1
+// for an equilateral triangle), angles, edge size quality Qt, and the two-sided Hausdorff
+// distance between two surfaces. Used by the operators' quality layer and by the reports.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "surface/surface_mesh.h"
+
+namespace hdimesh::surface
+{
+
+/// Qe of the triangle (a, b, c): 2√3 · inradius / longest edge; 0 for a degenerate one.
+double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+/// Smallest interior angle of (a, b, c) in degrees (0 for a degenerate triangle).
+double triangle_min_angle_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+/// The three interior angles in degrees, at a, b, c.
+std::array<double, 3> triangle_angles_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+/// Unit normal of (a, b, c), zero for a degenerate triangle.
+Vec3d triangle_normal(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+/// Qe of a face of the mesh.
+double face_qe(const SurfaceMesh& mesh, FaceHandle f);
+/// Edge size quality Qt = min(h/L, L/h) with h the average of the two end sizes.
+inline double size_quality(double length, double size)
+{
+    if (length <= 0.0 || size <= 0.0) return 0.0;
+    return length < size ? length / size : size / length;
+}
+
+/// Everything the before/after table of surfremesh prints.
+struct QualityReport
+{
+    std::size_t vertices = 0, faces = 0, edges = 0;
+    double qe_min = 0.0, qe_mean = 0.0;
+    std::array<std::size_t, 10> qe_histogram{};  // Qe in tenths
+    double percent_qe_ge_07 = 0.0;
+    double min_angle_deg = 0.0, max_angle_deg = 0.0;
+    double percent_all_angles_ge_25 = 0.0;
+    double percent_qt_ge_066 = 0.0;     // edges, against the vertex sizes (average of the ends)
+    double percent_too_long = 0.0, percent_too_short = 0.0;
+    double hausdorff_to_model = -1.0;   // max over output samples of distance to the reference
+    double hausdorff_from_model = -1.0; // max over reference samples of distance to the output
+    double diagonal = 0.0;              // bounding-box diagonal of the measured mesh
+    double hausdorff() const { return std::max(hausdorff_to_model, hausdorff_from_model); }
+};
+
+/// Quality of `mesh`; Qt uses the vertex size property if set (> 0), else `uniform_size`
+/// (≤ 0: Qt figures are left at 0). Hausdorff fields stay -1 (see hausdorff_distance).
+QualityReport measure_quality(const SurfaceMesh& mesh, double uniform_size = 0.0);
+
+/// One-sided distances between two triangle surfaces, sampled at vertices, edge midpoints and
+/// face centroids of each (the same samples as ../shared/tools/surfstat.py), exact
+/// point-to-triangle distance. Returns {max dist of a's samples to b, of b's samples to a}.
+std::array<double, 2> hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b);
+
+/// A fixed-width text table comparing two reports (surfremesh prints it).
+std::string format_quality_table(const QualityReport& before, const QualityReport& after);
+
+/// Bounding-box diagonal of the mesh's vertices.
+double bounding_box_diagonal(const SurfaceMesh& mesh);
+
+}  // namespace hdimesh::surface

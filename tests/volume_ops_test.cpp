@@ -1,0 +1,518 @@
+// The optimization operators on small drawn configurations: each legal case must raise the
+// worst quality, conserve the volume, keep the boundary and leave a valid mesh (check_mesh,
+// which also compares the maintained adjacency with a recomputed one); each illegal case must
+// leave the mesh bit for bit as it was.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "fixtures.h"
+#include "volume/check.h"
+#include "volume/collapse.h"
+#include "volume/edge_removal.h"
+#include "volume/face_removal.h"
+#include "volume/size_fields.h"
+#include "volume/smooth.h"
+#include "volume/tet_tables.h"
+#include "volume/tet_topology.h"
+
+using namespace hdimesh;
+
+namespace
+{
+
+/// A mesh from points and tets listed positive, with its boundary triangles (ref 1).
+TetMesh mesh_from(const std::vector<Vec3>& points, const std::vector<TetVertices>& tets)
+{
+    TetMesh mesh;
+    for (const auto& p : points) mesh.add_vertex(p);
+    for (const auto& t : tets)
+    {
+        REQUIRE(signed_volume(points[t[0]], points[t[1]], points[t[2]], points[t[3]]) > 0);
+        mesh.add_tet(t);
+    }
+    fixtures::rebuild_boundary(mesh);
+    return mesh;
+}
+
+void require_valid(const TetMesh& mesh)
+{
+    const auto violations = check_mesh(mesh);
+    INFO(format_violations(violations));
+    REQUIRE(violations.empty());
+}
+
+/// The boundary as sorted coordinate triples, so it compares across renumbering.
+std::vector<std::array<double, 9>> boundary_signature(const TetMesh& mesh)
+{
+    std::vector<std::array<double, 9>> result;
+    for (const auto& tri : mesh.triangles)
+    {
+        std::array<Triangle, 1> sorted_tri = {tri};
+        std::sort(sorted_tri[0].begin(), sorted_tri[0].end());
+        std::array<double, 9> key{};
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c) key[3 * k + c] = mesh.points[sorted_tri[0][k]][c];
+        result.push_back(key);
+    }
+    std::sort(result.begin(), result.end());
+    return result;
+}
+
+double live_worst(const TetMesh& mesh)
+{
+    double worst = 1e300;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        if (!mesh.is_dead(t)) worst = std::min(worst, mesh.quality(t));
+    return worst;
+}
+
+/// Local edge of tet t joining vertices a and b.
+int local_edge(const TetMesh& mesh, int t, int a, int b)
+{
+    return tet::kEdgeOfVertices[local_index(mesh, t, a)][local_index(mesh, t, b)];
+}
+
+const double kRoot3 = std::sqrt(3.0);
+const double kPi = 3.14159265358979323846;
+
+/*  Three tets around the vertical edge a-b, ring r0 r1 r2 (an equilateral triangle in z = 0,
+    counter-clockwise seen from b):
+
+             b (0,0,H)
+            /|\
+      r1 --/-|-\-- r0        shell tets (a, b, r_i, r_i+1)
+            \|/
+             a (0,0,-H)      r2 behind                                                       */
+TetMesh three_tet_shell(double height, double r0_z = 0.0)
+{
+    return mesh_from({{0, 0, -height},
+                      {0, 0, height},
+                      {1, 0, r0_z},
+                      {-0.5, kRoot3 / 2, 0},
+                      {-0.5, -kRoot3 / 2, 0}},
+                     {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}});
+}
+
+}  // namespace
+
+TEST_CASE("edge shell: ordered ring, closed around an interior edge, open on the boundary")
+{
+    const TetMesh mesh = three_tet_shell(1.5);
+    EdgeShell shell;
+    REQUIRE(edge_shell(mesh, 1, 0, 1, shell));
+    CHECK(shell.closed);
+    REQUIRE(shell.tets.size() == 3);
+    REQUIRE(shell.ring.size() == 3);
+    for (std::size_t i = 0; i < 3; ++i)
+    {
+        const int t = shell.tets[i];
+        const auto& p = mesh.points;
+        const int c = shell.ring[i], d = shell.ring[(i + 1) % 3];
+        CHECK(local_index(mesh, t, c) >= 0);
+        CHECK(local_index(mesh, t, d) >= 0);
+        CHECK(signed_volume(p[0], p[1], p[c], p[d]) > 0);
+    }
+    // the ring edge r0-r1 is on the boundary: its shell is the single tet 0
+    REQUIRE(edge_shell(mesh, 0, 2, 3, shell));
+    CHECK_FALSE(shell.closed);
+    CHECK(shell.tets.size() == 1);
+    CHECK(shell.ring.size() == 2);
+
+    std::vector<int> ball;
+    vertex_ball(mesh, 2, 0, ball);
+    CHECK(ball.size() == 3);
+    vertex_ball(mesh, 0, 2, ball);
+    CHECK(ball.size() == 2);
+}
+
+TEST_CASE("3-2 flip: a long edge through a triangle is removed and the worst tet improves")
+{
+    TetMesh mesh = three_tet_shell(1.5);
+    OperatorContext context(mesh, nullptr);
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+    const double worst_before = live_worst(mesh);
+
+    const auto result = remove_edge(mesh, context, 0, local_edge(mesh, 0, 0, 1));
+    REQUIRE(result.removed);
+    CHECK(result.ring_size == 3);
+    CHECK(mesh.num_live_tets() == 2);
+    CHECK(live_worst(mesh) == doctest::Approx(result.worst_after));
+    CHECK(live_worst(mesh) > worst_before + 0.5);  // 0.37 -> 0.98
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
+    require_valid(mesh);
+    // the vertex map points at live tets containing each vertex
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+    {
+        const int t = context.vertex_tet[v];
+        REQUIRE(t >= 0);
+        CHECK_FALSE(mesh.is_dead(t));
+        CHECK(local_index(mesh, t, v) >= 0);
+    }
+}
+
+TEST_CASE("3-2 flip refused: non-convex ring, constrained face, different refs, no gain")
+{
+    SUBCASE("r0 lifted above b: the new tet over the ring would be inverted")
+    {
+        // the plane r0 r1 r2 passes above b, so (r0, r1, r2, b) is negative
+        TetMesh mesh = three_tet_shell(1.0, 4.0);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        const auto result = remove_edge(mesh, context, 0, local_edge(mesh, 0, 0, 1));
+        CHECK_FALSE(result.removed);
+        CHECK(result.worst_after <= 0);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("an interface triangle through the edge")
+    {
+        TetMesh mesh = three_tet_shell(1.5);
+        mesh.add_triangle({0, 1, 3}, 7);  // the face shared by tets 0 and 1
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(remove_edge(mesh, context, 0, local_edge(mesh, 0, 0, 1)).removed);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("tets of two refs")
+    {
+        TetMesh mesh = three_tet_shell(1.5);
+        mesh.tet_refs[2] = 2;
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(remove_edge(mesh, context, 0, local_edge(mesh, 0, 0, 1)).removed);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("a boundary edge (open shell)")
+    {
+        TetMesh mesh = three_tet_shell(1.5);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(remove_edge(mesh, context, 0, local_edge(mesh, 0, 0, 2)).removed);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("a short edge: the two new tets would be worse (0.54 -> flat)")
+    {
+        TetMesh mesh = three_tet_shell(0.3);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        const auto result = remove_edge(mesh, context, 0, local_edge(mesh, 0, 0, 1));
+        CHECK_FALSE(result.removed);
+        CHECK(result.worst_after < result.worst_before);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("a size field that forbids nothing here still allows it; ring chords are checked")
+    {
+        TetMesh mesh = three_tet_shell(1.5);
+        const ConstantSize field(0.5);  // every ring edge (length 1.73) is already too long
+        OperatorContext context(mesh, &field);
+        // a 3-ring has no chord: the removal only deletes an edge, it is allowed
+        CHECK(remove_edge(mesh, context, 0, local_edge(mesh, 0, 0, 1)).removed);
+        require_valid(mesh);
+    }
+}
+
+/*  Edge removal with a ring of m = 6 around a long vertical edge a-b (a hexagon of radius 1
+    in z = 0, slightly perturbed so no two triangulations tie):
+
+        r2 ---- r1
+       /   \ b /  \          the shell's 6 tets are needles (edge a-b = 3);
+     r3 ---- + ---- r0       the best of the 14 triangulations of the hexagon gives 8 tets
+       \   / a \  /
+        r4 ---- r5                                                                          */
+TEST_CASE("edge removal, ring of 6: the dynamic program finds the best of all triangulations")
+{
+    std::vector<Vec3> points = {{0.02, 0.01, -1.5}, {-0.01, 0.02, 1.5}};
+    const int m = 6;
+    for (int i = 0; i < m; ++i)
+    {
+        const double angle = 2 * kPi * i / m + 0.03 * std::sin(3.0 * i + 1);
+        const double radius = 1.0 + 0.05 * std::cos(5.0 * i);
+        points.push_back({radius * std::cos(angle), radius * std::sin(angle), 0.04 * std::sin(7.0 * i)});
+    }
+    std::vector<TetVertices> tets;
+    for (int i = 0; i < m; ++i) tets.push_back({0, 1, 2 + i, 2 + (i + 1) % m});
+    TetMesh mesh = mesh_from(points, tets);
+    OperatorContext context(mesh, nullptr);
+
+    // brute force: every triangulation of the convex ring polygon, by recursion on the chord
+    // (0, m-1); the worst new tet of each
+    const auto& p = mesh.points;
+    std::function<double(int, int)> best = [&](int i, int j) -> double {
+        if (j - i < 2) return 1e300;
+        double value = -1e300;
+        for (int k = i + 1; k < j; ++k)
+        {
+            const Vec3 &ri = p[2 + i], &rk = p[2 + k], &rj = p[2 + j];
+            value = std::max(value, std::min({best(i, k), best(k, j), tet_quality(ri, rk, rj, p[1]),
+                                              tet_quality(ri, rj, rk, p[0])}));
+        }
+        return value;
+    };
+    const double brute_force = best(0, m - 1);
+
+    const double volume = mesh.total_volume();
+    const double worst_before = live_worst(mesh);
+    const auto result = remove_edge(mesh, context, 3, local_edge(mesh, 3, 0, 1));
+    REQUIRE(result.removed);
+    CHECK(result.ring_size == m);
+    CHECK(result.worst_after == doctest::Approx(brute_force).epsilon(1e-14));
+    CHECK(mesh.num_live_tets() == 2 * (m - 2));
+    CHECK(live_worst(mesh) == doctest::Approx(result.worst_after));
+    CHECK(live_worst(mesh) > worst_before);
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    require_valid(mesh);
+}
+
+/*  Two flat tets on an equilateral triangle x y z (side sqrt 3, in z = 0), apexes p below and
+    q above at height h:
+
+            q (0,0,h)
+          / | \            2-3: the tets (x,y,p,q), (y,z,p,q), (z,x,p,q) around p-q
+        x---|---z
+          \ | /
+            p (0,0,-h)                                                                       */
+TEST_CASE("2-3 flip: flat tet pair becomes three tets around the apex edge")
+{
+    auto pair_mesh = [](double h, double q_shift) {
+        return mesh_from({{1, 0, 0}, {-0.5, kRoot3 / 2, 0}, {-0.5, -kRoot3 / 2, 0},
+                          {0, 0, -h}, {q_shift, 0, h}},
+                         {{0, 1, 2, 4}, {0, 2, 1, 3}});
+    };
+    SUBCASE("legal and better (h = 0.2: 0.27 -> 0.37)")
+    {
+        TetMesh mesh = pair_mesh(0.2, 0.0);
+        OperatorContext context(mesh, nullptr);
+        const double volume = mesh.total_volume();
+        const double worst_before = live_worst(mesh);
+        const auto boundary = boundary_signature(mesh);
+        const int face = local_index(mesh, 0, 4);  // tet 0's face opposite q is x y z
+        const auto result = remove_face(mesh, context, 0, face);
+        REQUIRE(result.removed);
+        CHECK(mesh.num_live_tets() == 3);
+        CHECK(live_worst(mesh) > worst_before + 0.05);
+        CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+        CHECK(boundary_signature(mesh) == boundary);
+        require_valid(mesh);
+    }
+    SUBCASE("legal but no gain (h = 0.5: 0.59 -> 0.55)")
+    {
+        TetMesh mesh = pair_mesh(0.5, 0.0);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        const auto result = remove_face(mesh, context, 0, local_index(mesh, 0, 4));
+        CHECK_FALSE(result.removed);
+        CHECK(result.worst_after < result.worst_before);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("illegal: the segment p-q misses the triangle")
+    {
+        TetMesh mesh = pair_mesh(0.2, 3.0);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        const auto result = remove_face(mesh, context, 0, local_index(mesh, 0, 4));
+        CHECK_FALSE(result.removed);
+        CHECK(result.worst_after <= 0);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("illegal: a boundary face, and a listed interior triangle")
+    {
+        TetMesh mesh = pair_mesh(0.2, 0.0);
+        OperatorContext plain(mesh, nullptr);
+        CHECK_FALSE(remove_face(mesh, plain, 0, local_index(mesh, 0, 0)).removed);
+        mesh.add_triangle({0, 1, 2}, 3);
+        OperatorContext constrained(mesh, nullptr);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(remove_face(mesh, constrained, 0, local_index(mesh, 0, 4)).removed);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("illegal: the new edge p-q would be too long")
+    {
+        TetMesh mesh = pair_mesh(0.2, 0.0);
+        const ConstantSize field(0.2);  // p-q = 0.4 > 1.515 * 0.2
+        OperatorContext context(mesh, &field);
+        CHECK_FALSE(remove_face(mesh, context, 0, local_index(mesh, 0, 4)).removed);
+    }
+}
+
+/*  Smoothing in a 3x3x3 Kuhn box whose interior vertex (1/3,1/3,1/3) is pushed toward a
+    corner: its ball holds the worst tets; smoothing must raise the ball's worst quality and
+    keep the boundary vertices where they are.                                              */
+TEST_CASE("smoothing: an interior vertex pushed off-centre comes back, boundary stays")
+{
+    TetMesh mesh = fixtures::box_mesh(3);
+    const int v = 1 + 4 * (1 + 4 * 1);  // (1,1,1) of the 4x4x4 grid
+    REQUIRE(mesh.vertex_classes[v] == VertexClass::Interior);
+    mesh.points[v] = Vec3(0.2, 0.2, 0.25);
+    require_valid(mesh);
+    OperatorContext context(mesh, nullptr);
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+    const double worst_before = live_worst(mesh);
+
+    SUBCASE("nodal shifting alone")
+    {
+        SmoothOptions options;
+        options.optimization_based = false;
+        const auto result = smooth_vertex(mesh, context, v, options);
+        REQUIRE(result.moved);
+        CHECK(result.worst_after > result.worst_before);
+    }
+    SUBCASE("optimization-based move alone")
+    {
+        SmoothOptions options;
+        options.nodal_shifting = false;
+        const auto result = smooth_vertex(mesh, context, v, options);
+        REQUIRE(result.moved);
+        CHECK(result.worst_after > result.worst_before);
+    }
+    SUBCASE("both")
+    {
+        const auto result = smooth_vertex(mesh, context, v);
+        REQUIRE(result.moved);
+        CHECK(result.worst_after > result.worst_before);
+        // a second pass cannot make it worse
+        const double after_first = live_worst(mesh);
+        smooth_vertex(mesh, context, v);
+        CHECK(live_worst(mesh) >= after_first);
+    }
+    CHECK(live_worst(mesh) > worst_before);
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
+    require_valid(mesh);
+
+    // boundary vertices never move
+    const Vec3 corner = mesh.points[0];
+    CHECK_FALSE(smooth_vertex(mesh, context, 0).moved);
+    CHECK(mesh.points[0] == corner);
+}
+
+TEST_CASE("smoothing refuses a move that makes an edge too long")
+{
+    TetMesh mesh = fixtures::box_mesh(3);
+    const int v = 1 + 4 * (1 + 4 * 1);
+    mesh.points[v] = Vec3(0.2, 0.2, 0.25);
+    // every edge around v stays below 1.515 * h only while v stays near the far corner
+    const ConstantSize field(0.18);
+    OperatorContext context(mesh, &field);
+    std::vector<int> ball;
+    vertex_ball(mesh, context.vertex_tet[v], v, ball);
+    auto too_long_edges = [&] {
+        int count = 0;
+        for (int t : ball)
+            for (int w : mesh.tets[t])
+                if (w != v) count += context.too_long(mesh.points[v], mesh.points[w]);
+        return count;
+    };
+    const int before = too_long_edges();
+    smooth_vertex(mesh, context, v);
+    CHECK(too_long_edges() <= before);
+    require_valid(mesh);
+}
+
+/*  A regular tet v0 v1 v2 v3 split by an interior point P close to v0 into four tets
+    (P with each face). The edge P-v0 is far too short for h = 1:
+
+            v3
+           /|\          collapse P -> v0: the three tets of edge P-v0 die, the fourth
+          / P \         becomes (v0, v1, v2, v3) again — quality 1.
+        v0--|--v2
+          \ | /
+            v1                                                                               */
+TEST_CASE("collapse of a too-short edge: interior point near a corner merges into it")
+{
+    TetMesh base = fixtures::regular_tet();
+    const auto& q = base.points;
+    const Vec3 centroid = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    const Vec3 p = q[0] + 0.1 * (centroid - q[0]);
+    std::vector<Vec3> points = {q[0], q[1], q[2], q[3], p};
+    std::vector<TetVertices> tets;
+    for (int f = 0; f < 4; ++f)
+    {
+        TetVertices t = base.tets[0];
+        t[f] = 4;  // P replaces the vertex opposite face f: positive, as P is inside
+        tets.push_back(t);
+    }
+    TetMesh mesh = mesh_from(points, tets);
+    REQUIRE(mesh.vertex_classes[4] == VertexClass::Interior);
+    const ConstantSize field(1.0);
+    REQUIRE(is_too_short((p - q[0]).norm(), 1.0));
+
+    SUBCASE("legal: P onto v0")
+    {
+        OperatorContext context(mesh, &field);
+        const double volume = mesh.total_volume();
+        const auto boundary = boundary_signature(mesh);
+        const double worst_before = live_worst(mesh);
+        const auto result = collapse_edge(mesh, context, 4, 0);
+        REQUIRE(result.collapsed);
+        CHECK(mesh.num_live_tets() == 1);
+        CHECK(live_worst(mesh) == doctest::Approx(1.0));
+        CHECK(live_worst(mesh) > worst_before);
+        CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+        CHECK(boundary_signature(mesh) == boundary);
+        CHECK(context.vertex_tet[4] == -1);
+        require_valid(mesh);
+        mesh.compact();
+        CHECK(mesh.num_vertices() == 4);
+        require_valid(mesh);
+    }
+    SUBCASE("illegal: a boundary vertex never moves")
+    {
+        OperatorContext context(mesh, &field);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(collapse_edge(mesh, context, 0, 4).collapsed);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("illegal: the ball holds two tet refs")
+    {
+        mesh.tet_refs[1] = 5;
+        OperatorContext context(mesh, &field);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(collapse_edge(mesh, context, 4, 0).collapsed);
+        CHECK(mesh.tets == tets);
+    }
+    SUBCASE("illegal: P onto itself")
+    {
+        OperatorContext context(mesh, &field);
+        CHECK_FALSE(collapse_edge(mesh, context, 4, 4).collapsed);
+    }
+}
+
+/*  Kuhn box 3x3x3, collapses of the interior vertex v = (1,1,1) (grid units) onto neighbours:
+    onto (1,0,0) (a face diagonal) some re-attached tets come out flat; onto (2,2,1) they are
+    positive but worse than the floor 0.3; onto (0,1,1) (an axis step) they stay >= 0.3.     */
+TEST_CASE("collapse in a Kuhn box: flat, below the floor, and legal")
+{
+    TetMesh mesh = fixtures::box_mesh(3);
+    auto grid = [](int i, int j, int k) { return i + 4 * (j + 4 * k); };
+    const int v = grid(1, 1, 1);
+    OperatorContext context(mesh, nullptr);
+    const auto tets = mesh.tets;
+    const double volume = mesh.total_volume();
+
+    const auto flat = collapse_edge(mesh, context, v, grid(1, 0, 0));
+    CHECK_FALSE(flat.collapsed);
+    CHECK(flat.worst_after < 1e-9);
+    CHECK(mesh.tets == tets);
+
+    const auto poor = collapse_edge(mesh, context, v, grid(2, 2, 1));
+    CHECK_FALSE(poor.collapsed);
+    CHECK(poor.worst_after > 0);
+    CHECK(poor.worst_after < 0.3);
+    CHECK(mesh.tets == tets);
+
+    const auto legal = collapse_edge(mesh, context, v, grid(0, 1, 1));
+    REQUIRE(legal.collapsed);
+    CHECK(legal.worst_after >= 0.3);
+    CHECK(live_worst(mesh) >= std::min(legal.worst_before, 0.3));
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    require_valid(mesh);
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        if (!mesh.is_dead(t)) CHECK(local_index(mesh, t, v) < 0);
+}

@@ -1,0 +1,63 @@
+#pragma once
+// The tet complex seen from its faces and edges: which tets use each face, which faces are the
+// boundary (used by exactly one tet), the unique edges, the volume a set of triangles encloses.
+// Computed from the tets alone, never from mesh.neighbors or mesh.triangles, so the checker and
+// the quality report can compare those stored arrays against the truth.
+
+#include <vector>
+
+#include "volume/tet_mesh.h"
+
+namespace hdimesh
+{
+
+/// One face of a live tet: tets[tet], local face `local_face` (tet_tables.h numbering).
+struct TetFace
+{
+    int tet;
+    int local_face;
+};
+
+/// Every distinct face (vertex set) of the live tets with the tets that use it:
+/// the uses of face k are uses[start[k] .. start[k+1]). Faces are grouped in O(n) by their
+/// smallest vertex, as TetMesh::build_adjacency does. Tets with a vertex id out of range are
+/// skipped (check_mesh reports them).
+struct FaceGroups
+{
+    std::vector<int> start;
+    std::vector<TetFace> uses;
+    int num_faces() const { return static_cast<int>(start.size()) - 1; }
+};
+
+FaceGroups group_tet_faces(const TetMesh& mesh);
+
+/// The face's vertices as the tet lists them (outward when the tet is positive).
+Triangle face_vertices(const TetMesh& mesh, const TetFace& face);
+
+/// The faces used by exactly one live tet, oriented as that tet sees them (outward).
+std::vector<Triangle> tet_boundary_faces(const TetMesh& mesh);
+
+/// Appends the tets' boundary faces missing from mesh.triangles (ref 0), e.g. for a .msh
+/// without triangles; returns how many. A face is "present" when mesh.triangles holds its
+/// vertex set, whatever the orientation (check_mesh reports a wrong orientation).
+int add_missing_boundary_triangles(TetMesh& mesh);
+
+/// Volume enclosed by a closed, outward-oriented triangle set (divergence theorem), computed
+/// relative to the triangles' bounding-box centre so large offsets do not cost precision.
+double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles);
+
+/// Undirected edges of the live tets, each once as {low, high} id, sorted. O(n) with a
+/// per-vertex bucket (no std::map), so it stays fast on millions of tets.
+std::vector<Edge> unique_tet_edges(const TetMesh& mesh);
+
+/// Vertex-to-vertex adjacency through the edges of live tets, in compressed rows:
+/// the neighbours of v are neighbors[start[v] .. start[v+1]), sorted.
+struct VertexGraph
+{
+    std::vector<int> start;
+    std::vector<int> neighbors;
+};
+
+VertexGraph vertex_graph(const TetMesh& mesh);
+
+}  // namespace hdimesh

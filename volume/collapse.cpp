@@ -1,0 +1,167 @@
+#include "volume/collapse.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace hdimesh
+{
+
+namespace
+{
+
+/// from's ball split by role: the shell of the edge (dies) and the rest (re-attached to `to`).
+struct CollapseConfiguration
+{
+    int from = -1, to = -1;
+    std::vector<int> ball;
+    std::vector<int> shell;           // tets containing both from and to
+    std::vector<TetVertices> moved;   // the other tets, with from replaced by to
+    std::vector<int> new_neighbours;  // vertices joined to `to` by the collapse
+};
+
+}  // namespace
+
+CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, int to,
+                             const CollapseOptions& options)
+{
+    CollapseResult result;
+    // layer 1: classes — only a free interior vertex moves, and only onto another vertex
+    if (from == to || !context.constraints.is_free_vertex(from) || context.vertex_tet[from] < 0)
+        return result;
+
+    // layer 2: topology — the edge exists, one ref, nothing required
+    CollapseConfiguration config;
+    config.from = from;
+    config.to = to;
+    vertex_ball(mesh, context.vertex_tet[from], from, config.ball);
+    const int ref = mesh.tet_refs[config.ball.front()];
+    std::vector<int> shell_ring;  // vertices already joined to `to` through the shell
+    for (int t : config.ball)
+    {
+        if (mesh.tet_refs[t] != ref || !context.constraints.is_removable_tet(t)) return result;
+        const auto& tv = mesh.tets[t];
+        if (local_index(mesh, t, to) >= 0)
+        {
+            config.shell.push_back(t);
+            for (int v : tv) shell_ring.push_back(v);
+            continue;
+        }
+        TetVertices moved = tv;
+        for (int& v : moved)
+            if (v == from) v = to;
+        config.moved.push_back(moved);
+    }
+    if (config.shell.empty() || config.moved.empty()) return result;  // (from, to) no edge
+    for (int t : config.ball)
+        for (int v : mesh.tets[t])
+            if (v != from && v != to &&
+                std::find(shell_ring.begin(), shell_ring.end(), v) == shell_ring.end())
+                config.new_neighbours.push_back(v);
+    std::sort(config.new_neighbours.begin(), config.new_neighbours.end());
+    config.new_neighbours.erase(
+        std::unique(config.new_neighbours.begin(), config.new_neighbours.end()),
+        config.new_neighbours.end());
+
+    // layers 3 and 4 for each place the merged vertex may take: `to` itself, then (when `to`
+    // is free too) the edge's midpoint, which halves how much the new edges grow
+    // the ball's old worst only matters when a new tet falls below options.min_quality, so
+    // it is computed on demand (most collapses never need it)
+    double ball_worst = -1;  // not computed yet
+    auto old_worst = [&] {
+        if (ball_worst < 0) ball_worst = std::max(0.0, worst_quality(mesh, config.ball));
+        return ball_worst;
+    };
+    std::vector<int> to_ball, to_neighbours;
+    const bool may_move_to = options.allow_midpoint && context.constraints.is_free_vertex(to);
+    if (may_move_to)
+    {
+        vertex_ball(mesh, context.vertex_tet[to], to, to_ball);
+        for (int t : to_ball)
+            for (int v : mesh.tets[t])
+                if (v != to && v != from) to_neighbours.push_back(v);
+        std::sort(to_neighbours.begin(), to_neighbours.end());
+        to_neighbours.erase(std::unique(to_neighbours.begin(), to_neighbours.end()),
+                            to_neighbours.end());
+    }
+    const Vec3 to_position = mesh.points[to];
+    std::vector<Vec3> places = {to_position};
+    if (may_move_to)
+    {
+        places.push_back(0.5 * (mesh.points[from] + to_position));
+        // the centre of every vertex the merged one will see: balances the new lengths
+        Vec3 centre = Vec3::Zero();
+        int count = 0;
+        for (const auto* list : {&to_neighbours, &config.new_neighbours})
+            for (int v : *list)
+            {
+                centre += mesh.points[v];
+                ++count;
+            }
+        if (count > 0) places.push_back(centre / count);
+    }
+    bool found = false;
+    Vec3 chosen = to_position;
+    for (std::size_t attempt = 0; attempt < places.size() && !found; ++attempt)
+    {
+        const Vec3 place = places[attempt];
+        const auto& p = mesh.points;
+        auto point_of = [&](int v) -> const Vec3& { return v == to ? place : p[v]; };
+        auto quality_of = [&](const TetVertices& tv) {
+            return tet_quality(point_of(tv[0]), point_of(tv[1]), point_of(tv[2]), point_of(tv[3]));
+        };
+        std::vector<int> reshaped;  // tets of `to` outside the shell, when `to` moves
+        if (attempt > 0)
+            for (int t : to_ball)
+                if (local_index(mesh, t, from) < 0) reshaped.push_back(t);
+        // the floor: min(old worst of every tet involved, options.min_quality)
+        double floor = options.min_quality;
+        bool floor_exact = false;
+        auto below_floor = [&](double q) {
+            if (q <= 0.0) return true;
+            if (q >= floor) return false;
+            if (!floor_exact)
+            {
+                floor = std::min(floor, old_worst());
+                if (attempt > 0) floor = std::min(floor, worst_quality(mesh, reshaped));
+                floor_exact = true;
+            }
+            return q < floor;
+        };
+        double worst = std::numeric_limits<double>::infinity();
+        bool rejected = false;
+        for (const auto& tv : config.moved)
+        {
+            worst = std::min(worst, quality_of(tv));
+            if ((rejected = below_floor(worst))) break;
+        }
+        for (std::size_t k = 0; k < reshaped.size() && !rejected; ++k)
+        {
+            worst = std::min(worst, quality_of(mesh.tets[reshaped[k]]));
+            rejected = below_floor(worst);
+        }
+        result.worst_after = worst;
+        if (rejected) continue;
+        bool sizes_ok = true;
+        for (int v : config.new_neighbours)
+            sizes_ok = sizes_ok && !context.too_long(place, p[v]);
+        if (attempt > 0)
+            for (int v : to_neighbours)
+                sizes_ok = sizes_ok && !(context.too_long(place, p[v]) &&
+                                         !context.too_long(to_position, p[v]));
+        if (!sizes_ok) continue;
+        found = true;
+        chosen = place;
+        if (attempt > 0)
+            context.touched.insert(context.touched.end(), reshaped.begin(), reshaped.end());
+    }
+    result.worst_before = old_worst();
+    if (!found) return result;
+
+    mesh.points[to] = chosen;
+    replace_tets(mesh, context, config.ball, config.moved, ref);
+    context.vertex_tet[from] = -1;
+    result.collapsed = true;
+    return result;
+}
+
+}  // namespace hdimesh

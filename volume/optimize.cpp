@@ -1,0 +1,369 @@
+#include "volume/optimize.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <limits>
+
+#include "volume/collapse.h"
+#include "volume/edge_removal.h"
+#include "volume/face_removal.h"
+#include "volume/smooth.h"
+#include "volume/tet_tables.h"
+#include "volume/tet_topology.h"
+
+namespace hdimesh
+{
+
+namespace
+{
+
+enum OperatorIndex
+{
+    kEdgeRemoval = 0,
+    kFaceRemoval = 1,
+    kSmoothing = 2,
+    kCollapse = 3,
+    kSizeSmoothing = 4,
+    kNumOperators = 5
+};
+
+const char* const kOperatorNames[kNumOperators] = {"edge removal", "face removal (2-3)",
+                                                   "smoothing", "collapse", "size smoothing"};
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct QualitySummary
+{
+    double min = 0;
+    double fraction_good = 0;  // Qe >= 0.5
+};
+
+QualitySummary summarize_quality(const TetMesh& mesh)
+{
+    QualitySummary s;
+    s.min = std::numeric_limits<double>::infinity();
+    long live = 0, good = 0;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        if (mesh.is_dead(t)) continue;
+        const double q = mesh.quality(t);
+        s.min = std::min(s.min, q);
+        ++live;
+        good += (q >= 0.5);
+    }
+    if (live == 0) s.min = 0;
+    s.fraction_good = live > 0 ? static_cast<double>(good) / static_cast<double>(live) : 1.0;
+    return s;
+}
+
+/// One optimization run over a mesh: the context, the counters, the work lists.
+class Optimizer
+{
+public:
+    Optimizer(TetMesh& mesh, const SizeField& field, const OptimizeOptions& options)
+        : mesh_(mesh), options_(options)
+    {
+        if (!mesh_.has_adjacency()) mesh_.build_adjacency();
+        context_ = OperatorContext(mesh_, &field);
+        for (int k = 0; k < kNumOperators; ++k) report_.operators.push_back({kOperatorNames[k]});
+        report_.min_quality_before = summarize_quality(mesh_).min;
+        if (options_.verbosity >= 2)
+            std::printf("%-6s %-20s %10s %10s %9s %9s %9s\n", "sweep", "operator", "attempts",
+                        "successes", "min Qe", "%Qe>=0.5", "time(s)");
+    }
+
+    /// Collapses too-short edges with a free endpoint, shortest (relative to the size) first,
+    /// pass after pass until one collapses nothing. Returns the number of collapses.
+    long collapse_short_edges()
+    {
+        if (!options_.collapse) return 0;
+        CollapseOptions collapse_options;
+        collapse_options.min_quality = options_.collapse_min_quality;
+        long total = 0;
+        // the first pass sees every short edge; later ones only those of tets changed since,
+        // as nothing else can have become collapsible
+        std::vector<ShortEdge> candidates = short_edges(all_live_tets());
+        for (int pass = 0; pass < options_.max_sweeps && !candidates.empty(); ++pass)
+        {
+            const SweepCounters before = counters();
+            const auto start = Clock::now();
+            context_.touched.clear();
+            long collapsed = 0;
+            for (const auto& candidate : candidates)
+            {
+                const int u = candidate.u, v = candidate.v;
+                if (context_.vertex_tet[u] < 0 || context_.vertex_tet[v] < 0) continue;
+                const Vec3& pu = mesh_.points[u];
+                const Vec3& pv = mesh_.points[v];  // may have moved since the scan
+                if (!is_too_short((pv - pu).norm(), edge_target_size(*context_.field, pu, pv)))
+                    continue;
+                bool done = false;
+                if (context_.constraints.is_free_vertex(u))
+                    done = attempt_collapse(u, v, collapse_options);
+                if (!done && context_.constraints.is_free_vertex(v))
+                    done = attempt_collapse(v, u, collapse_options);
+                collapsed += done;
+            }
+            report_.operators[kCollapse].seconds += seconds_since(start);
+            print_sweep("collapse", before);
+            total += collapsed;
+            if (collapsed == 0) break;
+            std::vector<int> changed;
+            for (int t : context_.touched)
+                if (!mesh_.is_dead(t)) changed.push_back(t);
+            std::sort(changed.begin(), changed.end());
+            changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+            candidates = short_edges(changed);
+        }
+        return total;
+    }
+
+    /// Moves the free endpoints of the too-short edges that collapses could not remove toward
+    /// their target lengths. Returns the number of moves.
+    long equalize_short_edges()
+    {
+        if (!options_.move) return 0;
+        const SweepCounters before = counters();
+        const auto start = Clock::now();
+        SizeSmoothOptions size_options;
+        size_options.min_quality = options_.collapse_min_quality;
+        long moved = 0;
+        for (const auto& candidate : short_edges(all_live_tets()))
+            for (int w : {candidate.u, candidate.v})
+            {
+                if (!context_.constraints.is_free_vertex(w) || context_.vertex_tet[w] < 0) continue;
+                ++report_.operators[kSizeSmoothing].attempts;
+                const bool done = equalize_edge_sizes(mesh_, context_, w, size_options).moved;
+                report_.operators[kSizeSmoothing].successes += done;
+                moved += done;
+            }
+        report_.operators[kSizeSmoothing].seconds += seconds_since(start);
+        print_sweep("sizes", before);
+        return moved;
+    }
+
+    /// Sweeps over the tets below `threshold`: first all of them, then the ones still bad or
+    /// created by the previous sweep, until a sweep changes nothing.
+    void improve_below(double threshold)
+    {
+        std::vector<int> work;
+        for (int t = 0; t < mesh_.num_tet_slots(); ++t)
+            if (!mesh_.is_dead(t) && mesh_.quality(t) < threshold) work.push_back(t);
+        for (int sweep = 0; sweep < options_.max_sweeps && !work.empty(); ++sweep)
+        {
+            const SweepCounters before = counters();
+            context_.touched.clear();
+            std::vector<int> still_bad;
+            long successes = 0;
+            for (int t : work)
+            {
+                if (mesh_.is_dead(t) || mesh_.quality(t) >= threshold) continue;
+                const int result = improve_tet(t, threshold);
+                successes += (result != kNothing);
+                if (result != kReplaced && mesh_.quality(t) < threshold) still_bad.push_back(t);
+            }
+            ++report_.sweeps;
+            print_sweep("sweep " + std::to_string(report_.sweeps), before);
+            if (successes == 0) break;
+            // next: the tets still bad, and the new or reshaped ones that are bad
+            work = std::move(still_bad);
+            for (int t : context_.touched)
+                if (!mesh_.is_dead(t) && mesh_.quality(t) < threshold) work.push_back(t);
+            std::sort(work.begin(), work.end());
+            work.erase(std::unique(work.begin(), work.end()), work.end());
+        }
+    }
+
+    OptimizeReport finish()
+    {
+        mesh_.compact();
+        report_.min_quality_after = summarize_quality(mesh_).min;
+        if (options_.verbosity >= 2)
+            std::printf("min Qe %.4f -> %.4f after %d sweeps\n", report_.min_quality_before,
+                        report_.min_quality_after, report_.sweeps);
+        return report_;
+    }
+
+private:
+    enum TetOutcome
+    {
+        kNothing,   // no operator succeeded
+        kReplaced,  // the tet was removed by a swap (its slot may hold a new tet)
+        kMoved      // a vertex of the tet moved
+    };
+
+    using SweepCounters = std::array<std::array<long, 2>, kNumOperators>;
+
+    SweepCounters counters() const
+    {
+        SweepCounters c;
+        for (int k = 0; k < kNumOperators; ++k)
+            c[k] = {report_.operators[k].attempts, report_.operators[k].successes};
+        return c;
+    }
+
+    struct ShortEdge
+    {
+        double ratio;  // L / hth
+        int u, v;      // u < v
+        bool operator<(const ShortEdge& o) const
+        {
+            return ratio != o.ratio ? ratio < o.ratio : (u != o.u ? u < o.u : v < o.v);
+        }
+        bool operator==(const ShortEdge& o) const { return u == o.u && v == o.v; }
+    };
+
+    std::vector<int> all_live_tets() const
+    {
+        std::vector<int> result;
+        result.reserve(mesh_.num_tet_slots());
+        for (int t = 0; t < mesh_.num_tet_slots(); ++t)
+            if (!mesh_.is_dead(t)) result.push_back(t);
+        return result;
+    }
+
+    /// The too-short edges with a free endpoint among the edges of `tets` (live), sorted by
+    /// L/hth then ids, each once.
+    std::vector<ShortEdge> short_edges(const std::vector<int>& tets) const
+    {
+        std::vector<ShortEdge> result;
+        for (int t : tets)
+        {
+            for (const auto& ev : tet::kEdgeVertices)
+            {
+                int u = mesh_.tets[t][ev[0]], v = mesh_.tets[t][ev[1]];
+                if (!context_.constraints.is_free_vertex(u) &&
+                    !context_.constraints.is_free_vertex(v))
+                    continue;
+                if (u > v) std::swap(u, v);
+                const Vec3& pu = mesh_.points[u];
+                const Vec3& pv = mesh_.points[v];
+                const double length = (pv - pu).norm();
+                const double target = edge_target_size(*context_.field, pu, pv);
+                if (is_too_short(length, target)) result.push_back({length / target, u, v});
+            }
+        }
+        std::sort(result.begin(), result.end());
+        // the same edge seen from several tets has the same ratio: duplicates are adjacent
+        result.erase(std::unique(result.begin(), result.end()), result.end());
+        return result;
+    }
+
+    bool attempt_collapse(int from, int to, const CollapseOptions& collapse_options)
+    {
+        ++report_.operators[kCollapse].attempts;
+        const bool done = collapse_edge(mesh_, context_, from, to, collapse_options).collapsed;
+        report_.operators[kCollapse].successes += done;
+        return done;
+    }
+
+    /// Tries the operators on tet t in a fixed order; the swaps first (cheap, topological),
+    /// then the smoothing of its free vertices while it stays below the threshold.
+    TetOutcome improve_tet(int t, double threshold)
+    {
+        if (options_.swap)
+        {
+            auto start = Clock::now();
+            for (int e = 0; e < 6; ++e)
+            {
+                ++report_.operators[kEdgeRemoval].attempts;
+                if (remove_edge(mesh_, context_, t, e).removed)
+                {
+                    ++report_.operators[kEdgeRemoval].successes;
+                    report_.operators[kEdgeRemoval].seconds += seconds_since(start);
+                    return kReplaced;
+                }
+            }
+            report_.operators[kEdgeRemoval].seconds += seconds_since(start);
+            start = Clock::now();
+            for (int f = 0; f < 4; ++f)
+            {
+                ++report_.operators[kFaceRemoval].attempts;
+                if (remove_face(mesh_, context_, t, f).removed)
+                {
+                    ++report_.operators[kFaceRemoval].successes;
+                    report_.operators[kFaceRemoval].seconds += seconds_since(start);
+                    return kReplaced;
+                }
+            }
+            report_.operators[kFaceRemoval].seconds += seconds_since(start);
+        }
+        TetOutcome outcome = kNothing;
+        if (options_.move)
+        {
+            const auto start = Clock::now();
+            const TetVertices vertices = mesh_.tets[t];
+            for (int v : vertices)
+            {
+                if (!context_.constraints.is_free_vertex(v)) continue;
+                ++report_.operators[kSmoothing].attempts;
+                SmoothOptions smooth_options;
+                smooth_options.good_enough = threshold;
+                if (smooth_vertex(mesh_, context_, v, smooth_options).moved)
+                {
+                    ++report_.operators[kSmoothing].successes;
+                    outcome = kMoved;
+                    if (mesh_.quality(t) >= threshold) break;
+                }
+            }
+            report_.operators[kSmoothing].seconds += seconds_since(start);
+        }
+        return outcome;
+    }
+
+    void print_sweep(const std::string& label, const SweepCounters& before)
+    {
+        if (options_.verbosity < 2) return;
+        const QualitySummary q = summarize_quality(mesh_);
+        for (int k = 0; k < kNumOperators; ++k)
+        {
+            const long attempts = report_.operators[k].attempts - before[k][0];
+            const long successes = report_.operators[k].successes - before[k][1];
+            if (attempts == 0) continue;
+            std::printf("%-6s %-20s %10ld %10ld %9.4f %8.2f%% %9.3f\n", label.c_str(),
+                        kOperatorNames[k], attempts, successes, q.min, 100.0 * q.fraction_good,
+                        report_.operators[k].seconds);
+        }
+        std::fflush(stdout);
+    }
+
+    TetMesh& mesh_;
+    OptimizeOptions options_;
+    OperatorContext context_;
+    OptimizeReport report_;
+};
+
+}  // namespace
+
+OptimizeReport improve_bad_elements(TetMesh& mesh, const SizeField& field,
+                                    const OptimizeOptions& options)
+{
+    Optimizer optimizer(mesh, field, options);
+    optimizer.improve_below(options.bad_quality);
+    return optimizer.finish();
+}
+
+OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field, const OptimizeOptions& options)
+{
+    Optimizer optimizer(mesh, field, options);
+    const double threshold = std::max(options.bad_quality, options.target_quality);
+    // collapses open room for better shapes and the swaps and moves open new collapses:
+    // alternate, a few rounds at most
+    for (int round = 0; round < 3; ++round)
+    {
+        long changes = optimizer.collapse_short_edges();
+        const long moved = optimizer.equalize_short_edges();
+        if (moved > 0) changes += moved + optimizer.collapse_short_edges();
+        if (round > 0 && changes == 0) break;
+        optimizer.improve_below(threshold);
+    }
+    return optimizer.finish();
+}
+
+}  // namespace hdimesh

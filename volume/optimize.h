@@ -1,0 +1,52 @@
+#pragma once
+// The optimization driver (paper §3.7, §5): work lists of bad tets, each attacked by edge
+// removal, face removal (2-3) and smoothing of its free vertices; too-short edges collapsed
+// first in the final optimization. The boundary (mesh.triangles and every non-interior vertex)
+// never changes. Deterministic: fixed traversal orders only.
+
+#include <string>
+#include <vector>
+
+#include "volume/size_field.h"
+#include "volume/tet_mesh.h"
+
+namespace hdimesh
+{
+
+struct OptimizeOptions
+{
+    bool swap = true;              ///< edge removal / face removal (--noswap turns off)
+    bool move = true;              ///< nodal shifting (--nomove)
+    bool collapse = true;          ///< too-short edge collapse (derefinement)
+    double bad_quality = 0.2;      ///< elements below are "bad" (the paper's threshold)
+    double target_quality = 0.5;   ///< optimize_mesh works on every tet below this
+    double collapse_min_quality = 0.3;  ///< a collapse may not create a tet worse than this
+    int max_sweeps = 10;
+    int verbosity = 0;  ///< 2: per-sweep table on stdout (operator, attempts, successes, min Qe, % Qe>=0.5, time)
+};
+
+struct OperatorStats
+{
+    std::string name;
+    long attempts = 0, successes = 0;
+    double seconds = 0;
+};
+
+struct OptimizeReport
+{
+    std::vector<OperatorStats> operators;  ///< totals over all sweeps
+    double min_quality_before = 0, min_quality_after = 0;
+    int sweeps = 0;
+};
+
+/// After a refinement pass: remove elements below options.bad_quality (swaps + smoothing
+/// around them only). Leaves the mesh compact with adjacency.
+OptimizeReport improve_bad_elements(TetMesh& mesh, const SizeField& field,
+                                    const OptimizeOptions& options = {});
+
+/// The final optimization: collapse too-short edges, then swap/smooth until no operator
+/// improves the worst element (cap). Leaves the mesh compact with adjacency.
+OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field,
+                             const OptimizeOptions& options = {});
+
+}  // namespace hdimesh

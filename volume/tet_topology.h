@@ -1,0 +1,105 @@
+#pragma once
+// Local topology over TetMesh's `neighbors` adjacency, shared by the optimization operators:
+// a vertex's ball, an edge's ordered shell, what the operators must leave alone (boundary and
+// interface triangles, feature edges, non-interior vertices), and the one commit primitive
+// that swaps a set of tets for another filling the same region while keeping the adjacency.
+
+#include <array>
+#include <vector>
+
+#include "volume/size_field.h"
+#include "volume/tet_mesh.h"
+
+namespace hdimesh
+{
+
+/// Local index (0..3) of vertex v in tet t, or -1.
+int local_index(const TetMesh& mesh, int t, int v);
+
+/// The tets containing vertex v, walked from `seed` (a live tet containing v) across the faces
+/// through v, in a fixed breadth-first order. `ball` is cleared first.
+void vertex_ball(const TetMesh& mesh, int seed, int v, std::vector<int>& ball);
+
+/// The tets around edge (a, b) in order. Tet tets[i] has vertices {a, b, ring[i], ring[i+1]}
+/// and (a, b, ring[i], ring[i+1]) is positively oriented: seen from b the ring turns
+/// counter-clockwise. Closed shell: ring.size() == tets.size() (indices taken modulo the size).
+/// Open shell (the edge touches the boundary): ring.size() == tets.size() + 1.
+struct EdgeShell
+{
+    int a = -1, b = -1;
+    std::vector<int> tets;
+    std::vector<int> ring;
+    bool closed = false;
+};
+
+/// Fills `shell` for the edge (a, b) of the live tet `seed`. Returns false when the walk finds
+/// an inconsistent adjacency (should not happen in a valid mesh).
+bool edge_shell(const TetMesh& mesh, int seed, int a, int b, EdgeShell& shell);
+
+/// One live tet per vertex (-1 for a vertex no tet uses), the smallest id.
+std::vector<int> vertex_to_tet(const TetMesh& mesh);
+
+/// The sorted vertex triple of face f of tet t.
+std::array<int, 3> sorted_face(const TetMesh& mesh, int t, int f);
+
+/// What the optimization operators may not touch (issue 4: the boundary stays fixed).
+class MeshConstraints
+{
+public:
+    MeshConstraints() = default;
+    explicit MeshConstraints(const TetMesh& mesh);
+
+    /// Face f of tet t is on the boundary, between two tet refs, or listed in mesh.triangles.
+    bool is_constrained_face(const TetMesh& mesh, int t, int f) const;
+    /// Edge (a, b) is a listed feature edge (mesh.edges).
+    bool is_constrained_edge(int a, int b) const;
+    /// Vertex v may move or disappear: interior and not required.
+    bool is_free_vertex(int v) const { return free_vertex_[v] != 0; }
+    /// Tet t may be removed (not required).
+    bool is_removable_tet(int t) const;
+
+    /// Keeps the per-vertex flags sized after vertices were added (new ones are interior).
+    void grow(int num_vertices);
+
+private:
+    std::vector<std::array<int, 3>> faces_;  // sorted triples, sorted
+    std::vector<std::array<int, 2>> edges_;  // sorted pairs, sorted
+    std::vector<char> free_vertex_;
+    std::vector<int> required_tets_;  // sorted
+};
+
+/// The state every operator reads and keeps current: the size field (nullptr: no size checks),
+/// the constraints, and one live tet per vertex (so balls need no global search).
+struct OperatorContext
+{
+    const SizeField* field = nullptr;
+    MeshConstraints constraints;
+    std::vector<int> vertex_tet;
+    /// Tets created or reshaped by operators (appended, never cleared here): the driver's
+    /// next work list.
+    std::vector<int> touched;
+
+    OperatorContext() = default;
+    OperatorContext(const TetMesh& mesh, const SizeField* size_field);
+
+    /// Edge (p, q) would be too long for the field (false without a field).
+    bool too_long(const Vec3& p, const Vec3& q) const;
+    /// Edge (p, q) would be too short for the field (false without a field).
+    bool too_short(const Vec3& p, const Vec3& q) const;
+    /// Qt of edge (p, q) (1 without a field).
+    double size_quality(const Vec3& p, const Vec3& q) const;
+};
+
+/// Replaces the live tets `removed` by tets `added` (all of ref `ref`) that fill the same region
+/// and share its outer faces. Reuses the freed slots first (so ids stay dense), then add_tet.
+/// Keeps mesh.neighbors symmetric and context.vertex_tet valid for the vertices of `added`;
+/// appends the new ids to context.touched.
+/// Returns the ids of the new tets, in the order of `added`.
+std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
+                              const std::vector<int>& removed,
+                              const std::vector<TetVertices>& added, int ref);
+
+/// Minimum quality over a list of tets (+infinity for an empty list).
+double worst_quality(const TetMesh& mesh, const std::vector<int>& tets);
+
+}  // namespace hdimesh
