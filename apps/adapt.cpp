@@ -56,6 +56,7 @@ int main(int argc, char** argv)
         options.optimizer.move = !nomove;
         options.optimizer.collapse = !optim_only;
         options.verbosity = verbosity;
+        options.optimizer.verbosity = verbosity;
 
         if (verbosity >= 1)
         {

@@ -119,22 +119,26 @@ const Vec3* side_normal_of(const Model& m, int v, int patch)
 
 int side_count(const Model& m, int v) { return m.side_begin[at(v) + 1] - m.side_begin[at(v)]; }
 
-/// The side a query belongs to: the patch of the input triangle nearest to it (searched among the
-/// triangles around its three nearest nodes) and that triangle's normal as the local reference.
-/// Without ridges every node is on one patch: the nearest node's normal is the reference.
+/// The side a query belongs to: the patch of the input triangle nearest to it and that
+/// triangle's normal as the local reference. Far from ridges (every candidate node on one side of
+/// one patch) that patch and the nearest node's normal are used directly. Near a ridge the
+/// triangles around every candidate node are searched: the nearest nodes alone can all lie on the
+/// other side when that side is more finely meshed.
 void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Vec3& reference_normal)
 {
     const int first = s.candidate[0];
-    bool ambiguous = m.several_patches;
-    if (ambiguous) {
-        ambiguous = false;
-        const int count = std::min<int>(3, static_cast<int>(s.candidate.size()));
-        for (int i = 0; i < count && !ambiguous; ++i) {
+    const int candidate_count = static_cast<int>(s.candidate.size());
+    bool ambiguous = false;
+    if (m.several_patches && side_count(m, first) == 1) {
+        const int first_patch = m.side_patch[at(m.side_begin[at(first)])];
+        for (int i = 0; i < candidate_count && !ambiguous; ++i) {
             const int v = s.candidate[at(i)];
-            ambiguous = side_count(m, v) != 1 || m.side_patch[at(m.side_begin[at(v)])] != m.side_patch[at(m.side_begin[at(first)])];
+            ambiguous = side_count(m, v) != 1 || m.side_patch[at(m.side_begin[at(v)])] != first_patch;
         }
+    } else {
+        ambiguous = m.several_patches || side_count(m, first) != 1;
     }
-    if (!ambiguous && side_count(m, first) >= 1) {
+    if (!ambiguous) {
         patch = m.side_patch[at(m.side_begin[at(first)])];
         reference_normal = m.side_normal[at(m.side_begin[at(first)])];
         return;
@@ -143,8 +147,7 @@ void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Ve
     // triangle x stands highest above: the one it was pushed off, whose side it projects into.
     double best = std::numeric_limits<double>::infinity();
     double best_height = 0;
-    const int count = std::min<int>(3, static_cast<int>(s.candidate.size()));
-    for (int i = 0; i < count; ++i) {
+    for (int i = 0; i < candidate_count; ++i) {
         const int v = s.candidate[at(i)];
         for (int k = m.incident_begin[at(v)]; k < m.incident_begin[at(v) + 1]; ++k) {
             const int t = m.incident_triangles[at(k)];
@@ -152,8 +155,9 @@ void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Ve
             const Triangle3& tri = m.triangles[at(t)];
             const double d2 = squared_distance_to_triangle(x, m.points[at(tri[0])], m.points[at(tri[1])], m.points[at(tri[2])]);
             const double height = std::abs((x - m.points[at(tri[0])]).dot(m.face_normal[at(t)]));
-            const double tie = 1e-9 * best;
-            if (d2 < best - tie || (d2 <= best + tie && height > best_height)) {
+            const bool nearer = best == std::numeric_limits<double>::infinity() || d2 < best * (1 - 1e-9);
+            const bool tied_and_higher = d2 <= best * (1 + 1e-9) && height > best_height;
+            if (nearer || tied_and_higher) {
                 best = std::min(best, d2);
                 best_height = height;
                 patch = m.triangle_patch[at(t)];
@@ -161,10 +165,14 @@ void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Ve
             }
         }
     }
-    if (best == std::numeric_limits<double>::infinity() && side_count(m, first) >= 1) {
-        patch = m.side_patch[at(m.side_begin[at(first)])];
-        reference_normal = m.side_normal[at(m.side_begin[at(first)])];
-    }
+    if (best == std::numeric_limits<double>::infinity())  // no triangle around: a point cloud
+        for (int i = 0; i < candidate_count; ++i) {
+            const int v = s.candidate[at(i)];
+            if (side_count(m, v) == 0) continue;
+            patch = m.side_patch[at(m.side_begin[at(v)])];
+            reference_normal = m.side_normal[at(m.side_begin[at(v)])];
+            break;
+        }
 }
 
 /// Sorts the candidates by their (updated) squared distances; they are nearly sorted already.

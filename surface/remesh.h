@@ -54,7 +54,7 @@ struct SurfaceRemeshSettings
     int iterations = 10;
     /// With a uniform size: refine below it where the curvature needs it to stay within
     /// hausd (if given) or this fraction of the bbox diagonal (≤ 0: strictly uniform).
-    double uniform_hausd_fraction = 0.001;
+    double uniform_hausd_fraction = 0.0006;
     /// Smooth vertices on the HDI model instead of the input facets. Off by default: on fandisk it
     /// is 4x slower and its projections near ridges left slivers (see the report of issue 6).
     bool use_hdi = false;

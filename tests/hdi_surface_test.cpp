@@ -253,6 +253,49 @@ TEST_CASE("hdi: a paraboloid is reproduced to round-off where the diffuse frame 
     }
 }
 
+TEST_CASE("hdi: thin parts - nodes of the opposite sheet are dropped by their normal")
+{
+    // A strip folded back on itself: two sheets 0.1 apart, nodes 0.2 apart, so the nearest nodes
+    // of a point on the top sheet include bottom-sheet nodes. One smooth patch (no features):
+    // only the normal rule can tell the sheets apart.
+    //   z=+0.05  o---o---o---o---o---o--.
+    //                                     )  U-turn, radius 0.05
+    //   z=-0.05  o---o---o---o---o---o--'
+    const double half = 0.05, spacing = 0.2;
+    std::vector<Vec3> section;  // along the strip, top sheet first
+    for (int i = 0; i <= 10; ++i) section.emplace_back(i * spacing, 0, half);
+    for (int k = 1; k < 4; ++k) section.emplace_back(2.0 + half * std::sin(pi * k / 4), 0, half * std::cos(pi * k / 4));
+    for (int i = 10; i >= 0; --i) section.emplace_back(i * spacing, 0, -half);
+    const int rows = 11;
+    Surface s;
+    for (const Vec3& p : section)
+        for (int j = 0; j < rows; ++j) s.points.push_back(p + Vec3(0, j * spacing, 0));
+    for (int i = 0; i + 1 < static_cast<int>(section.size()); ++i)
+        for (int j = 0; j + 1 < rows; ++j) {
+            const int a = i * rows + j, b = (i + 1) * rows + j;
+            s.triangles.push_back({a, b, b + 1});
+            s.triangles.push_back({a, b + 1, a + 1});
+        }
+    std::mt19937 random(9);
+    // Away from the U-turn, whose nodes tilt the refined normals of the nodes next to it.
+    std::uniform_real_distribution<double> inside(0.2, 1.0), lift(-0.02, 0.04);
+    const HdiSurface model(s.points, s.triangles, FeatureSet{});
+    HdiOptions no_filter;
+    no_filter.normal_agreement = -1.0;  // every node admissible
+    const HdiSurface unfiltered(s.points, s.triangles, FeatureSet{}, no_filter);
+    double unfiltered_worst = 0;
+    for (int k = 0; k < 100; ++k) {
+        const Vec3 x(inside(random), inside(random), half + lift(random));
+        const Projection p = model.project(x);
+        REQUIRE(p.status == ProjectionStatus::Ok);
+        CHECK(std::abs(p.point.z() - half) < 1e-12);
+        CHECK((p.normal - Vec3(0, 0, 1)).norm() < 1e-12);
+        unfiltered_worst = std::max(unfiltered_worst, std::abs(unfiltered.project(x).point.z() - half));
+    }
+    MESSAGE("thin strip: max error " << unfiltered_worst << " with the normal rule off, round-off with it on");
+    CHECK(unfiltered_worst > 1e-3);  // the rule is what makes the difference
+}
+
 TEST_CASE("hdi: the sphere's projection error falls at order >= 2.5")
 {
     double errors[3], spacings[3], normal_errors[3];

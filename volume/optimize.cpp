@@ -155,6 +155,7 @@ public:
         std::vector<int> work;
         for (int t = 0; t < mesh_.num_tet_slots(); ++t)
             if (!mesh_.is_dead(t) && mesh_.quality(t) < threshold) work.push_back(t);
+        order_worst_first(work);
         for (int sweep = 0; sweep < options_.max_sweeps && !work.empty(); ++sweep)
         {
             const SweepCounters before = counters();
@@ -175,9 +176,21 @@ public:
             work = std::move(still_bad);
             for (int t : context_.touched)
                 if (!mesh_.is_dead(t) && mesh_.quality(t) < threshold) work.push_back(t);
-            std::sort(work.begin(), work.end());
-            work.erase(std::unique(work.begin(), work.end()), work.end());
+            order_worst_first(work);
         }
+    }
+
+    /// Sorts a work list by quality, worst first (ties by id), each tet once: the worst
+    /// elements get the first pick of the operators.
+    void order_worst_first(std::vector<int>& work) const
+    {
+        std::sort(work.begin(), work.end());
+        work.erase(std::unique(work.begin(), work.end()), work.end());
+        std::vector<std::pair<double, int>> keyed;
+        keyed.reserve(work.size());
+        for (int t : work) keyed.push_back({mesh_.quality(t), t});
+        std::sort(keyed.begin(), keyed.end());
+        for (std::size_t k = 0; k < keyed.size(); ++k) work[k] = keyed[k].second;
     }
 
     OptimizeReport finish()

@@ -1,0 +1,91 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "coupling/adapt.h"
+#include "fixtures.h"
+#include "volume/check.h"
+#include "volume/quality_report.h"
+#include "volume/size_fields.h"
+#include "volume/tet_io.h"
+
+using namespace hdimesh;
+
+namespace
+{
+
+double max_sphere_deviation(const TetMesh& mesh)
+{
+    double worst = 0;
+    for (const auto& tri : mesh.triangles)
+        for (int v : tri) worst = std::max(worst, std::abs(mesh.points[v].norm() - 1.0));
+    return worst;
+}
+
+const TetMesh& sphere480()
+{
+    static const TetMesh mesh = read_mesh(fixtures::data_path("sphere480.mesh"));
+    return mesh;
+}
+
+}  // namespace
+
+TEST_CASE("refinement alone keeps the polyhedron: case A, no projection, no optimization")
+{
+    TetMesh mesh = sphere480();
+    const double volume_before = mesh.total_volume();
+    CHECK(volume_before == doctest::Approx(4.00715).epsilon(1e-5));
+    coupling::AdaptOptions options;
+    options.project = false;
+    options.optimize = false;
+    options.verbosity = 0;
+    const BenchmarkSize field(benchmark_case('A'));
+    const coupling::AdaptReport report = coupling::adapt(mesh, field, options);
+
+    CHECK(report.converged);
+    const auto violations = check_mesh(mesh);
+    CHECK_MESSAGE(violations.empty(), format_violations(violations));
+    CHECK(std::abs(mesh.total_volume() - volume_before) <= 1e-9 * volume_before);
+    const QualityReport q = compute_quality_report(mesh, &field);
+    CHECK(q.percent_too_long == 0.0);
+    CHECK(q.min_qe > 0.0);
+}
+
+TEST_CASE("the whole pipeline on the sphere: boundary on the unit sphere, sizes and shapes met")
+{
+    TetMesh mesh = sphere480();
+    coupling::AdaptOptions options;
+    options.verbosity = 0;
+    const ConstantSize field(0.2);
+    const coupling::AdaptReport report = coupling::adapt(mesh, field, options);
+
+    CHECK(report.converged);
+    const auto violations = check_mesh(mesh);
+    CHECK_MESSAGE(violations.empty(), format_violations(violations));
+    const QualityReport q = compute_quality_report(mesh, &field);
+    CHECK(q.percent_too_long == 0.0);
+    CHECK(q.min_qe >= 0.3);
+    CHECK(q.percent_qe_ge_05 >= 99.0);
+    CHECK(q.percent_qt_ge_066 >= 99.0);
+    // every boundary vertex was projected onto the HDI model of the input sphere
+    CHECK(max_sphere_deviation(mesh) <= 1e-3);
+    // the volume now approaches the sphere's 4/3 pi, beyond the inscribed polyhedron's
+    CHECK(mesh.total_volume() > sphere480().total_volume());
+}
+
+TEST_CASE("adapt is deterministic: the same input gives bitwise the same mesh")
+{
+    const ConstantSize field(0.3);
+    coupling::AdaptOptions options;
+    options.verbosity = 0;
+    TetMesh first = sphere480(), second = sphere480();
+    coupling::adapt(first, field, options);
+    coupling::adapt(second, field, options);
+    REQUIRE(first.num_vertices() == second.num_vertices());
+    REQUIRE(first.tets.size() == second.tets.size());
+    CHECK(first.tets == second.tets);
+    bool same_points = true;
+    for (int v = 0; v < first.num_vertices(); ++v)
+        same_points = same_points && first.points[v] == second.points[v];
+    CHECK(same_points);
+}
