@@ -26,7 +26,7 @@ double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& n
         for (auto u : mesh.vv_range(w)) ring.insert(u.idx());
     }
     ring.erase(v.idx());
-    if (ring.size() < 6 || !(normal.norm() > 0.5)) return 0.0;
+    if (ring.size() < 6 || !(normal.norm() > 0.0)) return 0.0;
     const Eigen::Vector3d n = to_eigen(normal).normalized();
     const Eigen::Vector3d seed = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     const Eigen::Vector3d e1 = n.cross(seed).normalized();

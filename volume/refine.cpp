@@ -41,9 +41,12 @@ public:
     {
         const int nv = mesh.num_vertices();
         first_.assign(nv + 1, 0);
+        auto has_new_vertex = [first_vertex](const TetVertices& t) {
+            return t[0] != kDeadTet && std::max({t[0], t[1], t[2], t[3]}) >= first_vertex;
+        };
         for (const auto& t : mesh.tets)
         {
-            if (t[0] == kDeadTet) continue;
+            if (!has_new_vertex(t)) continue;
             for (const auto& ev : tet::kEdgeVertices)
                 if (std::max(t[ev[0]], t[ev[1]]) >= first_vertex)
                     ++first_[std::min(t[ev[0]], t[ev[1]]) + 1];
@@ -54,7 +57,7 @@ public:
             std::vector<int> fill(first_.begin(), first_.end() - 1);
             for (const auto& t : mesh.tets)
             {
-                if (t[0] == kDeadTet) continue;
+                if (!has_new_vertex(t)) continue;
                 for (const auto& ev : tet::kEdgeVertices)
                 {
                     const int a = std::min(t[ev[0]], t[ev[1]]), b = std::max(t[ev[0]], t[ev[1]]);
@@ -333,7 +336,7 @@ private:
 
     bool is_refined(int t) const { return choice_[t] != unsplit_; }
     /// Slot of child i of refined tet t: the parent's own slot for child 0, then its extra slots.
-    int child_slot(int t, int i) const { return i == 0 ? t : extra_start_[t] + i - 1; }
+    int child_slot(int t, int i) const { return i == 0 ? t : extra_start_[ordinal_[t]] + i - 1; }
 
     int mark_edges(const EdgeTable& edges);
     void choose_patterns(const EdgeTable& edges);
@@ -349,14 +352,15 @@ private:
     bool trust_adjacency_;
     const QuadDiagonalRule* rule_;
     int num_vertices_before_ = 0;
-    int num_tets_before_ = 0;
 
     std::vector<int> midpoint_;           // per edge slot: vertex id, 1 while only marked, or -1
     std::vector<char> touched_;           // per vertex: an end of a split edge
     std::vector<std::uint16_t> choice_;   // per tet
     std::uint16_t unsplit_ = 0;
-    std::vector<int> extra_start_;        // per refined tet: slot of its child 1
-    std::vector<TetVertices> old_neighbors_;
+    std::vector<int> refined_;            // the refined tets, increasing
+    std::vector<int> ordinal_;            // per tet: its index in refined_, or -1
+    std::vector<int> extra_start_;        // per refined tet (ordinal): slot of its child 1
+    std::vector<TetVertices> old_rows_;   // per refined tet (ordinal): its neighbours before
     long long num_children_ = 0;
     int num_new_points_ = 0;
     int num_fallbacks_ = 0;
@@ -420,6 +424,7 @@ void RefinePass::choose_patterns(const EdgeTable& edges)
                                  std::to_string(mesh_.volume(t)) + "); the mesh is unchanged");
         }
         choice_[t] = encode(index, build);
+        refined_.push_back(t);
         const ChildBuild& b = child_build(choice_[t]);
         num_children_ += static_cast<long long>(b.tets.size()) - 1;
         num_new_points_ += b.new_point;
@@ -457,14 +462,22 @@ void RefinePass::rebuild_tets(const EdgeTable& edges)
     mesh_.vertex_classes.resize(first_new_point + num_new_points_, VertexClass::Interior);
     int next_point = first_new_point;
 
-    mesh_.tets.reserve(total);
+    // exact reserve for a big pass; a little slack so the small last passes do not copy all
+    const std::size_t capacity = total + total / 16;
+    if (mesh_.tets.capacity() < total) mesh_.tets.reserve(capacity);
+    if (mesh_.tet_refs.capacity() < total) mesh_.tet_refs.reserve(capacity);
+    if (mesh_.neighbors.capacity() < total) mesh_.neighbors.reserve(capacity);
     mesh_.tets.resize(total);
-    mesh_.tet_refs.reserve(total);
     mesh_.tet_refs.resize(total);
-    old_neighbors_ = mesh_.neighbors;
-    mesh_.neighbors.reserve(total);
+    ordinal_.assign(nt, -1);
+    extra_start_.resize(refined_.size());
+    old_rows_.resize(refined_.size());
+    for (std::size_t r = 0; r < refined_.size(); ++r)
+    {
+        ordinal_[refined_[r]] = static_cast<int>(r);
+        old_rows_[r] = mesh_.neighbors[refined_[r]];
+    }
     mesh_.neighbors.resize(total);
-    extra_start_.assign(nt, -1);
 
     std::vector<int> required_children;
     std::vector<char> required;
@@ -479,9 +492,8 @@ void RefinePass::rebuild_tets(const EdgeTable& edges)
     std::array<int, kPatternNumLocalPoints> g;
     g.fill(-1);
     int next_slot = nt;
-    for (int t = 0; t < nt; ++t)
+    for (int t : refined_)
     {
-        if (!is_refined(t)) continue;
         const std::uint16_t choice = choice_[t];
         const TetSplit s = collect(edges, t);
         const int ref = mesh_.tet_refs[t];
@@ -504,7 +516,7 @@ void RefinePass::rebuild_tets(const EdgeTable& edges)
             result_.steiner_vertices.push_back(id);
         }
         const int n = static_cast<int>(build.tets.size());
-        extra_start_[t] = next_slot;
+        extra_start_[ordinal_[t]] = next_slot;
         next_slot += n - 1;
         for (int i = 0; i < n; ++i)
         {
@@ -543,10 +555,14 @@ void RefinePass::link_children()
         return n;
     };
 
-    const int nt = num_tets_before_;
-    for (int t = 0; t < nt; ++t)
+    // neighbours before the pass: rows of refined parents were saved (their slots now hold
+    // child 0 and get rewritten below); an unrefined tet's row changes only at the face it
+    // shares with a refined tet, when that face is linked
+    auto old_neighbor = [&](int t, int f) {
+        return is_refined(t) ? old_rows_[ordinal_[t]][f] : nb[t][f];
+    };
+    for (int t : refined_)
     {
-        if (!is_refined(t)) continue;
         const ChildBuild& build = child_build(choice_[t]);
         const int n = static_cast<int>(build.tets.size());
         for (int i = 0; i < n; ++i)
@@ -557,7 +573,7 @@ void RefinePass::link_children()
             }
         for (int f = 0; f < 4; ++f)
         {
-            const int other = old_neighbors_[t][f];
+            const int other = old_neighbor(t, f);
             if (other == kNoTet)
             {
                 for (int cf : build.on_parent_face[f]) nb[child_slot(t, cf / 4)][cf % 4] = kNoTet;
@@ -565,7 +581,7 @@ void RefinePass::link_children()
             }
             if (is_refined(other) && other < t) continue;  // linked from the other side
             int g = 0;
-            while (g < 4 && old_neighbors_[other][g] != t) ++g;
+            while (g < 4 && old_neighbor(other, g) != t) ++g;
             const int count_mine = gather(t, f, mine);
             if (g == 4)
             {
@@ -710,7 +726,6 @@ RefinePassResult RefinePass::run()
     if (mesh_.num_live_tets() != mesh_.num_tet_slots()) mesh_.compact();
     if (!trust_adjacency_ || !mesh_.has_adjacency()) mesh_.build_adjacency();
     num_vertices_before_ = mesh_.num_vertices();
-    num_tets_before_ = mesh_.num_tet_slots();
     RefinePassReport& report = result_.report;
     report.pass = 1;
     {
@@ -728,7 +743,9 @@ RefinePassResult RefinePass::run()
     }
     std::vector<std::uint16_t>().swap(choice_);
     std::vector<int>().swap(extra_start_);
-    std::vector<TetVertices>().swap(old_neighbors_);
+    std::vector<int>().swap(ordinal_);
+    std::vector<int>().swap(refined_);
+    std::vector<TetVertices>().swap(old_rows_);
 
     for (int m = num_vertices_before_; m < num_vertices_before_ + report.edges_split; ++m)
         if (mesh_.vertex_classes[m] != VertexClass::Interior) result_.new_boundary_vertices.push_back(m);

@@ -1,0 +1,145 @@
+// Mesh I/O speed: writes and reads a ~1M-tet mesh in every format and prints a table of
+// tets/s and file size, plus the container's bytes per tet with adjacency built.
+//
+// usage: bench_io [N]   (N^3 jittered Kuhn cubes, 6 tets each; default 56 -> 1,053,696 tets)
+// Reading includes the validation every read_mesh does (index ranges, positive volumes) and
+// the O(n) adjacency build, since that is what a user waits for.
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <unistd.h>
+
+#include "volume/tet_io.h"
+#include "volume/tet_mesh.h"
+#include "volume/tet_tables.h"
+
+using namespace hdimesh;
+namespace fs = std::filesystem;
+
+namespace
+{
+
+/// [0,1]^3 as n^3 Kuhn cubes, interior vertices jittered (same construction as the test
+/// fixture box_mesh, repeated here so the benchmark does not link the tests), with its
+/// boundary triangles.
+TetMesh jittered_box(int n)
+{
+    constexpr int kKuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
+                                 {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+    TetMesh mesh;
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const double h = 1.0 / n;
+    const std::size_t nv = static_cast<std::size_t>(n + 1) * (n + 1) * (n + 1);
+    mesh.points.reserve(nv);
+    mesh.vertex_refs.reserve(nv);
+    mesh.vertex_classes.reserve(nv);
+    mesh.tets.reserve(6 * static_cast<std::size_t>(n) * n * n);
+    mesh.tet_refs.reserve(6 * static_cast<std::size_t>(n) * n * n);
+    auto id = [n](int i, int j, int k) { return i + (n + 1) * (j + (n + 1) * k); };
+    for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i)
+            {
+                Vec3 p(i * h, j * h, k * h);
+                if (i > 0 && i < n && j > 0 && j < n && k > 0 && k < n)
+                    p += 0.2 * h * Vec3(unit(rng), unit(rng), unit(rng));
+                mesh.add_vertex(p);
+            }
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                for (const auto& kt : kKuhn)
+                {
+                    TetVertices v;
+                    for (int c = 0; c < 4; ++c)
+                        v[c] = id(i + (kt[c] & 1), j + ((kt[c] >> 1) & 1), k + ((kt[c] >> 2) & 1));
+                    const auto& p = mesh.points;
+                    if (signed_volume6(p[v[0]], p[v[1]], p[v[2]], p[v[3]]) < 0) std::swap(v[2], v[3]);
+                    mesh.add_tet(v, 1 + (i * 2) / n);  // two refs, so refs are really exercised
+                }
+    mesh.build_adjacency();
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        for (int f = 0; f < 4; ++f)
+            if (mesh.neighbors[t][f] == kNoTet)
+            {
+                const auto& fv = tet::kFaceVertices[f];
+                mesh.add_triangle({mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]]}, 1);
+            }
+    mesh.classify_vertices();
+    return mesh;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    const int n = argc > 1 ? std::atoi(argv[1]) : 56;
+    if (n < 1) return std::fprintf(stderr, "usage: bench_io [N >= 1]\n"), 2;
+    const fs::path dir = fs::temp_directory_path() / ("hdimesh_bench_io_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+
+    const auto build_start = std::chrono::steady_clock::now();
+    const TetMesh mesh = jittered_box(n);
+    const double build_seconds = seconds_since(build_start);
+    const double tets = mesh.num_live_tets();
+    std::printf("mesh: %d^3 Kuhn cubes, %d vertices, %.0f tets, %zu boundary triangles (built in %.2f s)\n",
+                n, mesh.num_vertices(), tets, mesh.triangles.size(), build_seconds);
+
+    struct Format
+    {
+        const char* label;
+        const char* file;
+        WriteOptions options;
+        bool readable;
+    };
+    const Format formats[] = {
+        {"Medit ASCII", "box.mesh", {}, true},
+        {"Medit binary v2", "box.meshb", {}, true},
+        {"Gmsh 2.2 ASCII", "box22.msh", {{}, "2.2", false}, true},
+        {"Gmsh 2.2 binary", "box22b.msh", {{}, "2.2", true}, true},
+        {"Gmsh 4.1 ASCII", "box41.msh", {{}, "4.1", false}, true},
+        {"Gmsh 4.1 binary", "box41b.msh", {{}, "4.1", true}, true},
+        {"VTK .vtu (write)", "box.vtu", {}, false},
+    };
+
+    std::printf("\n%-18s %14s %14s %12s %10s\n", "format", "write tets/s", "read tets/s", "file MB", "bytes/tet");
+    std::size_t read_memory = 0;
+    for (const Format& f : formats)
+    {
+        const std::string path = (dir / f.file).string();
+        const auto write_start = std::chrono::steady_clock::now();
+        write_mesh(mesh, path, f.options);
+        const double write_seconds = seconds_since(write_start);
+        const double size = static_cast<double>(fs::file_size(path));
+        char read_rate[32] = "-";
+        if (f.readable)
+        {
+            const auto read_start = std::chrono::steady_clock::now();
+            const TetMesh back = read_mesh(path);
+            const double read_seconds = seconds_since(read_start);
+            if (back.num_live_tets() != mesh.num_live_tets())
+                return std::fprintf(stderr, "%s: read %d tets, wrote %.0f\n", f.file, back.num_live_tets(), tets), 1;
+            std::snprintf(read_rate, sizeof(read_rate), "%.3g", tets / read_seconds);
+            read_memory = back.memory_bytes();
+        }
+        std::printf("%-18s %14.3g %14s %12.1f %10.1f\n", f.label, tets / write_seconds, read_rate, size / 1e6,
+                    size / tets);
+        fs::remove(path);
+    }
+
+    std::printf("\ncontainer with adjacency: %.1f bytes/tet as built (push_back capacity), "
+                "%.1f bytes/tet as read (exact sizes)\n",
+                static_cast<double>(mesh.memory_bytes()) / tets, static_cast<double>(read_memory) / tets);
+    fs::remove_all(dir);
+    return 0;
+}
