@@ -50,7 +50,10 @@ int main(int argc, char** argv)
         // no size flag: shape statistics only (no size is better than an invented one)
         const std::shared_ptr<const SizeField> field = size.any() ? size.make(mesh) : nullptr;
         const QualityReport report = compute_quality_report(mesh, field.get());
-        const std::vector<MeshViolation> violations = check_mesh(mesh);
+        // as strict as the independent checker: a vertex no tet uses is reported too
+        CheckOptions check_options;
+        check_options.report_unused_vertices = true;
+        const std::vector<MeshViolation> violations = check_mesh(mesh, check_options);
 
         if (json)
         {

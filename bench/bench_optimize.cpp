@@ -5,7 +5,8 @@
 // phase (s) and the process CPU time of the whole case, reading the input included; the
 // speed column uses the CPU time, since the machine may be shared.
 //
-// usage: bench_optimize [cases, default ABC] [-v]      e.g. bench_optimize ABCDE
+// usage: bench_optimize [cases, default ABC] [-v] [-o dir]   e.g. bench_optimize ABCDE -o /tmp
+// (-o writes each output as dir/optimized_<case>.mesh, for meshstat.py --case <case>)
 
 #include <chrono>
 #include <ctime>
@@ -57,7 +58,7 @@ struct CaseResult
     double cpu_seconds = 0;  // process CPU time of the whole case (the machine may be shared)
 };
 
-CaseResult run_case(char name, int verbosity)
+CaseResult run_case(char name, int verbosity, const std::string& output_dir)
 {
     CaseResult result;
     const std::clock_t cpu_start = std::clock();
@@ -84,6 +85,8 @@ CaseResult run_case(char name, int verbosity)
     result.quality = compute_quality_report(mesh, &field);
     result.violations = check_mesh(mesh).size();
     result.hash = mesh_hash(mesh);
+    if (!output_dir.empty())
+        write_mesh(mesh, output_dir + "/optimized_" + std::string(1, name) + ".mesh");
     return result;
 }
 
@@ -93,9 +96,11 @@ int main(int argc, char** argv)
 {
     std::string cases = "ABC";
     int verbosity = 0;
+    std::string output_dir;
     for (int i = 1; i < argc; ++i)
     {
         if (std::strcmp(argv[i], "-v") == 0) verbosity = 2;
+        else if (std::strcmp(argv[i], "-o") == 0 && i + 1 < argc) output_dir = argv[++i];
         else cases = argv[i];
     }
     std::printf("%-4s %9s %6s %8s %8s %8s %8s %8s %10s %7s %9s %8s %8s %6s %16s\n", "case",
@@ -103,7 +108,7 @@ int main(int argc, char** argv)
                 "min Qe", "%Qe>=0.5", "%Qt>=.66", "%long", "check", "hash");
     for (char name : cases)
     {
-        const CaseResult r = run_case(name, verbosity);
+        const CaseResult r = run_case(name, verbosity, output_dir);
         const double total = r.refine_seconds + r.improve_seconds + r.optimize_seconds;
         std::printf("%-4c %9d %6d %8.2f %8.2f %8.2f %8.2f %8.2f %10.0f %7.4f %8.2f%% %7.2f%% %7.3f%% %6s %016llx\n",
                     name, r.tets, r.passes, r.refine_seconds, r.improve_seconds,

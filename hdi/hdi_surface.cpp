@@ -6,6 +6,7 @@
 #include <numeric>
 #include <string>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/QR>
@@ -61,11 +62,15 @@ constexpr double min_hermite_cosine = 0.2;  // a node normal this tilted from th
 /// Per-thread buffers of one query; they only grow, so a query allocates nothing once warm.
 struct Scratch
 {
-    std::vector<int> candidate;        // nearest input nodes of the last search point, nearest first
-    std::vector<double> candidate_d2;  // their squared distances to the current point
-    std::vector<int> node;             // admissible nodes of the current fit, nearest first
+    std::vector<int> candidate;        // the kd-tree's answer: nearest input nodes of the search point
+    std::vector<double> candidate_d2;
+    // The admissible candidates (on the query's side, normal agreeing), nearest to the current
+    // point first; a fit uses the first n. Positions and normals are copied so the fit reads
+    // contiguous memory.
+    std::vector<int> node;
     std::vector<double> node_d2;
-    std::vector<Vec3> node_normal;     // the normal of each admissible node on the query's side
+    std::vector<Vec3> node_point;
+    std::vector<Vec3> node_normal;
 };
 
 Scratch& thread_scratch()
@@ -175,21 +180,16 @@ void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Ve
         }
 }
 
-/// Sorts the candidates by their (updated) squared distances; they are nearly sorted already.
-void insertion_sort_candidates(Scratch& s)
+/// Re-sorts the admissible nodes by their updated squared distances (they are nearly sorted).
+void insertion_sort_nodes(Scratch& s)
 {
-    for (std::size_t i = 1; i < s.candidate.size(); ++i) {
-        const double d2 = s.candidate_d2[i];
-        const int v = s.candidate[i];
-        std::size_t j = i;
-        while (j > 0 && s.candidate_d2[j - 1] > d2) {
-            s.candidate_d2[j] = s.candidate_d2[j - 1];
-            s.candidate[j] = s.candidate[j - 1];
-            --j;
+    for (std::size_t i = 1; i < s.node.size(); ++i)
+        for (std::size_t j = i; j > 0 && s.node_d2[j - 1] > s.node_d2[j]; --j) {
+            std::swap(s.node_d2[j - 1], s.node_d2[j]);
+            std::swap(s.node[j - 1], s.node[j]);
+            std::swap(s.node_point[j - 1], s.node_point[j]);
+            std::swap(s.node_normal[j - 1], s.node_normal[j]);
         }
-        s.candidate_d2[j] = d2;
-        s.candidate[j] = v;
-    }
 }
 
 /// Keeps, in order, the candidates on the query's side whose normal agrees with the reference.
@@ -197,14 +197,15 @@ void filter_admissible(const Model& m, int patch, const Vec3& reference_normal, 
 {
     s.node.clear();
     s.node_d2.clear();
+    s.node_point.clear();
     s.node_normal.clear();
-    const int wanted = m.options.neighbours;
-    for (std::size_t i = 0; i < s.candidate.size() && static_cast<int>(s.node.size()) < wanted; ++i) {
+    for (std::size_t i = 0; i < s.candidate.size(); ++i) {
         const int v = s.candidate[i];
         const Vec3* normal = side_normal_of(m, v, patch);
         if (!normal || normal->dot(reference_normal) < m.options.normal_agreement) continue;
         s.node.push_back(v);
         s.node_d2.push_back(s.candidate_d2[i]);
+        s.node_point.push_back(m.points[at(v)]);
         s.node_normal.push_back(*normal);
     }
 }
@@ -225,20 +226,18 @@ public:
         reference_normal_ = reference_normal;
     }
 
-    /// Returns the number of admissible nodes found (s.node...). The first call fixes the side.
+    /// Returns n' = min(n, admissible nodes found): the fit's nodes are the first n' of s.node...
+    /// The first call fixes the side.
     int gather(const Vec3& x)
     {
         const int total = m_.knn.size();
         const int wanted = m_.options.neighbours;
         if (searched_) {
             const double moved = (x - search_point_).norm();
-            const bool complete = static_cast<int>(s_.candidate.size()) == total;
-            if (complete || nth_distance_ + 2 * moved <= farthest_distance_) {
-                for (std::size_t i = 0; i < s_.candidate.size(); ++i)
-                    s_.candidate_d2[i] = (m_.points[at(s_.candidate[i])] - x).squaredNorm();
-                insertion_sort_candidates(s_);
-                filter_admissible(m_, patch_, reference_normal_, s_);
-                return static_cast<int>(s_.node.size());
+            if (complete_ || nth_distance_ + 2 * moved <= farthest_distance_) {
+                for (std::size_t i = 0; i < s_.node.size(); ++i) s_.node_d2[i] = (s_.node_point[i] - x).squaredNorm();
+                insertion_sort_nodes(s_);
+                return std::min(wanted, static_cast<int>(s_.node.size()));
             }
         }
         int count = std::min(total, wanted + spare_candidates);
@@ -258,10 +257,12 @@ public:
             if (static_cast<int>(s_.node.size()) >= wanted || found == total) break;
             count = std::min(total, 2 * count);
         }
+        const int used = std::min(wanted, static_cast<int>(s_.node.size()));
         search_point_ = x;
-        nth_distance_ = s_.node.empty() ? 0.0 : std::sqrt(s_.node_d2.back());
+        complete_ = static_cast<int>(s_.candidate.size()) == total;
+        nth_distance_ = used == 0 ? 0.0 : std::sqrt(s_.node_d2[at(used - 1)]);
         farthest_distance_ = s_.candidate.empty() ? 0.0 : std::sqrt(s_.candidate_d2.back());
-        return static_cast<int>(s_.node.size());
+        return used;
     }
 
 private:
@@ -269,6 +270,7 @@ private:
     Scratch& s_;
     bool searched_ = false;
     bool side_fixed_ = false;
+    bool complete_ = false;  // the last search returned every node
     int patch_ = -1;
     Vec3 reference_normal_ = Vec3::Zero();
     Vec3 search_point_ = Vec3::Zero();
@@ -301,16 +303,17 @@ bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& pa
         const double w = diffuse_weight(o.weight, std::sqrt(s.node_d2[at(i)]) * inverse_rho);
         weights[i] = w;
         weight_sum += w;
-        weighted_sum += w * m.points[at(s.node[at(i)])];
+        weighted_sum += w * s.node_point[at(i)];
         normal_sum += w * s.node_normal[at(i)];
     }
     if (!(weight_sum > 0)) return false;
     patch.origin = weighted_sum / weight_sum;  // eq. 5, normalized
 
     Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();  // P^T W P, eq. 7
+    Vec3 offsets[256];                                  // (x_i - xd) / rho
     for (int i = 0; i < used; ++i) {
-        const Vec3 d = (m.points[at(s.node[at(i)])] - patch.origin) * inverse_rho;
-        scatter.noalias() += weights[i] * d * d.transpose();
+        offsets[i] = (s.node_point[at(i)] - patch.origin) * inverse_rho;
+        scatter.noalias() += weights[i] * offsets[i] * offsets[i].transpose();
     }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
     eigen.computeDirect(scatter);
@@ -320,45 +323,84 @@ bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& pa
     patch.e2 = patch.n.cross(patch.e1);
 
     // Weighted least squares with Hermite rows. In scaled coordinates the paper's rho² weight on
-    // the slope rows is the same weight as the height rows'.
-    Matrix6d normal_matrix = Matrix6d::Zero();
+    // the slope rows is the same weight as the height rows'. The normal equations are assembled
+    // from moment sums: a height row r = <1, u, v, u², uv, v²> contributes r rᵀ, whose entries
+    // are the monomials u^a v^b (a + b <= 4); the slope rows r_u = <0, 1, 0, 2u, v, 0> and
+    // r_v = <0, 0, 1, 0, u, 2v> need moments up to degree 2 only.
+    double height[5][5] = {};  // height[a][b] = sum w u^a v^b, a + b <= 4
+    double slope[3][3] = {};   // slope[a][b] = sum w u^a v^b over nodes with a slope row, a + b <= 2
     Vector6d right_side = Vector6d::Zero();
-    Eigen::Matrix3d linear_matrix = Eigen::Matrix3d::Zero();
-    Vec3 linear_right_side = Vec3::Zero();
     for (int i = 0; i < used; ++i) {
         const double w = weights[i];
-        const Vec3 d = (m.points[at(s.node[at(i)])] - patch.origin) * inverse_rho;
+        const Vec3& d = offsets[i];
         const double u = d.dot(patch.e1), v = d.dot(patch.e2), z = d.dot(patch.n);
-        Vector6d row;
-        row << 1, u, v, u * u, u * v, v * v;
-        normal_matrix.noalias() += w * row * row.transpose();
-        right_side.noalias() += (w * z) * row;
-        linear_matrix.noalias() += w * row.head<3>() * row.head<3>().transpose();
-        linear_right_side.noalias() += (w * z) * row.head<3>();
+        double u_power[5] = {1, u, u * u, 0, 0}, v_power[5] = {1, v, v * v, 0, 0};
+        u_power[3] = u_power[2] * u;
+        u_power[4] = u_power[2] * u_power[2];
+        v_power[3] = v_power[2] * v;
+        v_power[4] = v_power[2] * v_power[2];
+        for (int a = 0; a <= 4; ++a)
+            for (int b = 0; a + b <= 4; ++b) height[a][b] += w * u_power[a] * v_power[b];
+        const double wz = w * z;
+        right_side[0] += wz;
+        right_side[1] += wz * u;
+        right_side[2] += wz * v;
+        right_side[3] += wz * u_power[2];
+        right_side[4] += wz * u * v;
+        right_side[5] += wz * v_power[2];
         const Vec3& normal = s.node_normal[at(i)];
         const double c = normal.dot(patch.n);
         if (!hermite || c < min_hermite_cosine) continue;
         const double slope_u = -normal.dot(patch.e1) / c;
         const double slope_v = -normal.dot(patch.e2) / c;
-        Vector6d row_u, row_v;
-        row_u << 0, 1, 0, 2 * u, v, 0;
-        row_v << 0, 0, 1, 0, u, 2 * v;
-        normal_matrix.noalias() += w * (row_u * row_u.transpose() + row_v * row_v.transpose());
-        right_side.noalias() += (w * slope_u) * row_u + (w * slope_v) * row_v;
-        linear_matrix(1, 1) += w;
-        linear_matrix(2, 2) += w;
-        linear_right_side(1) += w * slope_u;
-        linear_right_side(2) += w * slope_v;
+        for (int a = 0; a <= 2; ++a)
+            for (int b = 0; a + b <= 2; ++b) slope[a][b] += w * u_power[a] * v_power[b];
+        // + slope_u r_u + slope_v r_v
+        const double wu = w * slope_u, wv = w * slope_v;
+        right_side[1] += wu;
+        right_side[2] += wv;
+        right_side[3] += 2 * wu * u;
+        right_side[4] += wu * v + wv * u;
+        right_side[5] += 2 * wv * v;
     }
-    Eigen::ColPivHouseholderQR<Matrix6d> qr(normal_matrix);
-    qr.setThreshold(relative_rank_threshold);
-    if (qr.rank() == 6) {
-        patch.a = qr.solve(right_side);
+    // Monomial exponents of the basis <1, u, v, u², uv, v²>.
+    static constexpr int exponent_u[6] = {0, 1, 0, 2, 1, 0};
+    static constexpr int exponent_v[6] = {0, 0, 1, 0, 1, 2};
+    Matrix6d normal_matrix;
+    for (int i = 0; i < 6; ++i)
+        for (int j = 0; j <= i; ++j)
+            normal_matrix(i, j) = height[exponent_u[i] + exponent_u[j]][exponent_v[i] + exponent_v[j]];
+    // sum w (r_u r_uᵀ + r_v r_vᵀ), lower triangle, written out.
+    normal_matrix(1, 1) += slope[0][0];
+    normal_matrix(2, 2) += slope[0][0];
+    normal_matrix(3, 1) += 2 * slope[1][0];
+    normal_matrix(4, 1) += slope[0][1];
+    normal_matrix(4, 2) += slope[1][0];
+    normal_matrix(5, 2) += 2 * slope[0][1];
+    normal_matrix(3, 3) += 4 * slope[2][0];
+    normal_matrix(4, 3) += 2 * slope[1][1];
+    normal_matrix(4, 4) += slope[0][2] + slope[2][0];
+    normal_matrix(5, 4) += 2 * slope[1][1];
+    normal_matrix(5, 5) += 4 * slope[0][2];
+    normal_matrix.triangularView<Eigen::StrictlyUpper>() = normal_matrix.transpose();
+
+    // Pivoted LDLᵀ of the (symmetric, positive semi-definite) 6 x 6 system; ill-conditioned when
+    // the pivots span more than 1 / relative_rank_threshold.
+    const Eigen::LDLT<Matrix6d, Eigen::Lower> ldlt(normal_matrix);
+    const auto pivots = ldlt.vectorD().cwiseAbs();
+    if (ldlt.info() == Eigen::Success && pivots.minCoeff() > relative_rank_threshold * pivots.maxCoeff()) {
+        patch.a = ldlt.solve(right_side);
         patch.linear = false;
         return true;
     }
+    // Linear fallback: the plane <1, u, v> from the same moments.
     patch.linear = true;
     patch.a.setZero();
+    Eigen::Matrix3d linear_matrix;
+    linear_matrix << height[0][0], height[1][0], height[0][1],
+                     height[1][0], height[2][0] + slope[0][0], height[1][1],
+                     height[0][1], height[1][1], height[0][2] + slope[0][0];
+    const Vec3 linear_right_side = right_side.head<3>();  // the slope rows add to entries 1 and 2 only
     Eigen::ColPivHouseholderQR<Eigen::Matrix3d> linear_qr(linear_matrix);
     linear_qr.setThreshold(relative_rank_threshold);
     if (linear_qr.rank() == 3) patch.a.head<3>() = linear_qr.solve(linear_right_side);
@@ -653,6 +695,7 @@ Projection HdiSurface::project(const Vec3& x) const
     result.point = x;
     result.status = ProjectionStatus::Failed;
     Vec3 current = x;
+    double previous_move = 0;
     for (int iteration = 0; iteration < m.options.max_iterations; ++iteration) {
         const int count = search.gather(current);
         MongePatch patch;
@@ -666,10 +709,17 @@ Projection HdiSurface::project(const Vec3& x) const
         result = next;
         result.status = ProjectionStatus::NotConverged;
         current = next.point;
-        if (move < m.options.tolerance * patch.rho) {
+        // Converged when the move is below tolerance * rho, or when the next one is predicted to
+        // be: the fit moves with the point at the contraction rate r = move / previous move
+        // (r << 1: the weights change slowly), so the point is within r / (1 - r) * move of the
+        // fixed point. This saves the third fit of most projections.
+        const double tolerance = m.options.tolerance * patch.rho;
+        const double rate = iteration > 0 && previous_move > 0 ? move / previous_move : 1.0;
+        if (move < tolerance || (rate < 0.5 && rate / (1 - rate) * move < tolerance)) {
             result.status = patch.linear ? ProjectionStatus::LinearFallback : ProjectionStatus::Ok;
             break;
         }
+        previous_move = move;
     }
     return result;
 }

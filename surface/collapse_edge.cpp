@@ -47,6 +47,7 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
     // Geometry and quality layers: the faces of v0 that survive, with v0 moved onto v1.
     const Vec3d p1 = mesh.point(v1);
     double old_min = 1.0, new_min = 1.0;
+    std::vector<Vec3d> centroids;  // of the changed faces, checked against the model last
     for (auto f : mesh.vf_range(v0)) old_min = std::min(old_min, qe(face_points(mesh, f)));
     if (require_quality_gain)
         for (auto f : mesh.vf_range(v1)) old_min = std::min(old_min, qe(face_points(mesh, f)));
@@ -68,16 +69,7 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
             return result;
         }
         new_min = std::min(new_min, q);
-        if (ctx.limits.max_model_distance > 0.0)
-        {
-            const Vec3d centroid = (after[0] + after[1] + after[2]) / 3.0;
-            const ProjectedPoint on_model = ctx.model.project(centroid, VertexClass::Smooth, kNoCurve);
-            if (on_model.ok && (on_model.point - centroid).norm() > ctx.limits.max_model_distance)
-            {
-                result.status = OpStatus::Geometry;
-                return result;
-            }
-        }
+        if (ctx.limits.max_model_distance > 0.0) centroids.push_back((after[0] + after[1] + after[2]) / 3.0);
     }
     if (max_new_length > 0.0)
         for (auto w : mesh.vv_range(v0))
@@ -90,6 +82,15 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
     {
         result.status = OpStatus::Quality;
         return result;
+    }
+    for (const Vec3d& centroid : centroids)
+    {
+        const ProjectedPoint on_model = ctx.model.project(centroid, VertexClass::Smooth, kNoCurve);
+        if (on_model.ok && (on_model.point - centroid).norm() > ctx.limits.max_model_distance)
+        {
+            result.status = OpStatus::Geometry;
+            return result;
+        }
     }
     if (ctx.hooks.allow_collapse && !ctx.hooks.allow_collapse(mesh, h))
     {

@@ -38,6 +38,7 @@ public:
     void find_corners()
     {
         corner_.assign(mesh_.n_vertices(), 0);
+        std::vector<std::pair<double, VertexHandle>> turn_corners;
         for (auto v : mesh_.vertices())
         {
             std::vector<VertexHandle> ends;
@@ -49,9 +50,28 @@ public:
                 corner_[v.idx()] = 1;
                 continue;
             }
+            // An open boundary of a scan zig-zags: only its sharpest turns are corners.
+            const double limit = mesh_.is_boundary(v) ? options_.boundary_corner_turn_angle_deg
+                                                      : options_.corner_turn_angle_deg;
             const Vec3d p = mesh_.point(v);
             const double turn = angle_between_deg(p - mesh_.point(ends[0]), mesh_.point(ends[1]) - p);
-            if (turn > options_.corner_turn_angle_deg) corner_[v.idx()] = 1;
+            if (turn > limit) turn_corners.emplace_back(turn, v);
+        }
+        // Turn corners closer than min_corner_spacing to a kept corner are zig-zag noise at the
+        // scale of the target mesh: the sharpest turn of a cluster stays, the rest slide.
+        std::sort(turn_corners.begin(), turn_corners.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        std::vector<Vec3d> kept;
+        for (auto v : mesh_.vertices())
+            if (corner_[v.idx()]) kept.push_back(mesh_.point(v));
+        for (const auto& [turn, v] : turn_corners)
+        {
+            const Vec3d p = mesh_.point(v);
+            const bool crowded = std::any_of(kept.begin(), kept.end(), [&](const Vec3d& q) {
+                return (q - p).norm() < options_.min_corner_spacing;
+            });
+            if (crowded) continue;
+            corner_[v.idx()] = 1;
+            kept.push_back(p);
         }
     }
 

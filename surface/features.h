@@ -19,6 +19,10 @@ struct FeatureOptions
     /// strays h·sin(18°)/2 from the model. ≥ ridge_angle_deg: off.
     double crease_angle_deg = 30.0;
     double corner_turn_angle_deg = 50.0; // a curve vertex whose curve turns by more is a corner
+    double boundary_corner_turn_angle_deg = 75.0;  // the same on an open boundary (scans zig-zag)
+    /// A corner found only by a turn is dropped when a junction/end corner or a sharper turn
+    /// corner is closer than this (remesh_surface sets half the target size; 0: keep all).
+    double min_corner_spacing = 0.0;
     /// A ridge chain is kept when at least this fraction of the bbox diagonal long (twice that for
     /// a crease-only chain), or when both its ends are ends of kept chains; the rest is noise.
     double min_ridge_length = 0.05;

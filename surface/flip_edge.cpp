@@ -55,16 +55,6 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
         result.status = OpStatus::Geometry;
         return result;
     }
-    if (ctx.limits.max_model_distance > 0.0)
-    {
-        const Vec3d mid = 0.5 * (pc + pd);
-        const ProjectedPoint on_model = ctx.model.project(mid, VertexClass::Smooth, kNoCurve);
-        if (on_model.ok && (on_model.point - mid).norm() > ctx.limits.max_model_distance)
-        {
-            result.status = OpStatus::Geometry;
-            return result;
-        }
-    }
     const double old_min = std::min(qe(old0), qe(old1)), new_min = std::min(qe(new0), qe(new1));
     if (new_min < ctx.limits.min_new_quality)
     {
@@ -88,6 +78,17 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     {
         result.status = OpStatus::Quality;
         return result;
+    }
+    // Distance to the model last: it is the expensive test.
+    if (ctx.limits.max_model_distance > 0.0)
+    {
+        const Vec3d mid = 0.5 * (pc + pd);
+        const ProjectedPoint on_model = ctx.model.project(mid, VertexClass::Smooth, kNoCurve);
+        if (on_model.ok && (on_model.point - mid).norm() > ctx.limits.max_model_distance)
+        {
+            result.status = OpStatus::Geometry;
+            return result;
+        }
     }
     if (ctx.hooks.allow_flip && !ctx.hooks.allow_flip(mesh, e))
     {

@@ -8,6 +8,42 @@
 namespace hdimesh::surface
 {
 
+namespace
+{
+
+ProjectedPoint to_projected(const hdi::Projection& fit)
+{
+    ProjectedPoint out;
+    if (fit.status == hdi::ProjectionStatus::Failed) return out;
+    out.point = Vec3d(fit.point.x(), fit.point.y(), fit.point.z());
+    out.normal = Vec3d(fit.normal.x(), fit.normal.y(), fit.normal.z());
+    out.k1 = fit.k1;
+    out.k2 = fit.k2;
+    out.ok = true;
+    return out;
+}
+
+}  // namespace
+
+ProjectedPoint HdiProjector::project(const Vec3d& p, VertexClass cls, int) const
+{
+    const hdi::Vec3 x(p[0], p[1], p[2]);
+    switch (cls)
+    {
+    case VertexClass::Smooth: return to_projected(surface_.project(x));
+    case VertexClass::Ridge:
+    case VertexClass::Boundary: return to_projected(surface_.project_to_ridge(x));
+    case VertexClass::Corner:
+    {
+        ProjectedPoint out = to_projected(surface_.project(x));
+        out.point = p;
+        out.ok = true;
+        return out;
+    }
+    }
+    return {};
+}
+
 void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input, const HdiProjectionOptions& options)
 {
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
@@ -51,13 +87,8 @@ void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input, const 
     const double max_deviation = options.max_deviation_fraction * model.diagonal();
     const SurfaceModel* facets = &model;
     model.set_smooth_projection([surface, facets, max_deviation](const Vec3d& p) {
-        ProjectedPoint out;
-        const hdi::Projection fit = surface->project(hdi::Vec3(p[0], p[1], p[2]));
-        if (fit.status == hdi::ProjectionStatus::Failed) return out;
-        out.point = Vec3d(fit.point.x(), fit.point.y(), fit.point.z());
-        out.normal = Vec3d(fit.normal.x(), fit.normal.y(), fit.normal.z());
-        out.k1 = fit.k1;
-        out.k2 = fit.k2;
+        ProjectedPoint out = to_projected(surface->project(hdi::Vec3(p[0], p[1], p[2])));
+        if (!out.ok) return out;
         const ProjectedPoint on_facets = facets->closest_on_input(out.point);
         out.ok = on_facets.ok && (on_facets.point - out.point).norm() <= max_deviation;
         return out;

@@ -6,8 +6,27 @@
 #include "surface/surface_mesh.h"
 #include "surface/surface_model.h"
 
+namespace hdimesh::hdi
+{
+class HdiSurface;
+}
+
 namespace hdimesh::surface
 {
+
+/// An HdiSurface as a Projector: smooth vertices onto the diffuse surface, ridge and boundary
+/// vertices onto the 1-D fit of the nearest feature line (HdiSurface::project_to_ridge; the
+/// curve id is not used, the HDI model has its own lines), corners stay. A failed fit returns
+/// ok == false and the operators keep the unprojected point or refuse.
+class HdiProjector final : public Projector
+{
+public:
+    explicit HdiProjector(const hdi::HdiSurface& surface) : surface_(surface) {}
+    ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const override;
+
+private:
+    const hdi::HdiSurface& surface_;
+};
 
 struct HdiProjectionOptions
 {

@@ -269,11 +269,26 @@ RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Proje
     return remesher.run();
 }
 
+RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const hdi::HdiSurface& model,
+                    const SurfaceHooks& hooks)
+{
+    const HdiProjector projector(model);
+    return remesh(mesh, options, projector, hooks);
+}
+
 SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings)
 {
     SurfaceRemeshResult result;
-    result.features = detect_features(mesh, settings.features);
     result.diagonal = bounding_box_diagonal(mesh);
+    FeatureOptions features = settings.features;
+    if (features.min_corner_spacing <= 0.0)
+    {
+        const double h = settings.sizing.hsiz > 0.0 ? settings.sizing.hsiz
+                         : settings.sizing.hmin > 0.0 ? settings.sizing.hmin
+                                                      : 0.0;
+        features.min_corner_spacing = 0.5 * h;
+    }
+    result.features = detect_features(mesh, features);
     SurfaceModel model(mesh);
     if (settings.use_hdi) attach_hdi_projection(model, mesh);
 

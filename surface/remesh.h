@@ -14,6 +14,11 @@
 #include "surface/sizing.h"
 #include "surface/surface_mesh.h"
 
+namespace hdimesh::hdi
+{
+class HdiSurface;
+}
+
 namespace hdimesh::surface
 {
 
@@ -45,6 +50,10 @@ struct RemeshReport
 RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model,
                     const SurfaceHooks& hooks = {});
 
+/// The same on an HDI model (through HdiProjector): the entry point of the coupling code.
+RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const hdi::HdiSurface& model,
+                    const SurfaceHooks& hooks = {});
+
 /// Everything surfremesh needs, for one library call from an input surface.
 struct SurfaceRemeshSettings
 {
@@ -54,7 +63,7 @@ struct SurfaceRemeshSettings
     int iterations = 10;
     /// With a uniform size: refine below it where the curvature needs it to stay within
     /// hausd (if given) or this fraction of the bbox diagonal (≤ 0: strictly uniform).
-    double uniform_hausd_fraction = 0.0006;
+    double uniform_hausd_fraction = 0.0016;
     /// Smooth vertices on the HDI model instead of the input facets. Off by default: on fandisk it
     /// is 4x slower and its projections near ridges left slivers (see the report of issue 6).
     bool use_hdi = false;

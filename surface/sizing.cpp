@@ -49,7 +49,10 @@ std::vector<double> curvature_sizes(const SurfaceMesh& input, const SurfaceModel
     const double hausd = options.hausd > 0.0 ? options.hausd : 0.002 * model.diagonal();
     const double huge = options.hmax > 0.0 ? options.hmax : 0.1 * model.diagonal();
     std::vector<double> sizes(input.n_vertices(), huge);
-    auto size_for = [&](double k) { return k > 0.0 ? std::sqrt(8.0 * hausd / k) : huge; };
+    // The centroid of an equilateral triangle of side h on a sphere of curvature k strays h²k/6
+    // from it (an edge's midpoint only h²k/8); the quadric fit underestimates k on a coarse input,
+    // so take twice that margin: h = √(3·hausd/k).
+    auto size_for = [&](double k) { return k > 0.0 ? std::sqrt(3.0 * hausd / k) : huge; };
     for (auto v : input.vertices())
     {
         const VertexClass cls = classified ? input.property(vertex_class, v) : VertexClass::Smooth;

@@ -1,7 +1,8 @@
 #pragma once
 // The target edge length of the surface remesher: uniform (--hsiz), given at the input
 // vertices (--sol), or curvature-adaptive from a geometric tolerance (--hausd, Mmg semantics:
-// the chord of an arc of curvature k and length h strays h²k/8 from it, so h = √(8·hausd/k)),
+// a triangle of side h on a surface of curvature k strays about h²k/6 from it; with a margin
+// for the curvature estimate, h = √(3·hausd/k)),
 // bounded by hmin/hmax and graded by hgrad.
 
 #include <string>

@@ -330,6 +330,36 @@ TEST_CASE("dead tets are ignored, and a killed tet opens the boundary")
     CHECK(violations.empty());
 }
 
+TEST_CASE("unused and coincident vertices")
+{
+    //  two separate Kuhn cubes side by side whose touching corners are distinct vertices at
+    //  the same points: each cube alone is clean, together they hide a crack at x = 1
+    TetMesh mesh = fixtures::kuhn_cube();
+    const TetMesh right = fixtures::kuhn_cube();
+    const int offset = mesh.num_vertices();
+    for (const Vec3& p : right.points) mesh.add_vertex(p + Vec3(1, 0, 0));
+    for (const auto& t : right.tets) mesh.add_tet({t[0] + offset, t[1] + offset, t[2] + offset, t[3] + offset});
+    for (const auto& tri : right.triangles) mesh.add_triangle({tri[0] + offset, tri[1] + offset, tri[2] + offset}, 1);
+    mesh.build_adjacency();
+    auto violations = check_mesh(mesh);
+    INFO(format_violations(violations));
+    CHECK(count_kind(violations, "coincident_vertices") == 4);
+    CHECK(violations.size() == 4);
+    CheckOptions quiet;
+    quiet.report_coincident_vertices = false;
+    CHECK(check_mesh(mesh, quiet).empty());
+
+    // an isolated vertex: reported only on request
+    mesh = fixtures::kuhn_cube();
+    const int lonely = mesh.add_vertex({5, 5, 5});
+    CHECK(check_mesh(mesh).empty());
+    CheckOptions strict;
+    strict.report_unused_vertices = true;
+    violations = check_mesh(mesh, strict);
+    CHECK(has(violations, "unused_vertex", lonely));
+    CHECK(violations.size() == 1);
+}
+
 TEST_CASE("format_violations: counts per kind, then the first lines")
 {
     std::vector<MeshViolation> many;

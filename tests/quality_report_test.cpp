@@ -13,9 +13,11 @@
 #include <unistd.h>
 
 #include "fixtures.h"
+#include "volume/check.h"
 #include "volume/errors.h"
 #include "volume/quality_report.h"
 #include "volume/size_fields.h"
+#include "volume/tet_io.h"
 
 using namespace hdimesh;
 
@@ -223,4 +225,33 @@ TEST_CASE("table, JSON and SVG outputs")
     CHECK(std::distance(std::filesystem::directory_iterator(directory), std::filesystem::directory_iterator()) == 2);
     CHECK_THROWS_AS(write_quality_svg(r, (directory / "missing" / "x.svg").string()), IoError);
     std::filesystem::remove_all(directory);
+}
+
+TEST_CASE("data/sphere480.mesh against the independent checker's numbers (case A)")
+{
+    // Reference: /usr/bin/python3 ../shared/tools/meshstat.py data/sphere480.mesh --case A --json
+    const TetMesh mesh = read_mesh(fixtures::data_path("sphere480.mesh"));
+    const auto violations = check_mesh(mesh);
+    INFO(format_violations(violations));
+    CHECK(violations.empty());
+    const BenchmarkSize field(benchmark_case('A'));
+    const QualityReport r = compute_quality_report(mesh, &field);
+    CHECK(r.vertices == 156);
+    CHECK(r.tets == 483);
+    CHECK(r.boundary_triangles == 256);
+    CHECK(r.declared_triangles == 256);
+    CHECK(r.edges == 766);
+    CHECK(r.volume == doctest::Approx(4.007149580083689).epsilon(1e-13));
+    CHECK(r.enclosed_volume == doctest::Approx(r.volume).epsilon(1e-13));
+    CHECK(r.min_qe == doctest::Approx(0.25829160425705155).epsilon(1e-12));
+    CHECK(r.mean_qe == doctest::Approx(0.6375618507748647).epsilon(1e-12));
+    CHECK(r.percent_qe_ge_05 == doctest::Approx(89.648033126294).epsilon(1e-12));
+    CHECK(r.qe_histogram == std::array<int, 10>{0, 0, 6, 21, 23, 110, 180, 110, 29, 4});
+    CHECK(r.min_qt == doctest::Approx(0.05320199414494702).epsilon(1e-12));
+    CHECK(r.mean_qt == doctest::Approx(0.39412958484228894).epsilon(1e-12));
+    CHECK(r.percent_qt_ge_066 == doctest::Approx(12.27154046997389).epsilon(1e-12));
+    CHECK(r.percent_too_long == doctest::Approx(87.72845953002611).epsilon(1e-12));
+    CHECK(r.percent_too_short == 0.0);
+    CHECK(r.max_length_ratio == doctest::Approx(18.79628792250783).epsilon(1e-12));
+    CHECK(r.length_ratio_histogram == std::array<long, 8>{0, 0, 0, 2, 14, 78, 141, 531});
 }

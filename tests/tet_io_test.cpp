@@ -494,6 +494,32 @@ TEST_CASE("Medit ASCII: comments, keyword layout and skipped derived keywords")
     CHECK(mesh.required_tets == std::vector<int>{0});
 }
 
+/*
+  A surface-only file (the input of surface remeshing + tet meshing): the unit tet's four
+  outward faces, no Tetrahedra section. Every format keeps it; vertices become Surface.
+*/
+TEST_CASE("surface-only meshes (triangles, no tets) round trip in every format")
+{
+    TetMesh surface = fixtures::single_tet();
+    surface.tets.clear();
+    surface.tet_refs.clear();
+    surface.neighbors.clear();
+    for (int f = 0; f < 4; ++f) surface.triangle_refs[f] = 20 + f;
+    for (const char* name : {"surface.mesh", "surface.meshb", "surface.msh", "SURFACE22.MSH"})
+    {
+        CAPTURE(name);
+        WriteOptions options;
+        if (std::string(name) == "SURFACE22.MSH") options.gmsh_version = "2.2";
+        write_mesh(surface, scratch().file(name), options);
+        const TetMesh back = read_mesh(scratch().file(name));
+        CHECK(back.num_tet_slots() == 0);
+        CHECK(back.points == surface.points);
+        CHECK(back.triangles == surface.triangles);
+        CHECK(back.triangle_refs == surface.triangle_refs);
+        for (VertexClass c : back.vertex_classes) CHECK(c == VertexClass::Surface);
+    }
+}
+
 TEST_CASE(".sol and .solb round trip bitwise and check the vertex count")
 {
     std::vector<double> values;

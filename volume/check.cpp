@@ -51,6 +51,7 @@ public:
         check_declared_triangles(groups);
         check_boundary_manifold();
         check_enclosed_volume(groups);
+        check_vertex_use();
         return std::move(violations_);
     }
 
@@ -418,6 +419,39 @@ private:
             out << "sum of tet volumes " << tet_volume_sum_ << " != volume enclosed by the boundary "
                 << enclosed << " (relative difference " << (scale > 0 ? difference / scale : difference) << ")";
             add("volume_mismatch", -1, out.str());
+        }
+    }
+
+    void check_vertex_use()
+    {
+        if (!options_.report_unused_vertices && !options_.report_coincident_vertices) return;
+        std::vector<char> used(mesh_.num_vertices(), 0);
+        for (int t = 0; t < mesh_.num_tet_slots(); ++t)
+            if (usable_tet(t))
+                for (int v : mesh_.tets[t]) used[v] = 1;
+        std::vector<int> used_ids;
+        for (int v = 0; v < mesh_.num_vertices(); ++v)
+        {
+            if (used[v]) used_ids.push_back(v);
+            else if (options_.report_unused_vertices)
+                add("unused_vertex", v, "vertex " + std::to_string(v) + " is used by no tet");
+        }
+        if (!options_.report_coincident_vertices) return;
+        // lexicographic sort of the points: equal points become neighbours
+        auto less = [&](int a, int b) {
+            const Vec3 &p = mesh_.points[a], &q = mesh_.points[b];
+            if (p.x() != q.x()) return p.x() < q.x();
+            if (p.y() != q.y()) return p.y() < q.y();
+            if (p.z() != q.z()) return p.z() < q.z();
+            return a < b;
+        };
+        std::sort(used_ids.begin(), used_ids.end(), less);
+        for (std::size_t i = 1; i < used_ids.size(); ++i)
+        {
+            const int a = used_ids[i - 1], b = used_ids[i];
+            if (mesh_.points[a] == mesh_.points[b])
+                add("coincident_vertices", b,
+                    "vertices " + std::to_string(a) + " and " + std::to_string(b) + " are at the same point");
         }
     }
 

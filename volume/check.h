@@ -37,6 +37,8 @@ namespace hdimesh
 ///  boundary_edge_same_direction  triangle   the two triangles at a boundary edge are not consistently oriented
 ///  nonmanifold_boundary_vertex   vertex     a boundary vertex whose link is several cycles (pinched)
 ///  volume_mismatch               -1         sum of tet volumes != volume enclosed by the tets' boundary
+///  coincident_vertices           vertex     two vertices used by tets at the same point (a hidden crack)
+///  unused_vertex                 vertex     no live tet uses it (only with report_unused_vertices)
 ///
 /// The boundary-manifold checks run on the boundary triangles of mesh.triangles (interface
 /// triangles on faces between two tets excluded): that is the surface other modules consume.
@@ -56,6 +58,13 @@ struct CheckOptions
     /// Accept triangles on faces between two tets of the same ref (internal constraint
     /// surfaces); triangles between different refs (interfaces) are always accepted.
     bool allow_interior_triangles = false;
+    /// Report vertices that no live tet uses (compact() removes them). Off by default because
+    /// operators leave such vertices until they compact; meshstat turns it on, as the
+    /// independent checker ../shared/tools/meshstat.py counts them as non-conforming.
+    bool report_unused_vertices = false;
+    /// Report two vertices used by tets at exactly the same point: the tets on both sides of
+    /// such a pair are not connected, an invisible crack when its faces are listed as triangles.
+    bool report_coincident_vertices = true;
 };
 
 /// Lists every violation: non-positive volume, asymmetric or stale adjacency (recomputed and

@@ -73,8 +73,10 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     };
     std::vector<int> to_ball, to_neighbours;
     const bool may_move_to = options.allow_midpoint && context.constraints.is_free_vertex(to);
-    if (may_move_to)
-    {
+    const Vec3 to_position = mesh.points[to];
+    // the places other than `to` itself, and to's ball they need, are built only if `to` fails
+    std::vector<Vec3> places = {to_position};
+    auto add_moving_places = [&] {
         vertex_ball(mesh, context.vertex_tet[to], to, to_ball);
         for (int t : to_ball)
             for (int v : mesh.tets[t])
@@ -82,11 +84,6 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         std::sort(to_neighbours.begin(), to_neighbours.end());
         to_neighbours.erase(std::unique(to_neighbours.begin(), to_neighbours.end()),
                             to_neighbours.end());
-    }
-    const Vec3 to_position = mesh.points[to];
-    std::vector<Vec3> places = {to_position};
-    if (may_move_to)
-    {
         places.push_back(0.5 * (mesh.points[from] + to_position));
         // the centre of every vertex the merged one will see: balances the new lengths
         Vec3 centre = Vec3::Zero();
@@ -98,11 +95,13 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
                 ++count;
             }
         if (count > 0) places.push_back(centre / count);
-    }
+    };
     bool found = false;
     Vec3 chosen = to_position;
-    for (std::size_t attempt = 0; attempt < places.size() && !found; ++attempt)
+    for (std::size_t attempt = 0; !found; ++attempt)
     {
+        if (attempt == 1 && may_move_to) add_moving_places();
+        if (attempt >= places.size()) break;
         const Vec3 place = places[attempt];
         const auto& p = mesh.points;
         auto point_of = [&](int v) -> const Vec3& { return v == to ? place : p[v]; };

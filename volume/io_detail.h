@@ -2,7 +2,8 @@
 // Private machinery shared by the tet-mesh readers and writers (medit_io.cpp, gmsh_io.cpp,
 // vtu_io.cpp, sol_io.cpp): the whole file loaded in one buffer, a text tokenizer that tracks
 // line numbers, a bounds-checked binary cursor on the same buffer, a buffered text writer, and
-// the validation every reader ends with. Not installed for users: include only from volume/*.cpp.
+// the validation every reader ends with. Not part of the public API: only volume/*_io.cpp
+// include it (it is installed with the other headers because the module installs them all).
 //
 // Why one buffer: parsing from memory with std::from_chars is 5-10x faster than iostream >>,
 // Gmsh binary files interleave text lines and binary blocks, and bounding every count read from
@@ -66,6 +67,9 @@ private:
     const std::string& path_;
     std::string_view text_;
     char comment_;
+    /// Per byte: 0 part of a token, 1 blank, 2 newline, 3 comment start (one table lookup per
+    /// character instead of a chain of comparisons: the tokenizer is the hot loop of ASCII reads)
+    unsigned char kind_[256];
     std::size_t pos_ = 0;
     int line_ = 1;
     int token_line_ = 1;

@@ -146,6 +146,7 @@ struct TetSplit
 {
     TetVertices v;
     std::array<int, 6> midpoint;
+    std::array<int, 6> slot;  // in the edge table, or -1
     int mask = 0;
 };
 
@@ -272,9 +273,17 @@ private:
         TetSplit s;
         s.v = mesh_.tets[t];
         for (int e = 0; e < 6; ++e)
+            s.slot[e] = edges.find(s.v[tet::kEdgeVertices[e][0]], s.v[tet::kEdgeVertices[e][1]]);
+        return resolve(s);
+    }
+
+    /// Midpoints and mask from the edge slots.
+    TetSplit resolve(TetSplit s) const
+    {
+        s.mask = 0;
+        for (int e = 0; e < 6; ++e)
         {
-            const int slot = edges.find(s.v[tet::kEdgeVertices[e][0]], s.v[tet::kEdgeVertices[e][1]]);
-            s.midpoint[e] = slot < 0 ? -1 : midpoint_[slot];
+            s.midpoint[e] = s.slot[e] < 0 ? -1 : midpoint_[s.slot[e]];
             if (s.midpoint[e] >= 0) s.mask |= 1 << e;
         }
         return s;
@@ -341,7 +350,7 @@ private:
     int mark_edges(const EdgeTable& edges);
     void choose_patterns(const EdgeTable& edges);
     void add_midpoints(const EdgeTable& edges);
-    void rebuild_tets(const EdgeTable& edges);
+    void rebuild_tets();
     void link_children();
     void split_triangles(const EdgeTable& edges);
     void split_feature_edges(const EdgeTable& edges);
@@ -358,6 +367,7 @@ private:
     std::vector<std::uint16_t> choice_;   // per tet
     std::uint16_t unsplit_ = 0;
     std::vector<int> refined_;            // the refined tets, increasing
+    std::vector<std::array<int, 6>> refined_slots_;  // per refined tet: edge slot per local edge
     std::vector<int> ordinal_;            // per tet: its index in refined_, or -1
     std::vector<int> extra_start_;        // per refined tet (ordinal): slot of its child 1
     std::vector<TetVertices> old_rows_;   // per refined tet (ordinal): its neighbours before
@@ -425,6 +435,7 @@ void RefinePass::choose_patterns(const EdgeTable& edges)
         }
         choice_[t] = encode(index, build);
         refined_.push_back(t);
+        refined_slots_.push_back(s.slot);
         const ChildBuild& b = child_build(choice_[t]);
         num_children_ += static_cast<long long>(b.tets.size()) - 1;
         num_new_points_ += b.new_point;
@@ -452,7 +463,7 @@ void RefinePass::add_midpoints(const EdgeTable& edges)
 
 /// Pass 2: child 0 of a refined tet takes its parent's slot, the other children are appended;
 /// unrefined tets keep their slot (and their neighbour links, but those to refined tets).
-void RefinePass::rebuild_tets(const EdgeTable& edges)
+void RefinePass::rebuild_tets()
 {
     const int nt = mesh_.num_tet_slots();
     const std::size_t total = static_cast<std::size_t>(num_children_);
@@ -492,10 +503,14 @@ void RefinePass::rebuild_tets(const EdgeTable& edges)
     std::array<int, kPatternNumLocalPoints> g;
     g.fill(-1);
     int next_slot = nt;
-    for (int t : refined_)
+    for (std::size_t r = 0; r < refined_.size(); ++r)
     {
+        const int t = refined_[r];
         const std::uint16_t choice = choice_[t];
-        const TetSplit s = collect(edges, t);
+        TetSplit split;
+        split.v = mesh_.tets[t];
+        split.slot = refined_slots_[r];
+        const TetSplit s = resolve(split);
         const int ref = mesh_.tet_refs[t];
         const ChildBuild& build = child_build(choice);
         for (int k = 0; k < 4; ++k) g[k] = s.v[k];
@@ -582,6 +597,17 @@ void RefinePass::link_children()
             if (is_refined(other) && other < t) continue;  // linked from the other side
             int g = 0;
             while (g < 4 && old_neighbor(other, g) != t) ++g;
+            const auto& mine_faces = build.on_parent_face[f];
+            if (g < 4 && mine_faces.size() == 1 && (!is_refined(other) || child_build(choice_[other]).on_parent_face[g].size() == 1))
+            {
+                // an unsplit face: one child face on each side, no matching needed
+                const int slot = child_slot(t, mine_faces[0] / 4);
+                const int their_slot = is_refined(other) ? child_slot(other, child_build(choice_[other]).on_parent_face[g][0] / 4) : other;
+                const int their_face = is_refined(other) ? child_build(choice_[other]).on_parent_face[g][0] % 4 : g;
+                nb[slot][mine_faces[0] % 4] = their_slot;
+                nb[their_slot][their_face] = slot;
+                continue;
+            }
             const int count_mine = gather(t, f, mine);
             if (g == 4)
             {
@@ -735,7 +761,7 @@ RefinePassResult RefinePass::run()
         {
             choose_patterns(edges);  // may throw: nothing changed yet
             add_midpoints(edges);
-            rebuild_tets(edges);
+            rebuild_tets();
             link_children();
             split_triangles(edges);
             split_feature_edges(edges);
@@ -745,6 +771,7 @@ RefinePassResult RefinePass::run()
     std::vector<int>().swap(extra_start_);
     std::vector<int>().swap(ordinal_);
     std::vector<int>().swap(refined_);
+    std::vector<std::array<int, 6>>().swap(refined_slots_);
     std::vector<TetVertices>().swap(old_rows_);
 
     for (int m = num_vertices_before_; m < num_vertices_before_ + report.edges_split; ++m)

@@ -65,8 +65,11 @@ struct RefinePassResult
 /// fallback is positive (the parent itself is flat or inverted) the mesh is left unchanged and
 /// hdimesh::InputError names the tet.
 ///
-/// On return the mesh is compact (no dead tets) with adjacency rebuilt. A pass that splits no
-/// edge changes nothing but that.
+/// The pass starts from a freshly built adjacency (callers need not maintain it) and links the
+/// children from the pattern table and the parents' adjacency (no global rebuild): child 0 of a
+/// refined tet takes its parent's slot, the other children are appended; unrefined tets keep
+/// their slots. On return the mesh is compact (no dead tets) with valid adjacency. A pass that
+/// splits no edge changes nothing but that.
 RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field);
 
 /// A face rule: for a face with split edges corner–a and corner–b (global ids), the id (a or b)
@@ -85,7 +88,9 @@ struct RefineResult
     std::vector<int> steiner_vertices;
 };
 
-/// Repeats refine_pass until no edge is too long or max_passes passes have run.
+/// Repeats refine_pass until no edge is too long or max_passes passes have run. Between its own
+/// passes nothing moves, so a pass only measures edges with an endpoint created by the previous
+/// pass (an older edge was already found short enough) and reuses the adjacency it built.
 RefineResult refine(TetMesh& mesh, const SizeField& field, const RefineOptions& options = {});
 
 /// The face rule above: for a face with split edges c–a and c–b (global ids), the global id (a

@@ -56,31 +56,25 @@ void throw_input(const std::string& path, const std::string& message)
 TextReader::TextReader(const std::string& path, std::string_view text, char comment)
     : path_(path), text_(text), comment_(comment)
 {
+    std::memset(kind_, 0, sizeof(kind_));
+    for (unsigned char c : {' ', '\t', '\r', '\f', '\v'}) kind_[c] = 1;
+    kind_[static_cast<unsigned char>('\n')] = 2;
+    if (comment_ != 0) kind_[static_cast<unsigned char>(comment_)] = 3;
 }
 
 void TextReader::skip_blanks()
 {
     const std::size_t n = text_.size();
+    const char* text = text_.data();
     while (pos_ < n)
     {
-        const char c = text_[pos_];
-        if (c == '\n')
-        {
-            ++line_;
-            ++pos_;
-        }
-        else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v')
-        {
-            ++pos_;
-        }
-        else if (comment_ != 0 && c == comment_)
-        {
-            while (pos_ < n && text_[pos_] != '\n') ++pos_;
-        }
+        const unsigned char kind = kind_[static_cast<unsigned char>(text[pos_])];
+        if (kind == 0) break;
+        if (kind == 2) ++line_;
+        if (kind == 3)
+            while (pos_ < n && text[pos_] != '\n') ++pos_;
         else
-        {
-            break;
-        }
+            ++pos_;
     }
 }
 
@@ -97,14 +91,8 @@ std::string_view TextReader::token(const char* what)
     if (pos_ >= text_.size()) fail(std::string("unexpected end of file while reading ") + what);
     const std::size_t start = pos_;
     const std::size_t n = text_.size();
-    while (pos_ < n)
-    {
-        const char c = text_[pos_];
-        if (c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f' || c == '\v' ||
-            (comment_ != 0 && c == comment_))
-            break;
-        ++pos_;
-    }
+    const char* text = text_.data();
+    while (pos_ < n && kind_[static_cast<unsigned char>(text[pos_])] == 0) ++pos_;
     return text_.substr(start, pos_ - start);
 }
 
@@ -125,6 +113,20 @@ long long TextReader::integer(const char* what)
 {
     std::string_view t = token(what);
     if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    // fast path: up to 18 plain digits cannot overflow (the common case by far)
+    if (!t.empty() && t.size() <= 18)
+    {
+        long long value = 0;
+        std::size_t i = t[0] == '-' ? 1 : 0;
+        bool digits = i < t.size();
+        for (; i < t.size() && digits; ++i)
+        {
+            const unsigned d = static_cast<unsigned>(t[i] - '0');
+            digits = d <= 9;
+            value = 10 * value + d;
+        }
+        if (digits) return t[0] == '-' ? -value : value;
+    }
     long long value = 0;
     const auto r = std::from_chars(t.data(), t.data() + t.size(), value);
     if (r.ec != std::errc() || r.ptr != t.data() + t.size() || t.empty())
@@ -292,6 +294,17 @@ void finish_read(TetMesh& mesh, const std::string& path)
             throw_input(path, entity_error("tetrahedron", t, message.str()));
         }
     }
+
+    // readers grow some arrays by push_back: give the slack back (the container's bytes per
+    // tet is a benchmarked figure, and a read mesh is usually kept for a whole run)
+    mesh.points.shrink_to_fit();
+    mesh.vertex_refs.shrink_to_fit();
+    mesh.tets.shrink_to_fit();
+    mesh.tet_refs.shrink_to_fit();
+    mesh.triangles.shrink_to_fit();
+    mesh.triangle_refs.shrink_to_fit();
+    mesh.edges.shrink_to_fit();
+    mesh.edge_refs.shrink_to_fit();
 
     const int overshared = mesh.build_adjacency();
     if (overshared > 0)

@@ -1,0 +1,320 @@
+// The remesher end to end on small inputs: a coarse sphere (analytic model), an open box with
+// sharp edges and corners (features and an open boundary kept), and fandisk at a coarse size
+// (ridges covered, ridge vertices on the input ridge lines, corners kept, topology kept).
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "hdi/hdi_surface.h"
+#include "surface/closest_point_tree.h"
+#include "surface/features.h"
+#include "surface/remesh.h"
+#include "surface/surface_io.h"
+#include "surface/surface_model.h"
+#include "surface/surface_quality.h"
+
+using namespace hdimesh::surface;
+
+namespace
+{
+
+struct Topology
+{
+    int vertices = 0, edges = 0, faces = 0, boundary_loops = 0, components = 0;
+    int euler() const { return vertices - edges + faces; }
+};
+
+Topology topology(const SurfaceMesh& mesh)
+{
+    Topology t;
+    t.vertices = static_cast<int>(mesh.n_vertices());
+    t.edges = static_cast<int>(mesh.n_edges());
+    t.faces = static_cast<int>(mesh.n_faces());
+    std::vector<int> parent(mesh.n_vertices());
+    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+    std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+    for (auto e : mesh.edges())
+    {
+        const auto h = mesh.halfedge_handle(e, 0);
+        parent[find(mesh.from_vertex_handle(h).idx())] = find(mesh.to_vertex_handle(h).idx());
+    }
+    std::set<int> roots;
+    for (auto v : mesh.vertices()) roots.insert(find(v.idx()));
+    t.components = static_cast<int>(roots.size());
+    std::set<int> seen;
+    for (auto h : mesh.halfedges())
+    {
+        if (!mesh.is_boundary(h) || seen.count(h.idx())) continue;
+        ++t.boundary_loops;
+        auto g = h;
+        do
+        {
+            seen.insert(g.idx());
+            g = mesh.next_halfedge_handle(g);
+        } while (g != h);
+    }
+    return t;
+}
+
+void check_manifold(const SurfaceMesh& mesh)
+{
+    for (auto v : mesh.vertices()) CHECK(mesh.is_manifold(v));
+    for (auto f : mesh.faces()) CHECK(face_qe(mesh, f) > 0.0);
+}
+
+// A subdivided octahedron pushed onto the unit sphere (8·4^level triangles).
+SurfaceMesh sphere(int level)
+{
+    std::vector<Vec3d> p = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    std::vector<std::array<int, 3>> t = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                         {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (int l = 0; l < level; ++l)
+    {
+        std::map<std::pair<int, int>, int> mid;
+        auto midpoint = [&](int a, int b) {
+            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            p.push_back((0.5 * (p[a] + p[b])).normalized());
+            return mid[key] = static_cast<int>(p.size()) - 1;
+        };
+        std::vector<std::array<int, 3>> next;
+        for (const auto& f : t)
+        {
+            const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+            next.push_back({f[0], ab, ca});
+            next.push_back({ab, f[1], bc});
+            next.push_back({ca, bc, f[2]});
+            next.push_back({ab, bc, ca});
+        }
+        t = next;
+    }
+    TriangleSoup soup;
+    soup.points = p;
+    soup.triangles = t;
+    return build_surface(soup, "sphere");
+}
+
+// The unit cube without its top face, each face a 2x2 grid: an open box with 8 sharp edges
+// (45°+), 4 boundary edges along the rim, and corners where three curves meet.
+SurfaceMesh open_box()
+{
+    TriangleSoup soup;
+    auto quad_grid = [&](Vec3d origin, Vec3d u, Vec3d v) {
+        const int base = static_cast<int>(soup.points.size());
+        for (int j = 0; j <= 2; ++j)
+            for (int i = 0; i <= 2; ++i) soup.points.push_back(origin + 0.5 * i * u + 0.5 * j * v);
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i)
+            {
+                const int a = base + j * 3 + i, b = a + 1, c = a + 4, d = a + 3;
+                soup.triangles.push_back({a, b, c});
+                soup.triangles.push_back({a, c, d});
+            }
+    };
+    // Outward faces: bottom (z=0), and four sides.
+    quad_grid({0, 0, 0}, {0, 1, 0}, {1, 0, 0});
+    quad_grid({0, 0, 0}, {1, 0, 0}, {0, 0, 1});
+    quad_grid({1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+    quad_grid({1, 1, 0}, {-1, 0, 0}, {0, 0, 1});
+    quad_grid({0, 1, 0}, {0, -1, 0}, {0, 0, 1});
+    return build_surface(soup, "open box");  // merges the shared grid vertices
+}
+
+}  // namespace
+
+TEST_CASE("a coarse sphere remeshed to h = 0.2 on the analytic sphere: sizes in band, on the sphere, closed")
+{
+    SurfaceMesh mesh = sphere(2);  // 128 triangles, edges about 0.39..0.77
+    SphereProjector model(Vec3d(0, 0, 0), 1.0);
+    RemeshOptions options;
+    const double h = 0.2;
+    options.size = [h](const Vec3d&) { return h; };
+    options.iterations = 8;
+    const RemeshReport report = remesh(mesh, options, model);
+    CHECK(report.splits > 0);
+    const Topology t = topology(mesh);
+    CHECK(t.euler() == 2);
+    CHECK(t.components == 1);
+    CHECK(t.boundary_loops == 0);
+    check_manifold(mesh);
+    for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
+    // Outward orientation and the enclosed volume close to the ball's (4π/3, less the chords).
+    double volume = 0.0;
+    for (auto f : mesh.faces())
+    {
+        std::vector<Vec3d> p;
+        for (auto v : mesh.fv_range(f)) p.push_back(mesh.point(v));
+        volume += OpenMesh::dot(p[0], OpenMesh::cross(p[1], p[2])) / 6.0;
+    }
+    CHECK(volume > 0.95 * 4.0 * M_PI / 3.0);
+    CHECK(volume < 4.0 * M_PI / 3.0);
+    const QualityReport q = measure_quality(mesh, h);
+    CHECK(q.percent_qt_ge_066 > 98.0);
+    CHECK(q.min_angle_deg > 25.0);
+    CHECK(q.percent_qe_ge_07 > 95.0);
+}
+
+TEST_CASE("features of an open box: sharp edges and the rim become curves, corners where they meet")
+{
+    SurfaceMesh mesh = open_box();
+    const FeatureSummary f = detect_features(mesh);
+    CHECK(f.boundary_edges == 8);  // the rim: 4 sides x 2 segments
+    CHECK(f.ridge_edges == 16);    // 4 bottom edges + 4 vertical edges, 2 segments each
+    CHECK(f.corners == 8);         // 4 bottom corners (3 ridges) + 4 rim corners (ridge meets rim)
+    SurfaceProperties props(mesh);
+    for (auto v : mesh.vertices())
+    {
+        const Vec3d p = mesh.point(v);
+        const int on_faces = (p[0] == 0 || p[0] == 1) + (p[1] == 0 || p[1] == 1) + (p[2] == 0 || p[2] == 1);
+        if (mesh.property(props.vertex_class, v) == VertexClass::Corner) CHECK(on_faces == 3);
+    }
+}
+
+TEST_CASE("the open box remeshed finer keeps its rim, its sharp edges and its corners")
+{
+    SurfaceMesh mesh = open_box();
+    SurfaceMesh input = mesh;
+    detect_features(input);
+    SurfaceRemeshSettings settings;
+    settings.sizing.hsiz = 0.15;
+    const SurfaceRemeshResult result = remesh_surface(mesh, settings);
+    CHECK(result.features.corners == 8);
+    const Topology before = topology(input), after = topology(mesh);
+    CHECK(after.euler() == before.euler());
+    CHECK(after.boundary_loops == 1);
+    CHECK(after.components == 1);
+    check_manifold(mesh);
+    SurfaceProperties props(mesh);
+    int corners = 0;
+    for (auto v : mesh.vertices())
+    {
+        const Vec3d p = mesh.point(v);
+        // Every vertex is on the box; curve vertices on its edges (two coordinates at 0 or 1).
+        const int on_faces = (p[0] == 0 || p[0] == 1) + (p[1] == 0 || p[1] == 1) + (p[2] == 0 || p[2] == 1);
+        CHECK(on_faces >= 1);
+        const VertexClass c = mesh.property(props.vertex_class, v);
+        if (c == VertexClass::Ridge || c == VertexClass::Boundary) CHECK(on_faces >= 2);
+        if (c == VertexClass::Corner)
+        {
+            CHECK(on_faces == 3);
+            ++corners;
+        }
+    }
+    CHECK(corners == 8);
+    const QualityReport q = measure_quality(mesh, 0.15);
+    CHECK(q.percent_qt_ge_066 > 95.0);
+    CHECK(q.min_angle_deg > 20.0);
+    // The box's area (5) is reproduced exactly: every triangle lies in a face of the box.
+    double area = 0.0;
+    for (auto f : mesh.faces()) area += mesh.calc_face_area(f);
+    CHECK(area == doctest::Approx(5.0));
+}
+
+TEST_CASE("fandisk at 3 % of the diagonal: ridges covered, ridge vertices on the input ridges, corners kept")
+{
+    SurfaceMesh input = read_surface(std::string(HDIMESH_DATA_DIR) + "/fandisk.obj");
+    detect_features(input);
+    SurfaceMesh mesh = input;
+    SurfaceRemeshSettings settings;
+    settings.sizing.hsiz = 0.03 * bounding_box_diagonal(input);
+    settings.iterations = 6;
+    remesh_surface(mesh, settings);
+    const double diagonal = bounding_box_diagonal(input);
+
+    CHECK(topology(mesh).euler() == topology(input).euler());
+    CHECK(topology(mesh).components == 1);
+    check_manifold(mesh);
+
+    SurfaceProperties in_props(input), out_props(mesh);
+    auto ridge_segments = [](const SurfaceMesh& m, const SurfaceProperties& props) {
+        std::vector<std::array<Vec3d, 2>> s;
+        for (auto e : m.edges())
+            if (m.property(props.edge_curve, e) != kNoCurve)
+            {
+                const auto h = m.halfedge_handle(e, 0);
+                s.push_back({m.point(m.from_vertex_handle(h)), m.point(m.to_vertex_handle(h))});
+            }
+        return s;
+    };
+    const auto input_ridges = ClosestPointTree::from_segments(ridge_segments(input, in_props));
+    const auto output_ridges = ClosestPointTree::from_segments(ridge_segments(mesh, out_props));
+    // Output ridge vertices lie on the input ridge lines.
+    for (auto v : mesh.vertices())
+        if (mesh.property(out_props.vertex_class, v) != VertexClass::Smooth)
+            CHECK(input_ridges.closest(mesh.point(v)).distance < 1e-9 * diagonal);
+    // Recall: every input ridge edge is covered by output ridge edges (its ends and midpoint).
+    for (auto e : input.edges())
+    {
+        if (input.property(in_props.edge_curve, e) == kNoCurve) continue;
+        const auto h = input.halfedge_handle(e, 0);
+        const Vec3d a = input.point(input.from_vertex_handle(h)), b = input.point(input.to_vertex_handle(h));
+        CHECK(output_ridges.closest(0.5 * (a + b)).distance < 6.5e-4 * diagonal);
+    }
+    // Corners kept exactly.
+    std::set<std::array<double, 3>> out_corners;
+    for (auto v : mesh.vertices())
+        if (mesh.property(out_props.vertex_class, v) == VertexClass::Corner)
+            out_corners.insert({mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]});
+    int in_corners = 0;
+    for (auto v : input.vertices())
+        if (input.property(in_props.vertex_class, v) == VertexClass::Corner)
+        {
+            ++in_corners;
+            CHECK(out_corners.count({input.point(v)[0], input.point(v)[1], input.point(v)[2]}) == 1);
+        }
+    CHECK(in_corners == static_cast<int>(out_corners.size()));
+    const auto d = hausdorff_distance(mesh, input);
+    CHECK(std::max(d[0], d[1]) < 0.004 * diagonal);
+    const QualityReport q = measure_quality(mesh, settings.sizing.hsiz);
+    CHECK(q.percent_qe_ge_07 > 97.0);
+    CHECK(q.min_angle_deg > 15.0);
+}
+
+TEST_CASE("hooks can veto every split: the mesh is unchanged by splits and the remesher still terminates")
+{
+    SurfaceMesh mesh = sphere(1);
+    SphereProjector model(Vec3d(0, 0, 0), 1.0);
+    SurfaceHooks hooks;
+    int asked = 0;
+    hooks.allow_split = [&](const SurfaceMesh&, EdgeHandle, const Vec3d&) {
+        ++asked;
+        return false;
+    };
+    RemeshOptions options;
+    options.size = [](const Vec3d&) { return 0.2; };
+    options.iterations = 2;
+    const RemeshReport r = remesh(mesh, options, model, hooks);
+    CHECK(asked > 0);
+    CHECK(r.splits == 0);
+    CHECK(topology(mesh).euler() == 2);
+}
+
+TEST_CASE("remesh on an HDI model of a sphere: vertices on the unit sphere within the model's accuracy")
+{
+    SurfaceMesh mesh = sphere(3);  // 512 triangles
+    std::vector<hdimesh::hdi::Vec3> points;
+    for (auto v : mesh.vertices()) points.emplace_back(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]);
+    std::vector<hdimesh::hdi::Triangle3> triangles;
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.cfv_iter(f);
+        const int a = fv->idx(), b = (++fv)->idx(), c = (++fv)->idx();
+        triangles.push_back({a, b, c});
+    }
+    const hdimesh::hdi::HdiSurface model(points, triangles, hdimesh::hdi::FeatureSet{});
+    RemeshOptions options;
+    options.size = [](const Vec3d&) { return 0.25; };
+    options.iterations = 4;
+    const RemeshReport report = remesh(mesh, options, model);
+    CHECK(report.collapses > 0);  // 0.25 is coarser than the input's edges
+    CHECK(topology(mesh).euler() == 2);
+    check_manifold(mesh);
+    for (auto v : mesh.vertices()) CHECK(std::abs(mesh.point(v).norm() - 1.0) < 0.01);
+    const QualityReport q = measure_quality(mesh, 0.25);
+    CHECK(q.percent_qt_ge_066 > 95.0);
+}
