@@ -160,8 +160,13 @@ TEST_CASE("Medit: NaN, infinite and malformed coordinates")
 
 TEST_CASE("Medit: unknown keywords and unsupported dimension")
 {
+    check_message(input_error("typo.mesh", kHeader + kVertices + "Tetrahedron\n1\n1 2 3 4 1\nEnd\n"),
+                  "typo.mesh", ":9:", "unknown keyword 'Tetrahedron'");
+    // element kinds a tet mesh cannot hold: an error when present, harmless when empty
     check_message(input_error("quads.mesh", kHeader + kVertices + "Quadrilaterals\n1\n1 2 3 4 1\nEnd\n"),
-                  "quads.mesh", ":9:", "unknown keyword 'Quadrilaterals'");
+                  "quads.mesh", ":10:", "Quadrilaterals are not supported");
+    CHECK(read_mesh(write_text("noquads.mesh", kHeader + kVertices + "Quadrilaterals\n0\nTetrahedra\n1\n1 2 3 4 1\nEnd\n"))
+              .num_tet_slots() == 1);
     check_message(input_error("dim2.mesh", "MeshVersionFormatted 2\nDimension 2\nEnd\n"), "dim2.mesh", ":2:",
                   "Dimension 3");
     check_message(input_error("twice.mesh", kHeader + kVertices + kVertices + "End\n"), "twice.mesh", ":9:",

@@ -271,6 +271,17 @@ TEST_CASE("refine: forced face rules reach all 14 Schönhardt configurations on 
     // star: the three edges at one vertex split; 8 ways to choose the three quad diagonals,
     // exactly 2 twist (each midpoint the end of one diagonal) and need the Steiner point.
     // four-cycle: edges 01 12 23 30 split (02, 13 not) etc.; 16 choices, exactly 2 twist.
+    //
+    //  star at vertex 0: edges 0-1, 0-2, 0-3 split at a, b, c.
+    //            3
+    //           /|\         cutting the corner tet (0 a b c) leaves the prism
+    //          c | \        a b c / 1 2 3 whose three quad sides (a b 2 1),
+    //         /  |  \       (b c 3 2), (c a 1 3) each get one diagonal; when
+    //        0---b---2      each of a, b, c ends exactly one diagonal they
+    //         \  |  /       twist: the prism is a Schönhardt polyhedron and
+    //          a | /        needs the Steiner point.
+    //           \|/
+    //            1
     int steiner_runs = 0, runs = 0;
     for (int mask = 1; mask < 64; ++mask)
     {

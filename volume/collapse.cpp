@@ -153,7 +153,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         if (attempt > 0)
             context.touched.insert(context.touched.end(), reshaped.begin(), reshaped.end());
     }
-    result.worst_before = old_worst();
+    result.worst_before = ball_worst;
     if (!found) return result;
 
     mesh.points[to] = chosen;

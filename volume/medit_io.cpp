@@ -34,6 +34,14 @@ int skipped_tokens_per_item(std::string_view keyword)
     return 0;
 }
 
+/// Element kinds a tet mesh cannot hold: an empty section is harmless (some writers emit
+/// them), a non-empty one is an error, since dropping it would lose part of the domain.
+bool is_unsupported_element_keyword(std::string_view keyword)
+{
+    return keyword == "Quadrilaterals" || keyword == "Hexahedra" || keyword == "Prisms" ||
+           keyword == "Pyramids" || keyword == "RequiredQuadrilaterals";
+}
+
 class MeditAsciiReader
 {
 public:
@@ -84,6 +92,13 @@ public:
             {
                 const std::size_t n = in_.count("item count", 2 * per_item);
                 for (std::size_t i = 0; i < n * per_item; ++i) in_.token(std::string(keyword).c_str());
+            }
+            else if (is_unsupported_element_keyword(keyword))
+            {
+                const std::size_t n = in_.count("item count", 2);
+                if (n > 0)
+                    in_.fail(std::string(keyword) + " are not supported (" + std::to_string(n) +
+                             " in the file): only tetrahedra, triangles and edges");
             }
             else
             {
@@ -234,6 +249,16 @@ public:
                     if (next <= static_cast<long long>(in_.position()))
                         in_.fail("keyword " + std::to_string(code) + ": bad next-keyword position");
                     in_.seek(static_cast<std::size_t>(next), "next-keyword position");
+                    break;
+                case gmf::kQuadrilaterals:
+                case gmf::kPrisms:
+                case gmf::kHexahedra:
+                case gmf::kPyramids:
+                case gmf::kRequiredQuadrilaterals:
+                    // element kinds a tet mesh cannot hold: harmless only when empty
+                    if (const long long n = count("element count", 4); n > 0)
+                        in_.fail("keyword " + std::to_string(code) + ": " + std::to_string(n) +
+                                 " quadrilaterals/prisms/pyramids/hexahedra are not supported");
                     break;
                 default:
                     in_.fail("unsupported keyword code " + std::to_string(code) +

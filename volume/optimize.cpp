@@ -172,10 +172,30 @@ public:
             ++report_.sweeps;
             print_sweep("sweep " + std::to_string(report_.sweeps), before);
             if (successes == 0) break;
-            // next: the tets still bad, and the new or reshaped ones that are bad
-            work = std::move(still_bad);
+            // next: the new or reshaped tets that are bad, and the tets still bad that have
+            // a vertex in a changed tet — every operator tried on a tet only involves tets
+            // through its vertices, so a stuck tet whose vertices saw no change stays stuck
+            std::vector<int> changed_vertices;
+            work.clear();
             for (int t : context_.touched)
-                if (!mesh_.is_dead(t) && mesh_.quality(t) < threshold) work.push_back(t);
+            {
+                if (mesh_.is_dead(t)) continue;
+                for (int v : mesh_.tets[t]) changed_vertices.push_back(v);
+                if (mesh_.quality(t) < threshold) work.push_back(t);
+            }
+            std::sort(changed_vertices.begin(), changed_vertices.end());
+            changed_vertices.erase(std::unique(changed_vertices.begin(), changed_vertices.end()),
+                                   changed_vertices.end());
+            for (int t : still_bad)
+            {
+                if (mesh_.is_dead(t)) continue;
+                const auto& tv = mesh_.tets[t];
+                if (std::any_of(tv.begin(), tv.end(), [&](int v) {
+                        return std::binary_search(changed_vertices.begin(),
+                                                  changed_vertices.end(), v);
+                    }))
+                    work.push_back(t);
+            }
             order_worst_first(work);
         }
     }

@@ -40,28 +40,45 @@ public:
     EdgeTable(const TetMesh& mesh, int first_vertex)
     {
         const int nv = mesh.num_vertices();
-        first_.assign(nv + 1, 0);
+        const bool adjacency = mesh.has_adjacency();
+        // With adjacency, tet t lists edge e only when neither tet across the two faces at e
+        // (both also hold e) has a smaller index: the smallest tet around every edge lists it,
+        // and far fewer than the 6 per tet are left to deduplicate.
+        auto listed = [&](int t, int e) {
+            if (!adjacency) return true;
+            const auto& nb = mesh.neighbors[t];
+            const int f = tet::kEdgeFaces[e][0], g = tet::kEdgeFaces[e][1];
+            return (nb[f] == kNoTet || nb[f] > t) && (nb[g] == kNoTet || nb[g] > t);
+        };
         auto has_new_vertex = [first_vertex](const TetVertices& t) {
             return t[0] != kDeadTet && std::max({t[0], t[1], t[2], t[3]}) >= first_vertex;
         };
-        for (const auto& t : mesh.tets)
+        first_.assign(nv + 1, 0);
+        const int nt = mesh.num_tet_slots();
+        for (int ti = 0; ti < nt; ++ti)
         {
+            const auto& t = mesh.tets[ti];
             if (!has_new_vertex(t)) continue;
-            for (const auto& ev : tet::kEdgeVertices)
-                if (std::max(t[ev[0]], t[ev[1]]) >= first_vertex)
+            for (int e = 0; e < 6; ++e)
+            {
+                const auto& ev = tet::kEdgeVertices[e];
+                if (std::max(t[ev[0]], t[ev[1]]) >= first_vertex && listed(ti, e))
                     ++first_[std::min(t[ev[0]], t[ev[1]]) + 1];
+            }
         }
         for (int v = 0; v < nv; ++v) first_[v + 1] += first_[v];
         upper_.resize(first_[nv]);
         {
             std::vector<int> fill(first_.begin(), first_.end() - 1);
-            for (const auto& t : mesh.tets)
+            for (int ti = 0; ti < nt; ++ti)
             {
+                const auto& t = mesh.tets[ti];
                 if (!has_new_vertex(t)) continue;
-                for (const auto& ev : tet::kEdgeVertices)
+                for (int e = 0; e < 6; ++e)
                 {
+                    const auto& ev = tet::kEdgeVertices[e];
                     const int a = std::min(t[ev[0]], t[ev[1]]), b = std::max(t[ev[0]], t[ev[1]]);
-                    if (b >= first_vertex) upper_[fill[a]++] = b;
+                    if (b >= first_vertex && listed(ti, e)) upper_[fill[a]++] = b;
                 }
             }
         }

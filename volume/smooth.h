@@ -22,7 +22,7 @@ struct SmoothOptions
 {
     bool nodal_shifting = true;
     bool optimization_based = true;
-    int max_ascent_steps = 6;  ///< iterations of the max-min move
+    int max_ascent_steps = 3;  ///< iterations of the max-min move
     double good_enough = 1.0;  ///< skip the max-min move once the ball's worst reaches this
     double min_gain = 1e-6;    ///< the ball's worst quality must rise by this much
 };

@@ -12,8 +12,9 @@
 // What each format keeps:
 //  - Medit keeps everything in TetMesh. Normals, Tangents, NormalAtVertices,
 //    TangentAtVertices and TangentAtEdgeVertices are skipped on reading: they are derived
-//    data that the HDI model recomputes. Any other keyword is an error naming its line
-//    (silently dropping Quadrilaterals or Hexahedra would lose part of the domain).
+//    data that the HDI model recomputes. Empty Quadrilaterals/Prisms/Pyramids/Hexahedra
+//    sections are accepted; non-empty ones are errors (dropping them would lose part of the
+//    domain), and so is any other keyword, naming its line.
 //    "End" is required, so a file truncated at a section boundary is still detected.
 //    .meshb versions 1-4 are read (either byte order); version 2 is written (float64
 //    coordinates, int32 indices), version 3 when the file exceeds 2 GiB.
