@@ -299,6 +299,8 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         // narrower than h would otherwise be cut by chords (the Hausdorff target).
         SizingOptions capped = settings.sizing;
         capped.hmax = settings.sizing.hsiz;
+        // Never below the floor: edges shorter than 0.66·hsiz would fail the size criterion.
+        capped.hmin = std::max(capped.hmin, settings.uniform_size_floor * settings.sizing.hsiz);
         if (!(capped.hausd > 0.0)) capped.hausd = settings.uniform_hausd_fraction * result.diagonal;
         std::vector<double> local = curvature_sizes(mesh, model, capped);
         const bool all_uniform = std::all_of(local.begin(), local.end(),

@@ -64,6 +64,7 @@ struct SurfaceRemeshSettings
     /// With a uniform size: refine below it where the curvature needs it to stay within
     /// hausd (if given) or this fraction of the bbox diagonal (≤ 0: strictly uniform).
     double uniform_hausd_fraction = 0.0016;
+    double uniform_size_floor = 0.85;  // ... but never below this fraction of hsiz
     /// Smooth vertices on the HDI model instead of the input facets. Off by default: on fandisk it
     /// is 4x slower and its projections near ridges left slivers (see the report of issue 6).
     bool use_hdi = false;

@@ -160,7 +160,7 @@ QualityReport measure_quality(const SurfaceMesh& mesh, double uniform_size)
     std::size_t good_qt = 0, too_long = 0, too_short = 0, measured = 0;
     for (auto e : mesh.edges())
     {
-        const double h = edge_size(mesh, e, has_sizes ? &sizes : nullptr, uniform_size);
+        const double h = uniform_size > 0.0 ? uniform_size : edge_size(mesh, e, has_sizes ? &sizes : nullptr, 0.0);
         if (!(h > 0.0)) continue;
         ++measured;
         const double len = mesh.calc_edge_length(e);

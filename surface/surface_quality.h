@@ -46,8 +46,9 @@ struct QualityReport
     double hausdorff() const { return std::max(hausdorff_to_model, hausdorff_from_model); }
 };
 
-/// Quality of `mesh`; Qt uses the vertex size property if set (> 0), else `uniform_size`
-/// (≤ 0: Qt figures are left at 0). Hausdorff fields stay -1 (see hausdorff_distance).
+/// Quality of `mesh`; Qt against `uniform_size` if > 0, else against the vertex size property
+/// (average of the two ends; Qt figures stay 0 without sizes). Hausdorff fields stay -1 (see
+/// hausdorff_distance).
 QualityReport measure_quality(const SurfaceMesh& mesh, double uniform_size = 0.0);
 
 /// One-sided distances between two triangle surfaces, sampled at vertices, edge midpoints and

@@ -445,6 +445,9 @@ std::string single_tet_meshb(int version, bool swap, bool with_normals)
         b.integer(1);
         for (int k = 0; k < 3; ++k) b.real(1.0);
         b.end_block();
+        b.begin(7);  // an empty Quadrilaterals section: harmless
+        b.integer(0);
+        b.end_block();
     }
     b.begin(8);
     b.integer(1);
@@ -460,7 +463,7 @@ std::string single_tet_meshb(int version, bool swap, bool with_normals)
 
 }  // namespace
 
-TEST_CASE("libMeshb versions 1-4, both byte orders, skipping Normals")
+TEST_CASE("libMeshb versions 1-4, both byte orders, skipping Normals and empty Quadrilaterals")
 {
     for (int version = 1; version <= 4; ++version)
         for (bool swap : {false, true})
