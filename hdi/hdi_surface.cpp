@@ -36,6 +36,16 @@ struct HdiSurface::Model
     std::vector<int> side_begin;        // CSR over points
     std::vector<int> side_patch;
     std::vector<Vec3> side_normal;
+    // The hot data of each node in one cache line: its position and its first side, so that
+    // sorting out the admissible neighbours of a query reads one record per candidate.
+    struct NodeRecord
+    {
+        Vec3 point;
+        Vec3 normal;  // of the first side
+        int patch;    // of the first side
+        int sides;    // 0: no triangle touches the node; > 1: a ridge node, see side_begin...
+    };
+    std::vector<NodeRecord> node_record;
     std::vector<int> incident_begin;    // CSR over points: triangles around each point
     std::vector<int> incident_triangles;
     bool several_patches = false;
@@ -117,6 +127,10 @@ double squared_distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
 /// The normal of node v on smooth patch `patch`, or nullptr when v does not touch that patch.
 const Vec3* side_normal_of(const Model& m, int v, int patch)
 {
+    const Model::NodeRecord& record = m.node_record[at(v)];
+    if (record.sides == 0) return nullptr;
+    if (record.patch == patch) return &record.normal;
+    if (record.sides == 1) return nullptr;
     for (int s = m.side_begin[at(v)]; s < m.side_begin[at(v) + 1]; ++s)
         if (m.side_patch[at(s)] == patch) return &m.side_normal[at(s)];
     return nullptr;
@@ -205,7 +219,7 @@ void filter_admissible(const Model& m, int patch, const Vec3& reference_normal, 
         if (!normal || normal->dot(reference_normal) < m.options.normal_agreement) continue;
         s.node.push_back(v);
         s.node_d2.push_back(s.candidate_d2[i]);
-        s.node_point.push_back(m.points[at(v)]);
+        s.node_point.push_back(m.node_record[at(v)].point);
         s.node_normal.push_back(*normal);
     }
 }
@@ -469,6 +483,18 @@ double distance2_to_segment(const Model& m, const FeatureChain& chain, int j, co
     return (x - closest_point_on_segment(x, a, b)).squaredNorm();
 }
 
+void fill_node_records(Model& m)
+{
+    m.node_record.resize(m.points.size());
+    for (std::size_t v = 0; v < m.points.size(); ++v) {
+        Model::NodeRecord& record = m.node_record[v];
+        record.point = m.points[v];
+        record.sides = m.side_begin[v + 1] - m.side_begin[v];
+        record.patch = record.sides > 0 ? m.side_patch[at(m.side_begin[v])] : -1;
+        record.normal = record.sides > 0 ? m.side_normal[at(m.side_begin[v])] : Vec3::Zero();
+    }
+}
+
 /// Face-averaged node normals are only first-order accurate on irregular meshes, and the Hermite
 /// rows pass their error on to the patch (the observed order drops from 3 toward 2). A quadratic
 /// fit of the node's admissible neighbours' positions alone, evaluated at the node, gives its
@@ -639,7 +665,11 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
     }
 
     m->knn = KnnIndex(m->points);
-    if (options.refine_normals && !given_normals) refine_side_normals(*m);
+    fill_node_records(*m);
+    if (options.refine_normals && !given_normals) {
+        refine_side_normals(*m);
+        fill_node_records(*m);
+    }
 
     // Feature lines.
     std::vector<int> line_index(at(n), -1);

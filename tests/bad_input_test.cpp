@@ -47,6 +47,10 @@ const ScratchDir& scratch()
 std::string write_text(const std::string& name, const std::string& text)
 {
     const std::string path = scratch().file(name);
+    // a fresh file rather than a truncated one: ext4 flushes truncated-and-rewritten files to
+    // disk on close, which made the fuzz loop wait on the disk rather than compute
+    std::error_code ignored;
+    fs::remove(path, ignored);
     std::ofstream out(path, std::ios::binary);
     out << text;
     return path;
