@@ -754,6 +754,24 @@ Projection HdiSurface::project(const Vec3& x) const
     return result;
 }
 
+DiffusePlane HdiSurface::diffuse_plane(const Vec3& x) const
+{
+    const Model& m = *model_;
+    Scratch& scratch = thread_scratch();
+    NeighbourSearch search(m, scratch);
+    DiffusePlane plane;
+    const int count = search.gather(x);
+    MongePatch patch;
+    if (count < 3 || !fit_monge_patch(m, scratch, count, patch)) return plane;
+    plane.origin = patch.origin;
+    plane.normal = patch.n;
+    plane.e1 = patch.e1;
+    plane.e2 = patch.e2;
+    plane.window_radius = patch.rho;
+    plane.ok = true;
+    return plane;
+}
+
 Projection HdiSurface::project_to_ridge(const Vec3& x) const
 {
     const Model& m = *model_;

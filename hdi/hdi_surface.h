@@ -6,10 +6,14 @@
 // agreeing with the local one), a window radius from the n-th distance, weights w(d/rho), the
 // diffuse origin xd (eq. 5), the plane through xd whose normal is the eigenvector of the smallest
 // eigenvalue of P^T W P (eqs. 6-8), and a quadratic Monge patch over that plane (eq. 4) fitted by
-// weighted least squares to the nodes' heights and, as Hermite rows, their normals' slopes.
-// X is moved onto the patch along the plane normal, and the fit is redone at the new point until
-// the move is below tolerance * rho. Feature lines (ridges, open boundaries) get a 1-D diffuse
-// fit of their polyline; corners never move.
+// weighted least squares to the nodes' heights and, as Hermite rows, their normals' slopes
+// (6 x 6 normal equations in window-scaled coordinates, pivoted LDL^T; a plane when they are
+// ill-conditioned). X is moved onto the patch along the plane normal, and the fit is redone at the
+// new point until the move is below tolerance * rho, or is predicted to be at the next fit from
+// the contraction rate of the last two moves (saves a third fit on most projections). Node
+// normals: face-averaged per smooth side, then refined by a positions-only quadratic fit (see
+// HdiOptions::refine_normals). Feature lines (ridges, open boundaries) get a 1-D diffuse fit
+// (a quadratic in the tangent parameter) of their polyline; corners never move.
 
 #include <memory>
 #include <vector>
@@ -63,6 +67,18 @@ struct Projection
     ProjectionStatus status = ProjectionStatus::Failed;
 };
 
+/// The diffuse plane of the fit at a point: where George's nodal shifting moves a surface vertex
+/// before it is projected back (paper §5).
+struct DiffusePlane
+{
+    Vec3 origin = Vec3::Zero();  ///< the diffuse origin xd (eq. 5)
+    Vec3 normal = Vec3::Zero();  ///< unit, oriented like the input's normals
+    Vec3 e1 = Vec3::Zero();      ///< e1, e2, normal: a right-handed orthonormal frame
+    Vec3 e2 = Vec3::Zero();
+    double window_radius = 0;    ///< rho
+    bool ok = false;             ///< false when no fit exists there (then the rest is zero)
+};
+
 /// Thread-safe for const queries (each thread keeps its own scratch). Copies share the model.
 class HdiSurface
 {
@@ -87,6 +103,9 @@ public:
     /// Projects onto the 1-D diffuse fit of the nearest ridge or boundary polyline (a point past
     /// the end of a line stops at its end node). Failed when the model has no feature line.
     Projection project_to_ridge(const Vec3& x) const;
+
+    /// The plane of the (first) fit at x, with x's side of the ridges chosen as in project().
+    DiffusePlane diffuse_plane(const Vec3& x) const;
 
     bool is_corner(int input_vertex) const;
     const FeatureSet& features() const;

@@ -44,7 +44,11 @@ public:
             std::vector<VertexHandle> ends;
             for (auto h : mesh_.voh_range(v))
                 if (sharp_[mesh_.edge_handle(h).idx()]) ends.push_back(mesh_.to_vertex_handle(h));
-            if (ends.empty()) continue;
+            if (ends.empty())
+            {
+                if (is_cone_tip(v)) corner_[v.idx()] = 1;
+                continue;
+            }
             if (ends.size() != 2)
             {
                 corner_[v.idx()] = 1;
@@ -73,6 +77,23 @@ public:
             corner_[v.idx()] = 1;
             kept.push_back(p);
         }
+    }
+
+    /// A spike of the input (a cone tip: angle defect above cone_defect_deg) is kept as a
+    /// corner, or remeshing would cut it off; only when its cone is wide enough for fair
+    /// triangles around it (angle sum at least cone_min_angle_sum_deg).
+    bool is_cone_tip(VertexHandle v) const
+    {
+        if (mesh_.is_boundary(v) || !(options_.cone_defect_deg < 360.0)) return false;
+        double sum = 0.0;
+        for (auto h : mesh_.voh_range(v))
+        {
+            const Vec3d p = mesh_.point(v);
+            const Vec3d a = mesh_.point(mesh_.to_vertex_handle(h));
+            const Vec3d b = mesh_.point(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)));
+            sum += angle_between_deg(a - p, b - p);
+        }
+        return 360.0 - sum > options_.cone_defect_deg && sum >= options_.cone_min_angle_sum_deg;
     }
 
     /// Maximal runs of sharp edges between corners (closed loops have no corner).

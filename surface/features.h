@@ -20,6 +20,10 @@ struct FeatureOptions
     double crease_angle_deg = 30.0;
     double corner_turn_angle_deg = 50.0; // a curve vertex whose curve turns by more is a corner
     double boundary_corner_turn_angle_deg = 75.0;  // the same on an open boundary (scans zig-zag)
+    /// An interior vertex whose angle defect (360° minus its angle sum) exceeds this is a spike
+    /// kept as a corner (≥ 360: off), if its angle sum is at least cone_min_angle_sum_deg.
+    double cone_defect_deg = 90.0;
+    double cone_min_angle_sum_deg = 150.0;
     /// A corner found only by a turn is dropped when a junction/end corner or a sharper turn
     /// corner is closer than this (remesh_surface sets half the target size; 0: keep all).
     double min_corner_spacing = 0.0;

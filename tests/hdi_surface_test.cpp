@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -216,6 +217,13 @@ TEST_CASE("hdi: a tilted plane is reproduced to round-off")
             CHECK((p.normal - exact_normal).norm() < 1e-12);
             CHECK(std::abs(p.k1) < 1e-9);
             CHECK(std::abs(p.k2) < 1e-9);
+            // The diffuse plane is the plane itself, in a right-handed frame.
+            const DiffusePlane plane = model.diffuse_plane(query);
+            REQUIRE(plane.ok);
+            CHECK((plane.normal - exact_normal).norm() < 1e-9);
+            CHECK(std::abs((plane.origin - Vec3(0, 0, 1)).dot(exact_normal)) < 1e-12);
+            CHECK((plane.e1.cross(plane.e2) - plane.normal).norm() < 1e-12);
+            CHECK(plane.window_radius > 0);
         }
     }
 }
@@ -410,4 +418,40 @@ TEST_CASE("hdi: fandisk - smooth points project onto the surface, ridge points o
             << " of the diagonal; max distance from the sampled ridge point " << worst_travel / diagonal);
     CHECK(worst_ridge <= 1e-3 * diagonal);
     CHECK(worst_travel <= 0.01 * diagonal);  // it lands near where it started, not on another ridge
+}
+
+TEST_CASE("hdi: const queries are thread-safe - two threads reproduce the serial answers bit for bit")
+{
+    const Surface s = icosphere(3);
+    const HdiSurface model(s.points, s.triangles, FeatureSet{});
+    std::mt19937 random(77);
+    std::uniform_real_distribution<double> coordinate(-1.2, 1.2);
+    std::vector<Vec3> queries;
+    for (int k = 0; k < 2000; ++k) {
+        const Vec3 x(coordinate(random), coordinate(random), coordinate(random));
+        if (x.norm() > 0.5) queries.push_back(x);
+    }
+    std::vector<Vec3> serial;
+    for (const Vec3& q : queries) serial.push_back(model.project(q).point);
+    std::vector<Vec3> first(queries.size()), second(queries.size());
+    std::thread a([&] { for (std::size_t i = 0; i < queries.size(); ++i) first[i] = model.project(queries[i]).point; });
+    std::thread b([&] {
+        for (std::size_t i = queries.size(); i-- > 0;) second[i] = model.project(queries[i]).point;  // other order
+    });
+    a.join();
+    b.join();
+    CHECK(first == serial);
+    CHECK(second == serial);
+    // A copy shares the model and answers the same.
+    const HdiSurface copy = model;
+    CHECK(copy.project(queries[0]).point == serial[0]);
+}
+
+TEST_CASE("hdi: an empty model fails politely")
+{
+    const HdiSurface empty(std::vector<Vec3>{}, std::vector<Triangle3>{}, FeatureSet{});
+    CHECK(empty.project(Vec3(1, 2, 3)).status == ProjectionStatus::Failed);
+    CHECK(empty.project(Vec3(1, 2, 3)).point == Vec3(1, 2, 3));
+    CHECK(empty.project_to_ridge(Vec3(1, 2, 3)).status == ProjectionStatus::Failed);
+    CHECK_FALSE(empty.is_corner(0));
 }

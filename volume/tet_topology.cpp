@@ -59,6 +59,7 @@ void vertex_ball(const TetMesh& mesh, int seed, int v, std::vector<int>& ball)
         const int t = ball[head];
         const int lv = local_index(mesh, t, v);
         assert(lv >= 0);
+        if (lv < 0) continue;  // a stale seed: never flood the mesh in a release build
         for (int f = 0; f < 4; ++f)
         {
             if (f == lv) continue;
