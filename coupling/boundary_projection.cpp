@@ -3,40 +3,21 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "volume/tet_topology.h"
+
 namespace hdimesh::coupling
 {
 
 namespace
 {
 
-/// Tets incident to each vertex (compressed rows), built from the live tets.
-struct VertexBalls
-{
-    std::vector<int> start;  // size num_vertices + 1
-    std::vector<int> tets;
-
-    explicit VertexBalls(const TetMesh& mesh)
-    {
-        start.assign(mesh.num_vertices() + 1, 0);
-        for (int t = 0; t < mesh.num_tet_slots(); ++t)
-            if (!mesh.is_dead(t))
-                for (int v : mesh.tets[t]) ++start[v + 1];
-        for (int v = 0; v < mesh.num_vertices(); ++v) start[v + 1] += start[v];
-        tets.resize(start.back());
-        std::vector<int> fill(start.begin(), start.end() - 1);
-        for (int t = 0; t < mesh.num_tet_slots(); ++t)
-            if (!mesh.is_dead(t))
-                for (int v : mesh.tets[t]) tets[fill[v]++] = t;
-    }
-};
-
-/// Worst quality of v's ball if v were at p.
-double ball_quality_at(const TetMesh& mesh, const VertexBalls& balls, int v, const Vec3& p)
+/// Worst quality of the tets in `ball` if their vertex v were at p.
+double ball_quality_at(const TetMesh& mesh, const std::vector<int>& ball, int v, const Vec3& p)
 {
     double worst = 1.0;
-    for (int k = balls.start[v]; k < balls.start[v + 1]; ++k)
+    for (int t : ball)
     {
-        const auto& tv = mesh.tets[balls.tets[k]];
+        const auto& tv = mesh.tets[t];
         const Vec3* q[4];
         for (int i = 0; i < 4; ++i) q[i] = tv[i] == v ? &p : &mesh.points[tv[i]];
         worst = std::min(worst, tet_quality(*q[0], *q[1], *q[2], *q[3]));
@@ -86,11 +67,15 @@ BoundaryProjector::~BoundaryProjector() = default;
 ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int>& vertices) const
 {
     ProjectionReport report;
-    const VertexBalls balls(mesh);
+    if (!mesh.has_adjacency()) mesh.build_adjacency();
+    const std::vector<int> seeds = vertex_to_tet(mesh);
+    std::vector<int> ball;
     for (int v : vertices)
     {
         const VertexClass cls = mesh.vertex_classes[v];
         if (cls != VertexClass::Surface && cls != VertexClass::Ridge) continue;
+        if (seeds[v] < 0) continue;  // a vertex no tet uses has nothing to keep valid
+        vertex_ball(mesh, seeds[v], v, ball);
         const Vec3 from = mesh.points[v];
         const hdi::Projection target =
             cls == VertexClass::Ridge ? model_->project_to_ridge(from) : model_->project(from);
@@ -104,7 +89,7 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
         for (int halving = 0; halving <= options_.max_halvings; ++halving, step *= 0.5)
         {
             const Vec3 candidate = from + step * (target.point - from);
-            if (ball_quality_at(mesh, balls, v, candidate) > options_.min_quality_after_move)
+            if (ball_quality_at(mesh, ball, v, candidate) > options_.min_quality_after_move)
             {
                 mesh.points[v] = candidate;
                 break;

@@ -40,8 +40,8 @@ public:
     ~BoundaryProjector();
 
     /// Moves each listed Surface/Ridge vertex onto the model (Ridge vertices onto the ridge
-    /// fit; Corner and Interior vertices are left alone). Requires mesh.neighbors-free access:
-    /// the vertex balls are computed here from mesh.tets.
+    /// fit; Corner and Interior vertices are left alone). Vertex balls are walked over the
+    /// adjacency (built here if missing); positions change, topology does not.
     ProjectionReport project(TetMesh& mesh, const std::vector<int>& vertices) const;
 
     /// Projects every Surface/Ridge vertex of the mesh (finishes earlier shortened moves).

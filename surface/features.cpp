@@ -59,10 +59,12 @@ public:
                                                       : options_.corner_turn_angle_deg;
             const Vec3d p = mesh_.point(v);
             const double turn = angle_between_deg(p - mesh_.point(ends[0]), mesh_.point(ends[1]) - p);
-            if (turn > limit) turn_corners.emplace_back(turn, v);
+            if (turn <= limit) continue;
+            if (mesh_.is_boundary(v)) turn_corners.emplace_back(turn, v);  // may be thinned below
+            else corner_[v.idx()] = 1;  // a ridge that turns sharply is a corner of the part
         }
-        // Turn corners closer than min_corner_spacing to a kept corner are zig-zag noise at the
-        // scale of the target mesh: the sharpest turn of a cluster stays, the rest slide.
+        // Boundary turn corners closer than min_corner_spacing to a kept corner are zig-zag noise
+        // at the scale of the target mesh: the sharpest turn of a cluster stays, the rest slide.
         std::sort(turn_corners.begin(), turn_corners.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
         std::vector<Vec3d> kept;
         for (auto v : mesh_.vertices())
@@ -85,6 +87,10 @@ public:
     bool is_cone_tip(VertexHandle v) const
     {
         if (mesh_.is_boundary(v) || !(options_.cone_defect_deg < 360.0)) return false;
+        // Only an isolated spike: next to a ridge the defect belongs to the ridge's geometry.
+        for (auto w : mesh_.vv_range(v))
+            for (auto h : mesh_.voh_range(w))
+                if (sharp_[mesh_.edge_handle(h).idx()]) return false;
         double sum = 0.0;
         for (auto h : mesh_.voh_range(v))
         {

@@ -21,11 +21,13 @@ struct FeatureOptions
     double corner_turn_angle_deg = 50.0; // a curve vertex whose curve turns by more is a corner
     double boundary_corner_turn_angle_deg = 75.0;  // the same on an open boundary (scans zig-zag)
     /// An interior vertex whose angle defect (360° minus its angle sum) exceeds this is a spike
-    /// kept as a corner (≥ 360: off), if its angle sum is at least cone_min_angle_sum_deg.
-    double cone_defect_deg = 90.0;
+    /// kept as a corner (≥ 360: off), if its angle sum is at least cone_min_angle_sum_deg. Off by
+    /// default: at 90° it keeps cheburashka's spikes but breaks fandisk's ridge recall (not understood yet).
+    double cone_defect_deg = 400.0;
     double cone_min_angle_sum_deg = 150.0;
-    /// A corner found only by a turn is dropped when a junction/end corner or a sharper turn
-    /// corner is closer than this (remesh_surface sets half the target size; 0: keep all).
+    /// A boundary corner found only by a turn is dropped when another corner (a junction, an
+    /// end, a sharper turn) is closer than this (remesh_surface sets half the target size; 0:
+    /// keep all). Ridge turns are always kept: they are the corners of machined parts.
     double min_corner_spacing = 0.0;
     /// A ridge chain is kept when at least this fraction of the bbox diagonal long (twice that for
     /// a crease-only chain), or when both its ends are ends of kept chains; the rest is noise.
