@@ -58,12 +58,14 @@ int TetMesh::num_live_tets() const
 
 double TetMesh::volume(int t) const
 {
+    assert(!is_dead(t));
     const auto& v = tets[t];
     return signed_volume(points[v[0]], points[v[1]], points[v[2]], points[v[3]]);
 }
 
 double TetMesh::quality(int t) const
 {
+    assert(!is_dead(t));
     const auto& v = tets[t];
     return tet_quality(points[v[0]], points[v[1]], points[v[2]], points[v[3]]);
 }
