@@ -299,10 +299,18 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         // narrower than h would otherwise be cut by chords (the Hausdorff target).
         SizingOptions capped = settings.sizing;
         capped.hmax = settings.sizing.hsiz;
-        // Never below the floor: edges shorter than 0.66·hsiz would fail the size criterion.
-        capped.hmin = std::max(capped.hmin, settings.uniform_size_floor * settings.sizing.hsiz);
         if (!(capped.hausd > 0.0)) capped.hausd = settings.uniform_hausd_fraction * result.diagonal;
         std::vector<double> local = curvature_sizes(mesh, model, capped);
+        // Never below the floor (edges shorter than 0.66·hsiz fail the size criterion); on ridges
+        // down to half of it: a curved ridge must stay within its tolerance. Open boundaries of scans zig-zag,
+        // so their turning is no curvature to follow.
+        SurfaceProperties props(mesh);
+        for (auto v : mesh.vertices())
+        {
+            const bool ridge = mesh.property(props.vertex_class, v) == VertexClass::Ridge;
+            const double floor = (ridge ? 0.5 : 1.0) * settings.uniform_size_floor * settings.sizing.hsiz;
+            local[v.idx()] = std::max(local[v.idx()], floor);
+        }
         const bool all_uniform = std::all_of(local.begin(), local.end(),
                                              [&](double s) { return s >= settings.sizing.hsiz; });
         if (!all_uniform) sizes = SizeMap::per_input_vertex(model, std::move(local));
