@@ -12,3 +12,10 @@ add_test(NAME adapt_app_needs_a_size
          COMMAND bash -c "$<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/none.mesh; test $? -ne 0 && test ! -e ${adapt_out}/none.mesh")
 add_test(NAME adapt_app_conflicting_sizes
          COMMAND bash -c "$<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/none.mesh --hsiz 0.3 --bench-field A 2>&1 | grep -q 'only one of'")
+# Second opinion: the independent checker (scripts/meshstat.py, numpy) on the adapted sphere.
+if(EXISTS /usr/bin/python3)
+    add_test(NAME adapt_app_sphere_independent_check
+             COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/meshstat.py ${adapt_out}/sphere.mesh --case A)
+    set_tests_properties(adapt_app_sphere_independent_check PROPERTIES
+        DEPENDS adapt_app_sphere PASS_REGULAR_EXPRESSION "CONFORMING: True")
+endif()
