@@ -21,26 +21,10 @@ namespace fs = std::filesystem;
 namespace
 {
 
-struct ScratchDir
+/// A scratch directory per test binary run, removed at exit.
+const fixtures::ScratchDir& scratch()
 {
-    fs::path path;
-    ScratchDir()
-    {
-        path = fs::temp_directory_path() /
-               ("hdimesh_bad_input_test_" + std::to_string(std::random_device{}()));
-        fs::create_directories(path);
-    }
-    ~ScratchDir()
-    {
-        std::error_code ignored;
-        fs::remove_all(path, ignored);
-    }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-};
-
-const ScratchDir& scratch()
-{
-    static ScratchDir dir;
+    static const fixtures::ScratchDir dir("hdimesh_bad_input_test");
     return dir;
 }
 

@@ -106,6 +106,19 @@ TetMesh box_mesh(int n, double jitter, std::uint32_t seed)
     return mesh;
 }
 
+ScratchDir::ScratchDir(const std::string& prefix)
+{
+    path = std::filesystem::temp_directory_path() /
+           (prefix + "_" + std::to_string(std::random_device{}()));
+    std::filesystem::create_directories(path);
+}
+
+ScratchDir::~ScratchDir()
+{
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+}
+
 std::string data_path(const std::string& name) { return std::string(HDIMESH_DATA_DIR) + "/" + name; }
 
 }  // namespace hdimesh::fixtures

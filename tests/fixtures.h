@@ -3,6 +3,7 @@
 // boundary triangles (outward, ref 1), so check_mesh accepts it as is.
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 #include "volume/tet_mesh.h"
@@ -25,6 +26,17 @@ TetMesh box_mesh(int n, double jitter = 0.0, std::uint32_t seed = 1);
 
 /// Sets mesh.triangles from the faces without a neighbour (ref 1) and classifies vertices.
 void rebuild_boundary(TetMesh& mesh);
+
+/// A fresh temporary directory, removed with its contents when the object dies.
+struct ScratchDir
+{
+    std::filesystem::path path;
+    explicit ScratchDir(const std::string& prefix);
+    ~ScratchDir();
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+    std::string file(const std::string& name) const { return (path / name).string(); }
+};
 
 /// Path of a file in the project's data/ folder.
 std::string data_path(const std::string& name);

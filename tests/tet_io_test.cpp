@@ -28,26 +28,9 @@ namespace
 {
 
 /// A scratch directory per test binary run, removed at exit.
-struct ScratchDir
+const fixtures::ScratchDir& scratch()
 {
-    fs::path path;
-    ScratchDir()
-    {
-        path = fs::temp_directory_path() /
-               ("hdimesh_tet_io_test_" + std::to_string(std::random_device{}()));
-        fs::create_directories(path);
-    }
-    ~ScratchDir()
-    {
-        std::error_code ignored;
-        fs::remove_all(path, ignored);
-    }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-};
-
-const ScratchDir& scratch()
-{
-    static ScratchDir dir;
+    static const fixtures::ScratchDir dir("hdimesh_tet_io_test");
     return dir;
 }
 
