@@ -11,26 +11,13 @@
 #include <string>
 
 #include "coupling/adapt.h"
+#include "fixtures.h"
 #include "volume/check.h"
 #include "volume/quality_report.h"
 #include "volume/size_fields.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
-
-namespace
-{
-
-/// Largest | |x| - 1 | over the vertices of the boundary triangles.
-double max_sphere_deviation(const TetMesh& mesh)
-{
-    double worst = 0;
-    for (const auto& tri : mesh.triangles)
-        for (int v : tri) worst = std::max(worst, std::abs(mesh.points[v].norm() - 1.0));
-    return worst;
-}
-
-}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -64,7 +51,7 @@ int main(int argc, char** argv)
         const auto violations = check_mesh(mesh);
         std::printf("%-4c %10d %9d %9.2f %8.0f %8.4f %8.2f%% %9.2f%% %8.1e  %s\n", c, q.tets,
                     q.vertices, report.seconds_total, q.tets / report.seconds_total, q.min_qe,
-                    q.percent_qe_ge_05, q.percent_qt_ge_066, max_sphere_deviation(mesh),
+                    q.percent_qe_ge_05, q.percent_qt_ge_066, fixtures::max_unit_sphere_deviation(mesh),
                     violations.empty() ? "clean" : "VIOLATIONS");
         std::fflush(stdout);
         char line[200];

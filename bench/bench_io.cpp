@@ -9,13 +9,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <random>
 #include <string>
 #include <unistd.h>
 
+#include "fixtures.h"
 #include "volume/tet_io.h"
 #include "volume/tet_mesh.h"
-#include "volume/tet_tables.h"
 
 using namespace hdimesh;
 namespace fs = std::filesystem;
@@ -23,54 +22,12 @@ namespace fs = std::filesystem;
 namespace
 {
 
-/// [0,1]^3 as n^3 Kuhn cubes, interior vertices jittered (same construction as the test
-/// fixture box_mesh, repeated here so the benchmark does not link the tests), with its
-/// boundary triangles.
+/// The test fixture's jittered Kuhn box, its tets split into two refs along x so refs are
+/// really exercised (box_mesh lists the 6 tets of cube (i, j, k) at 6 * (i + n * (j + n * k))).
 TetMesh jittered_box(int n)
 {
-    constexpr int kKuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
-                                 {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
-    TetMesh mesh;
-    std::mt19937 rng(1);
-    std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    const double h = 1.0 / n;
-    const std::size_t nv = static_cast<std::size_t>(n + 1) * (n + 1) * (n + 1);
-    mesh.points.reserve(nv);
-    mesh.vertex_refs.reserve(nv);
-    mesh.vertex_classes.reserve(nv);
-    mesh.tets.reserve(6 * static_cast<std::size_t>(n) * n * n);
-    mesh.tet_refs.reserve(6 * static_cast<std::size_t>(n) * n * n);
-    auto id = [n](int i, int j, int k) { return i + (n + 1) * (j + (n + 1) * k); };
-    for (int k = 0; k <= n; ++k)
-        for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i)
-            {
-                Vec3 p(i * h, j * h, k * h);
-                if (i > 0 && i < n && j > 0 && j < n && k > 0 && k < n)
-                    p += 0.2 * h * Vec3(unit(rng), unit(rng), unit(rng));
-                mesh.add_vertex(p);
-            }
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i)
-                for (const auto& kt : kKuhn)
-                {
-                    TetVertices v;
-                    for (int c = 0; c < 4; ++c)
-                        v[c] = id(i + (kt[c] & 1), j + ((kt[c] >> 1) & 1), k + ((kt[c] >> 2) & 1));
-                    const auto& p = mesh.points;
-                    if (signed_volume6(p[v[0]], p[v[1]], p[v[2]], p[v[3]]) < 0) std::swap(v[2], v[3]);
-                    mesh.add_tet(v, 1 + (i * 2) / n);  // two refs, so refs are really exercised
-                }
-    mesh.build_adjacency();
-    for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        for (int f = 0; f < 4; ++f)
-            if (mesh.neighbors[t][f] == kNoTet)
-            {
-                const auto& fv = tet::kFaceVertices[f];
-                mesh.add_triangle({mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]]}, 1);
-            }
-    mesh.classify_vertices();
+    TetMesh mesh = fixtures::box_mesh(n, 0.2);
+    for (int t = 0; t < mesh.num_tet_slots(); ++t) mesh.tet_refs[t] = 1 + (2 * ((t / 6) % n)) / n;
     return mesh;
 }
 

@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "fixtures.h"
 #include "volume/check.h"
 #include "volume/quality_report.h"
 #include "volume/size_fields.h"
@@ -31,48 +32,6 @@ struct CpuClock
 
 double seconds_since(std::clock_t start) { return double(std::clock() - start) / CLOCKS_PER_SEC; }
 
-/// [0,1]^3 as n^3 cubes of 6 Kuhn tets, interior vertices jittered by up to 0.2 cells.
-TetMesh jittered_box(int n)
-{
-    TetMesh mesh;
-    std::mt19937 rng(1);
-    std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    const double h = 1.0 / n;
-    auto id = [n](int i, int j, int k) { return i + (n + 1) * (j + (n + 1) * k); };
-    for (int k = 0; k <= n; ++k)
-        for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i)
-            {
-                Vec3 p(i * h, j * h, k * h);
-                if (i > 0 && i < n && j > 0 && j < n && k > 0 && k < n)
-                    p += 0.2 * h * Vec3(unit(rng), unit(rng), unit(rng));
-                mesh.add_vertex(p);
-            }
-    const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
-    mesh.tets.reserve(6L * n * n * n);
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i)
-                for (const auto& tet : kuhn)
-                {
-                    TetVertices v;
-                    for (int c = 0; c < 4; ++c)
-                        v[c] = id(i + (tet[c] & 1), j + ((tet[c] >> 1) & 1), k + ((tet[c] >> 2) & 1));
-                    if (signed_volume6(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]) < 0)
-                        std::swap(v[2], v[3]);
-                    mesh.add_tet(v);
-                }
-    mesh.build_adjacency();
-    for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        for (int f = 0; f < 4; ++f)
-            if (mesh.neighbors[t][f] == kNoTet)
-            {
-                static constexpr int faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-                mesh.add_triangle({mesh.tets[t][faces[f][0]], mesh.tets[t][faces[f][1]], mesh.tets[t][faces[f][2]]}, 1);
-            }
-    return mesh;
-}
-
 /// Evaluations per second of field over the points (the sum keeps the calls alive).
 double evaluations_per_second(const SizeField& field, const std::vector<Vec3>& points, double& checksum)
 {
@@ -87,7 +46,7 @@ int main(int argc, char** argv)
 {
     const int n = argc > 1 ? std::atoi(argv[1]) : 88;
     auto start = CpuClock::now();
-    TetMesh mesh = jittered_box(n);
+    TetMesh mesh = fixtures::box_mesh(n, 0.2);
     std::printf("mesh: %d^3 Kuhn cubes, %d tets, %d vertices, %zu boundary triangles (built in %.2f s)\n\n", n,
                 mesh.num_live_tets(), mesh.num_vertices(), mesh.triangles.size(), seconds_since(start));
 

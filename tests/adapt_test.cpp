@@ -14,14 +14,6 @@ using namespace hdimesh;
 namespace
 {
 
-double max_sphere_deviation(const TetMesh& mesh)
-{
-    double worst = 0;
-    for (const auto& tri : mesh.triangles)
-        for (int v : tri) worst = std::max(worst, std::abs(mesh.points[v].norm() - 1.0));
-    return worst;
-}
-
 const TetMesh& sphere480()
 {
     static const TetMesh mesh = read_mesh(fixtures::data_path("sphere480.mesh"));
@@ -68,7 +60,7 @@ TEST_CASE("the whole pipeline on the sphere: boundary on the unit sphere, sizes 
     CHECK(q.percent_qe_ge_05 >= 99.0);
     CHECK(q.percent_qt_ge_066 >= 99.0);
     // every boundary vertex was projected onto the HDI model of the input sphere
-    CHECK(max_sphere_deviation(mesh) <= 1e-3);
+    CHECK(fixtures::max_unit_sphere_deviation(mesh) <= 1e-3);
     // the volume now approaches the sphere's 4/3 pi, beyond the inscribed polyhedron's
     CHECK(mesh.total_volume() > sphere480().total_volume());
 }

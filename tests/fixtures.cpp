@@ -1,5 +1,6 @@
 #include "fixtures.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -117,6 +118,14 @@ ScratchDir::~ScratchDir()
 {
     std::error_code ignored;
     std::filesystem::remove_all(path, ignored);
+}
+
+double max_unit_sphere_deviation(const TetMesh& mesh)
+{
+    double worst = 0;
+    for (const auto& tri : mesh.triangles)
+        for (int v : tri) worst = std::max(worst, std::abs(mesh.points[v].norm() - 1.0));
+    return worst;
 }
 
 std::string data_path(const std::string& name) { return std::string(HDIMESH_DATA_DIR) + "/" + name; }

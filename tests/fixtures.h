@@ -38,6 +38,10 @@ struct ScratchDir
     std::string file(const std::string& name) const { return (path / name).string(); }
 };
 
+/// Largest | |x| - 1 | over the vertices of mesh.triangles: how far the boundary is from the
+/// unit sphere (the paper's benchmark domain).
+double max_unit_sphere_deviation(const TetMesh& mesh);
+
 /// Path of a file in the project's data/ folder.
 std::string data_path(const std::string& name);
 
