@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "hdi/obj_reader.h"
 #include "volume/tet_mesh.h"
 
 namespace hdimesh::fixtures
@@ -41,6 +42,13 @@ struct ScratchDir
 /// Largest | |x| - 1 | over the vertices of mesh.triangles: how far the boundary is from the
 /// unit sphere (the paper's benchmark domain).
 double max_unit_sphere_deviation(const TetMesh& mesh);
+
+/// The unit sphere as a triangle surface: an icosahedron subdivided `levels` times, every new
+/// vertex pushed onto the sphere; triangles counter-clockwise seen from outside.
+hdi::TriangleSurface icosphere(int levels);
+
+/// Mean edge length of a triangle surface (each interior edge counted twice): its sampling h.
+double mean_edge_length(const hdi::TriangleSurface& surface);
 
 /// Path of a file in the project's data/ folder.
 std::string data_path(const std::string& name);

@@ -27,53 +27,9 @@ namespace
 
 constexpr double pi = 3.14159265358979323846;
 
-struct Surface
-{
-    std::vector<Vec3> points;
-    std::vector<Triangle3> triangles;
-    double edge_length() const  // mean edge length: the sampling's h
-    {
-        double sum = 0;
-        for (const Triangle3& t : triangles)
-            for (int i = 0; i < 3; ++i)
-                sum += (points[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])]
-                        - points[static_cast<std::size_t>(t[static_cast<std::size_t>((i + 1) % 3)])]).norm();
-        return sum / (3.0 * static_cast<double>(triangles.size()));
-    }
-};
-
-/// Unit sphere: an icosahedron subdivided `levels` times, every vertex pushed onto the sphere.
-Surface icosphere(int levels)
-{
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    Surface s;
-    for (const Vec3& p : {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0), Vec3(0, -1, t), Vec3(0, 1, t),
-                          Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
-        s.points.push_back(p.normalized());
-    s.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},  {9, 8, 1}};
-    for (int level = 0; level < levels; ++level) {
-        std::map<std::pair<int, int>, int> midpoint;
-        auto middle = [&](int a, int b) {
-            const std::pair<int, int> key(std::min(a, b), std::max(a, b));
-            auto it = midpoint.find(key);
-            if (it != midpoint.end()) return it->second;
-            s.points.push_back((s.points[static_cast<std::size_t>(a)] + s.points[static_cast<std::size_t>(b)]).normalized());
-            return midpoint[key] = static_cast<int>(s.points.size()) - 1;
-        };
-        std::vector<Triangle3> finer;
-        for (const Triangle3& tri : s.triangles) {
-            const int ab = middle(tri[0], tri[1]), bc = middle(tri[1], tri[2]), ca = middle(tri[2], tri[0]);
-            finer.push_back({tri[0], ab, ca});
-            finer.push_back({tri[1], bc, ab});
-            finer.push_back({tri[2], ca, bc});
-            finer.push_back({ab, bc, ca});
-        }
-        s.triangles = finer;
-    }
-    return s;
-}
+using Surface = TriangleSurface;
+using hdimesh::fixtures::icosphere;
+using hdimesh::fixtures::mean_edge_length;
 
 constexpr double torus_major = 1.0;
 constexpr double torus_minor = 0.4;
@@ -153,7 +109,7 @@ template <class Distance, class Normal>
 double max_projection_error(const Surface& s, const HdiSurface& model, Distance distance, Normal normal,
                             std::uint32_t seed, int samples, double* max_normal_error = nullptr)
 {
-    const double h = s.edge_length();
+    const double h = mean_edge_length(s);
     std::mt19937 random(seed);
     std::uniform_int_distribution<std::size_t> pick(0, s.triangles.size() - 1);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -312,7 +268,7 @@ TEST_CASE("hdi: the sphere's projection error falls at order >= 2.5")
         const HdiSurface model(s.points, s.triangles, FeatureSet{});
         auto distance = [](const Vec3& p) { return p.norm() - 1.0; };
         auto normal = [](const Vec3& p) { return p.normalized(); };
-        spacings[level] = s.edge_length();
+        spacings[level] = mean_edge_length(s);
         errors[level] = max_projection_error(s, model, distance, normal, 17u + static_cast<std::uint32_t>(level), 1000,
                                              &normal_errors[level]);
         // Curvatures of the unit sphere: 1.
@@ -336,7 +292,7 @@ TEST_CASE("hdi: the torus's projection error falls at order >= 2.5")
     for (int level = 0; level < 3; ++level) {
         const Surface s = torus(resolutions[level][0], resolutions[level][1]);
         const HdiSurface model(s.points, s.triangles, FeatureSet{});
-        spacings[level] = s.edge_length();
+        spacings[level] = mean_edge_length(s);
         errors[level] = max_projection_error(s, model, torus_distance, torus_normal, 29u + static_cast<std::uint32_t>(level),
                                              1000, &normal_errors[level]);
         MESSAGE("torus: nodes " << s.points.size() << "  h " << spacings[level] << "  max error " << errors[level]
