@@ -77,7 +77,7 @@ int main(int argc, char** argv)
         cmd.flag("--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)");
         cmd.option("--iterations", &iterations, "remeshing iterations (default 10)");
         cmd.option("--stats", &stats, "write the before/after figures as JSON");
-        cmd.option("-v", &verbosity, "verbosity (0 quiet, 1 table, 2 per iteration)");
+        cmd.option("-v", &verbosity, "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details)");
         cmd.parse(argc, argv);
         if (output.empty()) throw SurfaceInputError("missing -o OUT");
         if ((has_hsiz ? 1 : 0) + (has_sol ? 1 : 0) + (has_hausd ? 1 : 0) > 1)
@@ -99,7 +99,7 @@ int main(int argc, char** argv)
         settings.sizing.hgrad = hgrad;
         settings.iterations = iterations;
         settings.use_hdi = use_hdi;
-        settings.verbosity = verbosity > 1 ? 1 : 0;
+        settings.verbosity = verbosity > 1 ? verbosity - 1 : 0;
         if (has_sol) settings.input_sizes = read_medit_sol(sol, mesh.n_vertices());
         if (!has_hsiz && !has_sol && !has_hausd && !has_hmax) settings.sizing.hmax = 2.0 * mean_edge_length(mesh);
 

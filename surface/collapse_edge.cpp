@@ -30,7 +30,8 @@ bool class_allows_collapse(const OperatorContext& ctx, HalfedgeHandle h)
 
 }  // namespace
 
-OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain)
+OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain,
+                      double min_new_angle_deg)
 {
     using namespace detail;
     SurfaceMesh& mesh = ctx.mesh;
@@ -63,7 +64,8 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
             return result;
         }
         const double q = qe(after);
-        if (q < ctx.limits.min_new_quality)
+        if (q < ctx.limits.min_new_quality ||
+            (min_new_angle_deg > 0.0 && triangle_min_angle_deg(after[0], after[1], after[2]) < min_new_angle_deg))
         {
             result.status = OpStatus::Quality;
             return result;

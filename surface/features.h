@@ -20,10 +20,11 @@ struct FeatureOptions
     double crease_angle_deg = 30.0;
     double corner_turn_angle_deg = 50.0; // a curve vertex whose curve turns by more is a corner
     double boundary_corner_turn_angle_deg = 75.0;  // the same on an open boundary (scans zig-zag)
-    /// An interior vertex whose angle defect (360° minus its angle sum) exceeds this is a spike
-    /// kept as a corner (≥ 360: off), if its angle sum is at least cone_min_angle_sum_deg. Off by
-    /// default: at 90° it keeps cheburashka's spikes but breaks fandisk's ridge recall (not understood yet).
-    double cone_defect_deg = 400.0;
+    /// An interior vertex away from kept curves whose angle defect (360° minus its angle sum)
+    /// exceeds this is a spike kept as an isolated corner (≥ 360: off), if its angle sum is at
+    /// least cone_min_angle_sum_deg: remeshing would cut its tip off (cheburashka's spikes, the
+    /// knobs of rocker-arm; 0.85·h away from the output before). fandisk has no such vertex.
+    double cone_defect_deg = 60.0;
     double cone_min_angle_sum_deg = 150.0;
     /// A boundary corner found only by a turn is dropped when another corner (a junction, an
     /// end, a sharper turn) is closer than this (remesh_surface sets half the target size; 0:

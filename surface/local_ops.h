@@ -85,14 +85,17 @@ struct OperatorContext
 
 /// Splits e at its midpoint projected onto the model (onto the edge's curve for a feature
 /// edge). The new vertex gets the edge's class, curve and the mean size of the ends.
-OpResult try_split(OperatorContext& ctx, EdgeHandle e);
+/// `at` (smooth edges only): put the new vertex there instead, a point of the model (an input
+/// vertex the edge passes far from); refused like a projection that jumps too far.
+OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at = nullptr);
 
 /// Collapses h (from-vertex removed, onto the to-vertex). Refused when a remaining edge would
 /// become longer than max_new_length (≤ 0: no bound), or when the from-vertex is a corner, or a
 /// curve vertex not collapsing along its own curve.
 /// `require_quality_gain`: the worst Qe around must rise (used by the final cleanup).
+/// `min_new_angle_deg` > 0: no changed triangle may get a smaller angle than this.
 OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
-                      bool require_quality_gain = false);
+                      bool require_quality_gain = false, double min_new_angle_deg = 0.0);
 
 /// What a flip must improve.
 enum class FlipGoal

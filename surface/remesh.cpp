@@ -1,9 +1,11 @@
 #include "surface/remesh.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <memory>
 
+#include "surface/closest_point_tree.h"
 #include "surface/hdi_projection.h"
 #include "surface/local_ops_geometry.h"
 #include "surface/surface_errors.h"
@@ -17,6 +19,14 @@ namespace
 
 constexpr double kTooLong = 4.0 / 3.0;
 constexpr double kTooShort = 4.0 / 5.0;
+// After the loop, a collapse may leave edges up to this times the reference size (Qt ≥ 0.69)...
+constexpr double kReferenceCollapseLength = 1.45;
+// ... and no triangle with an angle under this (they happen beside ridges, where nothing repairs them).
+constexpr double kReferenceCollapseMinAngle = 30.0;
+// A refinement round splits only where the distance is at least this fraction of its worst.
+constexpr double kRefineFocus = 0.75;
+// The curvature-adaptive size refines to this fraction of hausd, to end within hausd.
+constexpr double kAdaptiveToleranceMargin = 0.8;
 
 class Remesher
 {
@@ -41,13 +51,28 @@ public:
                 std::fprintf(stderr, "remesh: iteration %d: %zu vertices, %zu splits, %zu collapses, %zu flips, %zu shifts\n",
                              it + 1, count_vertices(), report_.splits, report_.collapses, report_.flips, report_.shifts);
         }
+        report_stage("iterations");
+        collapse_short_for_reference();
+        report_stage("reference collapses");
+        refine_where_far();
+        report_stage("refinement");
         // Shape polish: quality flips and smart shifts only raise the worst Qe of what they touch.
         for (int pass = 0; pass < options_.polish_passes; ++pass)
         {
             flip_edges(FlipGoal::Quality);
             shift_vertices(true);
         }
+        report_stage("polish");
         cleanup_worst_triangles();
+        report_stage("cleanup");
+        // The polish moved vertices: chords may have left the tolerance again. The cleanup after
+        // the new splits may move some once more; a last refinement has the final word.
+        if (refine_where_far() > 0)
+        {
+            cleanup_worst_triangles();
+            refine_where_far();
+        }
+        report_stage("final refinement");
         mesh_.garbage_collection();
         return report_;
     }
@@ -59,6 +84,24 @@ private:
         for (auto v : mesh_.vertices())
             if (!mesh_.status(v).deleted()) ++n;
         return n;
+    }
+
+    // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
+    void report_stage(const char* stage) const
+    {
+        if (options_.verbosity <= 0) return;
+        std::size_t short_edges = 0, long_edges = 0, edges = 0;
+        for (auto e : mesh_.edges())
+        {
+            if (mesh_.status(e).deleted()) continue;
+            ++edges;
+            const double ratio = mesh_.calc_edge_length(e) / edge_size(e);
+            if (ratio < 0.66) ++short_edges;
+            else if (ratio > 1.0 / 0.66) ++long_edges;
+        }
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        std::fprintf(stderr, "remesh: after %s (%.2f s): %zu edges, %zu too short, %zu too long\n", stage, seconds, edges,
+                     short_edges, long_edges);
     }
 
     void set_size(VertexHandle v) { mesh_.property(ctx_.props.vertex_size, v) = options_.size(mesh_.point(v)); }
@@ -145,6 +188,214 @@ private:
                         break;
                     }
                 }
+            }
+            report_.collapses += done;
+            if (done == 0) return;
+        }
+    }
+
+    double distance_to_model(const Vec3d& p) const
+    {
+        const ProjectedPoint on_model = ctx_.model.project(p, VertexClass::Smooth, kNoCurve);
+        return on_model.ok ? (on_model.point - p).norm() : 0.0;
+    }
+
+    // The size an edge is judged against for the short-edge budget of the refinement.
+    double reference_size(EdgeHandle e) const
+    {
+        return options_.refine_reference_size > 0.0 ? options_.refine_reference_size : edge_size(e);
+    }
+
+    std::size_t count_short_edges() const
+    {
+        std::size_t n = 0;
+        for (auto e : mesh_.edges())
+            if (!mesh_.status(e).deleted() && size_quality(mesh_.calc_edge_length(e), reference_size(e)) < 0.66) ++n;
+        return n;
+    }
+
+    // The tolerance, both ways (the two halves of the Hausdorff distance): triangles whose
+    // centroid or edge midpoints leave the model, and triangles closest to a model point they
+    // pass far from, get their longest edge split, farthest first, then the new vertices settle
+    // by flips. Splits make short edges: they stop when the edges shorter than 0.66 of the
+    // reference size reach refine_short_edge_budget of all edges.
+    std::size_t refine_where_far()
+    {
+        std::size_t total = 0;
+        if (!(options_.tolerance > 0.0)) return total;
+        // Splits and flips only bring the output nearer to the model points: after the first
+        // round, only the points still far need another look.
+        std::vector<VertexHandle> split_vertices;  // of the last round
+        std::vector<VertexHandle> revisit;         // ends of the last round's candidates not tried
+        std::vector<std::size_t> far_points(options_.model_points.size());
+        for (std::size_t i = 0; i < far_points.size(); ++i) far_points[i] = i;
+        for (int round = 0; round < options_.refine_rounds; ++round)
+        {
+            std::vector<double> edge_error(mesh_.n_edges(), 0.0);  // worst distance that asks for a split
+            // A model point far from the output: the new vertex goes onto it (index + 1; 0: none).
+            std::vector<std::size_t> edge_target(mesh_.n_edges(), 0);
+            auto mark_longest = [&](FaceHandle f, double distance, std::size_t target) {
+                EdgeHandle longest;
+                double best = -1.0;
+                for (auto e : mesh_.fe_range(f))
+                    if (mesh_.calc_edge_length(e) > best) best = mesh_.calc_edge_length(e), longest = e;
+                if (distance > edge_error[longest.idx()])
+                {
+                    edge_error[longest.idx()] = distance;
+                    edge_target[longest.idx()] = target;
+                }
+            };
+            // After the first round only the neighbourhood of the last splits changed (and the
+            // places refused before stay refused): the projections there only.
+            std::vector<char> near_change(mesh_.n_vertices(), round == 0 ? 1 : 0);
+            for (const VertexHandle v : split_vertices)
+            {
+                near_change[v.idx()] = 1;
+                for (auto w : mesh_.vv_range(v)) near_change[w.idx()] = 1;
+            }
+            for (const VertexHandle v : revisit)
+                if (!mesh_.status(v).deleted()) near_change[v.idx()] = 1;
+            revisit.clear();
+            auto changed = [&](std::initializer_list<VertexHandle> vertices) {
+                return std::any_of(vertices.begin(), vertices.end(), [&](VertexHandle v) { return near_change[v.idx()] != 0; });
+            };
+            std::vector<std::array<Vec3d, 3>> triangles;
+            std::vector<FaceHandle> face_of;
+            for (auto f : mesh_.faces())
+            {
+                if (mesh_.status(f).deleted()) continue;
+                const auto p = detail::face_points(mesh_, f);
+                const auto fv = detail::face_vertices(mesh_, f);
+                if (changed({fv[0], fv[1], fv[2]}))
+                {
+                    const double d = distance_to_model((p[0] + p[1] + p[2]) / 3.0);
+                    if (d > options_.tolerance) mark_longest(f, d, 0);
+                }
+                triangles.push_back(p);
+                face_of.push_back(f);
+            }
+            for (auto e : live_edges())
+            {
+                const auto h = mesh_.halfedge_handle(e, 0);
+                const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
+                if (!changed({a, b})) continue;
+                const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
+                const double d = distance_to_model(mid);
+                if (d > options_.tolerance) edge_error[e.idx()] = std::max(edge_error[e.idx()], d);
+            }
+            split_vertices.clear();
+            const ClosestPointTree output = ClosestPointTree::from_triangles(std::move(triangles));
+            std::vector<std::size_t> still_far;
+            for (const std::size_t i : far_points)
+            {
+                const auto hit = output.closest(options_.model_points[i]);
+                const bool smooth = options_.model_point_smooth.empty() || options_.model_point_smooth[i];
+                if (hit.primitive < 0 || !(hit.distance > options_.tolerance)) continue;
+                mark_longest(face_of[hit.primitive], hit.distance, smooth ? i + 1 : 0);
+                still_far.push_back(i);
+            }
+            far_points = std::move(still_far);
+            std::vector<std::pair<double, EdgeHandle>> candidates;
+            for (auto e : live_edges())
+                if (edge_error[e.idx()] > 0.0 &&
+                    mesh_.calc_edge_length(e) >= 2.0 * options_.refine_min_length_ratio * edge_size(e))
+                    candidates.emplace_back(edge_error[e.idx()], e);
+            // Farthest first; ties by index keep it deterministic.
+            std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+                return a.first != b.first ? a.first > b.first : a.second.idx() < b.second.idx();
+            });
+            std::size_t short_edges = count_short_edges(), edges = live_edges().size();
+            std::size_t done = 0;
+            // The budget goes to the worst places first: a round splits only near the worst
+            // distance; the next round sees the result.
+            const double worst = candidates.empty() ? 0.0 : candidates.front().first;
+            std::size_t next = 0;
+            for (; next < candidates.size(); ++next)
+            {
+                const auto& [error, e] = candidates[next];
+                if (done > 0 && error < kRefineFocus * worst) break;
+                if (options_.refine_short_edge_budget < 1.0 &&
+                    static_cast<double>(short_edges) >= options_.refine_short_edge_budget * static_cast<double>(edges))
+                    break;
+                if (mesh_.status(e).deleted()) continue;
+                const bool boundary = mesh_.is_boundary(e);
+                const bool was_short = size_quality(mesh_.calc_edge_length(e), reference_size(e)) < 0.66;
+                // Onto the far model point if the triangles allow it, else at the projected midpoint.
+                OpResult r;
+                if (edge_target[e.idx()] > 0) r = try_split(ctx_, e, &options_.model_points[edge_target[e.idx()] - 1]);
+                if (!r.done()) r = try_split(ctx_, e);
+                if (!r.done())
+                {
+                    if (options_.verbosity > 1)
+                        std::fprintf(stderr, "remesh: refinement split refused (layer %d), distance %.3g, length/size %.3f\n",
+                                     static_cast<int>(r.status), error, mesh_.calc_edge_length(e) / edge_size(e));
+                    continue;
+                }
+                set_size(r.vertex);
+                split_vertices.push_back(r.vertex);
+                ++done;
+                // The two halves and the new edges across: the budget's count follows the split.
+                edges += boundary ? 2 : 3;
+                if (was_short) --short_edges;  // replaced by its halves, counted below
+                for (auto oh : mesh_.voh_range(r.vertex))
+                    if (size_quality(mesh_.calc_edge_length(mesh_.edge_handle(oh)), reference_size(mesh_.edge_handle(oh))) < 0.66)
+                        ++short_edges;
+            }
+            report_.splits += done;
+            report_.refinement_splits += done;
+            total += done;
+            if (options_.verbosity > 0)
+                std::fprintf(stderr, "remesh: refinement round %d: %zu edges marked, %zu split, %zu short edges of %zu\n",
+                             round + 1, candidates.size(), done, short_edges, edges);
+            // The candidates left for later rounds are looked at again there.
+            for (; next < candidates.size(); ++next)
+            {
+                const EdgeHandle e = candidates[next].second;
+                if (mesh_.status(e).deleted()) continue;
+                const auto h = mesh_.halfedge_handle(e, 0);
+                revisit.push_back(mesh_.from_vertex_handle(h));
+                revisit.push_back(mesh_.to_vertex_handle(h));
+            }
+            if (done == 0) break;
+            // The new vertices settle: quality flips of the edges around them.
+            for (const VertexHandle v : split_vertices)
+            {
+                std::vector<EdgeHandle> around;
+                for (auto f : mesh_.vf_range(v))
+                    for (auto e : mesh_.fe_range(f)) around.push_back(e);
+                for (const EdgeHandle e : around)
+                    if (!mesh_.status(e).deleted() && try_flip(ctx_, e, FlipGoal::Quality).done()) ++report_.flips;
+            }
+        }
+        return total;
+    }
+
+    // Edges still too short for the reference size (Qt < 0.66) were kept by the loop's bound on
+    // the new edges (4/3 of the local size, to converge); once no more splits follow, a new
+    // edge may be as long as Qt allows against the reference size.
+    void collapse_short_for_reference()
+    {
+        if (!(options_.refine_reference_size > 0.0)) return;
+        const double max_new_length = kReferenceCollapseLength * options_.refine_reference_size;
+        for (int pass = 0; pass < 3; ++pass)
+        {
+            std::size_t done = 0;
+            for (auto e : live_edges())
+            {
+                if (mesh_.status(e).deleted() ||
+                    size_quality(mesh_.calc_edge_length(e), options_.refine_reference_size) >= 0.66)
+                    continue;
+                // Curve edges keep the loop's sizes: a longer chord of a curved ridge leaves it.
+                if (ctx_.is_feature(e)) continue;
+                HalfedgeHandle hs[2] = {mesh_.halfedge_handle(e, 0), mesh_.halfedge_handle(e, 1)};
+                if (removal_rank(mesh_.from_vertex_handle(hs[1])) < removal_rank(mesh_.from_vertex_handle(hs[0])))
+                    std::swap(hs[0], hs[1]);
+                for (const HalfedgeHandle hh : hs)
+                    if (try_collapse(ctx_, hh, max_new_length, false, kReferenceCollapseMinAngle).done())
+                    {
+                        ++done;
+                        break;
+                    }
             }
             report_.collapses += done;
             if (done == 0) return;
@@ -257,6 +508,7 @@ private:
     SurfaceMesh& mesh_;
     const RemeshOptions& options_;
     OperatorContext ctx_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     RemeshReport report_;
 };
 
@@ -339,6 +591,43 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     if (settings.max_model_distance >= 0.0) options.max_model_distance = settings.max_model_distance;
     else if (settings.sizing.hausd > 0.0) options.max_model_distance = settings.sizing.hausd;
     else options.max_model_distance = 0.002 * result.diagonal;
+    // The tolerance both ways: hausd when given, else the fraction for a uniform size.
+    if (settings.sizing.hausd > 0.0) options.tolerance = settings.sizing.hausd;
+    else if (settings.sizing.hsiz > 0.0) options.tolerance = settings.uniform_hausd_fraction * result.diagonal;
+    else options.tolerance = 0.002 * result.diagonal;
+    if (settings.refine_to_tolerance && options.tolerance > 0.0)
+    {
+        const SurfaceProperties props(mesh);
+        for (auto v : mesh.vertices())
+        {
+            if (mesh.is_isolated(v)) continue;
+            options.model_points.push_back(mesh.point(v));
+            options.model_point_smooth.push_back(mesh.property(props.vertex_class, v) == VertexClass::Smooth);
+        }
+        // Edge midpoints too (the Hausdorff samples of the input): a crease the features dropped
+        // is farthest from the output between its vertices. Not with a uniform size: there the
+        // short-edge budget is better spent on the vertices (spikes, knobs) than spread thin.
+        if (!(settings.sizing.hsiz > 0.0))
+            for (auto e : mesh.edges())
+            {
+                const auto h = mesh.halfedge_handle(e, 0);
+                const Vec3d mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+                options.model_points.push_back(mid);
+                options.model_point_smooth.push_back(mesh.property(props.edge_curve, e) == kNoCurve && !mesh.is_boundary(e));
+            }
+    }
+    if (!settings.refine_to_tolerance) options.tolerance = 0.0;
+    options.refine_reference_size = settings.sizing.hsiz;
+    options.refine_short_edge_budget = settings.refine_short_edge_budget;
+    if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty())
+    {
+        // Curvature-adaptive: the tolerance is the contract (no size target to keep), with a
+        // margin for the samples the refinement does not look at (input edge midpoints, centroids).
+        options.tolerance *= kAdaptiveToleranceMargin;
+        options.refine_short_edge_budget = 1.0;
+        options.refine_min_length_ratio = 0.15;
+        options.refine_rounds = 20;
+    }
     result.report = remesh(mesh, options, model, {});
     return result;
 }

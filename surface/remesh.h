@@ -1,8 +1,11 @@
 #pragma once
 // The surface remesher (pmp-style loop on the model): split too-long edges, collapse too-short
 // ones, flip toward valence 6, George's nodal shifting with projection onto the model, repeated;
-// then a cleanup of the worst triangles (quality flips, collapses, vertex removals, smart
-// shifts). Vertex classes, curves and refs are kept: features survive by construction.
+// then edges still too short for a reference size collapsed, a refinement where the output
+// strays from the model farther than a tolerance (both ways: chords off the model, model points
+// far from the output), a cleanup of the worst triangles (quality flips, collapses, vertex
+// removals, smart shifts) and a last refinement. Vertex classes, curves and refs are kept:
+// features survive by construction.
 
 #include <cstddef>
 #include <functional>
@@ -34,6 +37,24 @@ struct RemeshOptions
     /// The worst-triangle cleanup works on triangles with a smaller angle than this.
     double cleanup_angle_deg = 27.0;
     int cleanup_rounds = 8;
+    /// Geometric tolerance (> 0: on): after the iterations, a triangle whose centroid or edge
+    /// midpoints stray farther from the model, or that is the closest triangle to a point of
+    /// `model_points` (the input vertices) farther away, has its longest edge split (projected
+    /// onto the model), down to edges of refine_min_length_ratio times the local size. The
+    /// sizes alone miss a short crease or a spike narrower than an edge.
+    double tolerance = 0.0;
+    std::vector<Vec3d> model_points;
+    /// Per model point: a smooth one (a split may put its new vertex onto it; a curve point
+    /// only asks for a split at the projected midpoint). Empty: all smooth.
+    std::vector<char> model_point_smooth;
+    double refine_min_length_ratio = 0.3;
+    int refine_rounds = 12;
+    /// The refinement stops when this fraction of the edges is shorter than 0.66 of the
+    /// reference size (> 0: that constant, e.g. the uniform size; else the local size); ≥ 1: never.
+    double refine_short_edge_budget = 0.006;
+    /// > 0 (a uniform size): besides, after the iterations, edges shorter than 0.66 of it are
+    /// collapsed when no new edge gets longer than 1.45 of it and no angle under 30°.
+    double refine_reference_size = 0.0;
     OperatorLimits limits;
     int verbosity = 0;  // > 0: one line per iteration on stderr
 };
@@ -41,7 +62,7 @@ struct RemeshOptions
 struct RemeshReport
 {
     int iterations = 0;
-    std::size_t splits = 0, collapses = 0, flips = 0, removals = 0, shifts = 0;
+    std::size_t splits = 0, collapses = 0, flips = 0, removals = 0, shifts = 0, refinement_splits = 0;
 };
 
 /// Remeshes `mesh` (classified by detect_features, or carrying the properties of
@@ -69,6 +90,10 @@ struct SurfaceRemeshSettings
     /// is 4x slower and its projections near ridges left slivers (see the report of issue 6).
     bool use_hdi = false;
     double max_model_distance = -1.0;    // < 0: from hausd (or 0.002·diag for a uniform size)
+    /// Split where the output strays from the input by more than hausd (or, for a uniform size,
+    /// uniform_hausd_fraction·diag) either way (RemeshOptions::tolerance).
+    bool refine_to_tolerance = true;
+    double refine_short_edge_budget = 0.006;  // RemeshOptions::refine_short_edge_budget
     int verbosity = 0;
 };
 

@@ -6,7 +6,7 @@
 namespace hdimesh::surface
 {
 
-OpResult try_split(OperatorContext& ctx, EdgeHandle e)
+OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
 {
     using namespace detail;
     SurfaceMesh& mesh = ctx.mesh;
@@ -25,8 +25,13 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e)
     // Geometry layer: the projected midpoint must not jump away (a projection onto the wrong
     // sheet or curve) and the new triangles must not turn.
     const Vec3d mid = 0.5 * (pa + pb);
-    const ProjectedPoint projected = ctx.model.project(mid, cls, curve);
-    const Vec3d p = projected.ok ? projected.point : mid;
+    Vec3d p = mid;
+    if (at && cls == VertexClass::Smooth) p = *at;
+    else
+    {
+        const ProjectedPoint projected = ctx.model.project(mid, cls, curve);
+        if (projected.ok) p = projected.point;
+    }
     if ((p - mid).norm() > 0.5 * length)
     {
         result.status = OpStatus::Geometry;

@@ -184,6 +184,22 @@ std::array<double, 2> hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh
     return {max_distance(samples(a), tree_b), max_distance(samples(b), tree_a)};
 }
 
+std::vector<DistanceSample> farthest_samples(const SurfaceMesh& a, const SurfaceMesh& b, std::size_t count)
+{
+    const ClosestPointTree tree_b = triangle_tree(b);
+    std::vector<DistanceSample> all;
+    for (const Vec3d& p : samples(a))
+    {
+        const auto hit = tree_b.closest(p);
+        all.push_back({p, hit.point, hit.distance});
+    }
+    count = std::min(count, all.size());
+    std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(count), all.end(),
+                      [](const DistanceSample& x, const DistanceSample& y) { return x.distance > y.distance; });
+    all.resize(count);
+    return all;
+}
+
 std::string format_quality_table(const QualityReport& before, const QualityReport& after)
 {
     std::string out;

@@ -56,6 +56,17 @@ QualityReport measure_quality(const SurfaceMesh& mesh, double uniform_size = 0.0
 /// point-to-triangle distance. Returns {max dist of a's samples to b, of b's samples to a}.
 std::array<double, 2> hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b);
 
+/// A sample of one surface and its distance to another (diagnostics of the Hausdorff distance).
+struct DistanceSample
+{
+    Vec3d point{0, 0, 0};    // the sample (vertex, edge midpoint or centroid of the first surface)
+    Vec3d closest{0, 0, 0};  // its closest point on the second surface
+    double distance = 0.0;
+};
+
+/// The `count` samples of `a` (the samples of hausdorff_distance) farthest from `b`, worst first.
+std::vector<DistanceSample> farthest_samples(const SurfaceMesh& a, const SurfaceMesh& b, std::size_t count);
+
 /// A fixed-width text table comparing two reports (surfremesh prints it).
 std::string format_quality_table(const QualityReport& before, const QualityReport& after);
 
