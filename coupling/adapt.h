@@ -52,6 +52,10 @@ struct AdaptReport
     std::vector<AdaptPassReport> passes;
     bool converged = false;  ///< no edge too long when refinement stopped
     double seconds_refine = 0, seconds_project = 0, seconds_optimize = 0, seconds_total = 0;
+    /// The same split in CPU time of the calling thread: on a shared machine wall time
+    /// measures the neighbours too.
+    double cpu_seconds_refine = 0, cpu_seconds_project = 0, cpu_seconds_optimize = 0,
+           cpu_seconds_total = 0;
     ProjectionReport final_projection;
 };
 

@@ -1,6 +1,9 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "coupling/adapt.h"
 #include "fixtures.h"
@@ -80,4 +83,41 @@ TEST_CASE("adapt is deterministic: the same input gives bitwise the same mesh")
     for (int v = 0; v < first.num_vertices(); ++v)
         same_points = same_points && first.points[v] == second.points[v];
     CHECK(same_points);
+}
+
+TEST_CASE("adapt's time split: CPU stages add up, refs and classes survive the renumbering")
+{
+    // adapt renumbers the mesh along a space-filling curve before the final optimization:
+    // the boundary keeps its refs and every vertex of a boundary triangle keeps a boundary class
+    TetMesh mesh = sphere480();
+    coupling::AdaptOptions options;
+    options.verbosity = 0;
+    options.project = false;
+    const ConstantSize field(0.3);
+    const coupling::AdaptReport report = coupling::adapt(mesh, field, options);
+
+    CHECK(report.converged);
+    CHECK(report.cpu_seconds_total > 0.0);
+    CHECK(report.cpu_seconds_refine > 0.0);
+    CHECK(report.cpu_seconds_optimize > 0.0);
+    const double stages =
+        report.cpu_seconds_refine + report.cpu_seconds_project + report.cpu_seconds_optimize;
+    CHECK(stages <= report.cpu_seconds_total * (1 + 1e-9) + 1e-6);
+    CHECK(format_adapt_report(report).find("cpu:") != std::string::npos);
+
+    const auto violations = check_mesh(mesh);
+    CHECK_MESSAGE(violations.empty(), format_violations(violations));
+    CHECK(std::abs(mesh.total_volume() - sphere480().total_volume()) <=
+          1e-9 * sphere480().total_volume());
+    std::vector<int> input_refs = sphere480().triangle_refs, output_refs = mesh.triangle_refs;
+    std::sort(input_refs.begin(), input_refs.end());
+    input_refs.erase(std::unique(input_refs.begin(), input_refs.end()), input_refs.end());
+    std::sort(output_refs.begin(), output_refs.end());
+    output_refs.erase(std::unique(output_refs.begin(), output_refs.end()), output_refs.end());
+    CHECK(output_refs == input_refs);
+    for (const auto& tri : mesh.triangles)
+        for (int v : tri) CHECK(mesh.vertex_classes[v] != VertexClass::Interior);
+    const QualityReport q = compute_quality_report(mesh, &field);
+    CHECK(q.percent_too_long == 0.0);
+    CHECK(q.min_qe >= 0.3);
 }

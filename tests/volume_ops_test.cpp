@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "fixtures.h"
@@ -516,4 +517,108 @@ TEST_CASE("collapse in a Kuhn box: flat, below the floor, and legal")
     require_valid(mesh);
     for (int t = 0; t < mesh.num_tet_slots(); ++t)
         if (!mesh.is_dead(t)) CHECK(local_index(mesh, t, v) < 0);
+}
+
+namespace
+{
+
+/// One fixed sweep of every operator over a mesh: for each tet slot present at the start (in
+/// order, if still alive), edge removal on its six edges, then smoothing of its free vertices,
+/// then a collapse of each of its edges that is too short (the first end onto the second).
+void sweep_all_operators(TetMesh& mesh, OperatorContext& context,
+                         const EdgeRemovalOptions& edge_options = {})
+{
+    const int slots = mesh.num_tet_slots();
+    for (int t = 0; t < slots; ++t)
+    {
+        if (mesh.is_dead(t)) continue;
+        bool replaced = false;
+        for (int e = 0; e < 6 && !replaced; ++e)
+            replaced = remove_edge(mesh, context, t, e, edge_options).removed;
+        if (replaced) continue;
+        for (int v : TetVertices(mesh.tets[t])) smooth_vertex(mesh, context, v);
+        for (int e = 0; e < 6 && !mesh.is_dead(t); ++e)
+        {
+            const int a = mesh.tets[t][tet::kEdgeVertices[e][0]];
+            const int b = mesh.tets[t][tet::kEdgeVertices[e][1]];
+            if (context.too_short(mesh.points[a], mesh.points[b])) collapse_edge(mesh, context, a, b);
+        }
+    }
+}
+
+}  // namespace
+
+/*  The optimizer's caches (tet qualities per slot, recent vertex balls) must be invisible: the
+    same sweep of every operator over the same jittered box, once with a plain context and once
+    with the caches on, gives bitwise the same mesh. (A debug build also checks every cached
+    quality and ball against a fresh one as it is served.)                                   */
+TEST_CASE("operator context caches: the same operators give bitwise the same mesh")
+{
+    const TetMesh input = fixtures::box_mesh(4, 0.24, 7);
+    const ConstantSize field(0.42);  // the axis edges (0.25) are too short: collapses happen
+    TetMesh plain = input, cached = input;
+    plain.build_adjacency();
+    cached.build_adjacency();
+    OperatorContext plain_context(plain, &field);
+    OperatorContext cached_context(cached, &field);
+    cached_context.enable_caches();
+
+    for (int round = 0; round < 2; ++round)
+    {
+        sweep_all_operators(plain, plain_context);
+        sweep_all_operators(cached, cached_context);
+    }
+    CHECK(plain.tets == cached.tets);
+    CHECK(plain.points == cached.points);
+    CHECK(plain.neighbors == cached.neighbors);
+    CHECK(plain_context.touched == cached_context.touched);
+    // the sweep did change the mesh (collapses and moves), and left it valid and whole
+    CHECK(cached.num_live_tets() < input.num_live_tets());
+    CHECK(cached.points != input.points);
+    require_valid(cached);
+    CHECK(cached.total_volume() == doctest::Approx(input.total_volume()).epsilon(1e-12));
+    CHECK(boundary_signature(cached) == boundary_signature(input));
+    for (int t = 0; t < cached.num_tet_slots(); ++t)
+        if (!cached.is_dead(t)) CHECK(cached_context.quality(cached, t) == cached.quality(t));
+}
+
+/*  Edge removal with exact_worst_after = false prunes the ring program at the shell's worst:
+    on every edge of a jittered box it removes exactly the same edges, with the same new tets
+    and the same worst_after, as the exact program; a refusal reports -infinity.           */
+TEST_CASE("edge removal: the pruned program removes the same edges as the exact one")
+{
+    TetMesh exact = fixtures::box_mesh(4, 0.3, 5);
+    exact.build_adjacency();
+    TetMesh pruned = exact;
+    OperatorContext exact_context(exact, nullptr), pruned_context(pruned, nullptr);
+    EdgeRemovalOptions pruning;
+    pruning.exact_worst_after = false;
+    const double worst_before = live_worst(exact);
+    long removed = 0, refused = 0;
+    for (int t = 0; t < exact.num_tet_slots(); ++t)
+        for (int e = 0; e < 6; ++e)
+        {
+            if (exact.is_dead(t)) break;
+            const auto a = remove_edge(exact, exact_context, t, e);
+            const auto b = remove_edge(pruned, pruned_context, t, e, pruning);
+            REQUIRE(a.removed == b.removed);
+            CHECK(a.worst_before == b.worst_before);
+            if (a.removed)
+            {
+                ++removed;
+                CHECK(a.worst_after == b.worst_after);
+                CHECK(a.worst_after > a.worst_before);
+            }
+            else if (a.ring_size > 0 && a.worst_before > 0)
+            {
+                ++refused;
+                CHECK(b.worst_after == -std::numeric_limits<double>::infinity());
+            }
+        }
+    CHECK(removed > 0);
+    CHECK(refused > 0);
+    CHECK(exact.tets == pruned.tets);
+    CHECK(exact.neighbors == pruned.neighbors);
+    require_valid(pruned);
+    CHECK(live_worst(pruned) >= worst_before);
 }

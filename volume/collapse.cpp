@@ -1,6 +1,7 @@
 #include "volume/collapse.h"
 
 #include <algorithm>
+#include <iterator>
 #include <limits>
 
 namespace hdimesh
@@ -33,7 +34,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     CollapseConfiguration config;
     config.from = from;
     config.to = to;
-    vertex_ball(mesh, context.vertex_tet[from], from, config.ball);
+    context.ball(mesh, from, config.ball);
     const int ref = mesh.tet_refs[config.ball.front()];
     std::vector<int> shell_ring;  // vertices already joined to `to` through the shell
     for (int t : config.ball)
@@ -52,15 +53,20 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         config.moved.push_back(moved);
     }
     if (config.shell.empty() || config.moved.empty()) return result;  // (from, to) no edge
-    for (int t : config.ball)
-        for (int v : mesh.tets[t])
-            if (v != from && v != to &&
-                std::find(shell_ring.begin(), shell_ring.end(), v) == shell_ring.end())
-                config.new_neighbours.push_back(v);
-    std::sort(config.new_neighbours.begin(), config.new_neighbours.end());
-    config.new_neighbours.erase(
-        std::unique(config.new_neighbours.begin(), config.new_neighbours.end()),
-        config.new_neighbours.end());
+    // new neighbours: the vertices of the moved tets that no shell tet has (sorted sets; the
+    // shell tets' own vertices are all in shell_ring)
+    std::vector<int> moved_vertices;
+    moved_vertices.reserve(4 * config.moved.size());
+    for (const auto& tv : config.moved)
+        for (int v : tv)
+            if (v != to) moved_vertices.push_back(v);
+    std::sort(moved_vertices.begin(), moved_vertices.end());
+    moved_vertices.erase(std::unique(moved_vertices.begin(), moved_vertices.end()),
+                         moved_vertices.end());
+    std::sort(shell_ring.begin(), shell_ring.end());
+    shell_ring.erase(std::unique(shell_ring.begin(), shell_ring.end()), shell_ring.end());
+    std::set_difference(moved_vertices.begin(), moved_vertices.end(), shell_ring.begin(),
+                        shell_ring.end(), std::back_inserter(config.new_neighbours));
 
     // layers 3 and 4 for each place the merged vertex may take: `to` itself, then (when `to`
     // is free too) the edge's midpoint, which halves how much the new edges grow
@@ -68,7 +74,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     // it is computed on demand (most collapses never need it)
     double ball_worst = -1;  // not computed yet
     auto old_worst = [&] {
-        if (ball_worst < 0) ball_worst = std::max(0.0, worst_quality(mesh, config.ball));
+        if (ball_worst < 0) ball_worst = std::max(0.0, context.worst_quality(mesh, config.ball));
         return ball_worst;
     };
     std::vector<int> to_ball, to_neighbours;
@@ -77,7 +83,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     // the places other than `to` itself, and to's ball they need, are built only if `to` fails
     std::vector<Vec3> places = {to_position};
     auto add_moving_places = [&] {
-        vertex_ball(mesh, context.vertex_tet[to], to, to_ball);
+        context.ball(mesh, to, to_ball);
         for (int t : to_ball)
             for (int v : mesh.tets[t])
                 if (v != to && v != from) to_neighbours.push_back(v);
@@ -98,6 +104,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     };
     bool found = false;
     Vec3 chosen = to_position;
+    std::size_t refused = static_cast<std::size_t>(-1);  // index of the last refusing new tet
     for (std::size_t attempt = 0; !found; ++attempt)
     {
         if (attempt == 1 && may_move_to) add_moving_places();
@@ -121,22 +128,27 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
             if (!floor_exact)
             {
                 floor = std::min(floor, old_worst());
-                if (attempt > 0) floor = std::min(floor, worst_quality(mesh, reshaped));
+                if (attempt > 0) floor = std::min(floor, context.worst_quality(mesh, reshaped));
                 floor_exact = true;
             }
             return q < floor;
         };
+        // the new tets: the moved ones, then the reshaped ones; the one that refused the
+        // previous place is tested first, as it usually refuses this one too (the verdict
+        // does not depend on the order: any tet below the exact floor refuses)
+        const std::size_t num_new = config.moved.size() + reshaped.size();
+        auto new_tet = [&](std::size_t k) -> const TetVertices& {
+            return k < config.moved.size() ? config.moved[k]
+                                           : mesh.tets[reshaped[k - config.moved.size()]];
+        };
         double worst = std::numeric_limits<double>::infinity();
         bool rejected = false;
-        for (const auto& tv : config.moved)
+        const std::size_t first = refused < num_new ? refused : 0;
+        for (std::size_t i = 0; i < num_new && !rejected; ++i)
         {
-            worst = std::min(worst, quality_of(tv));
-            if ((rejected = below_floor(worst))) break;
-        }
-        for (std::size_t k = 0; k < reshaped.size() && !rejected; ++k)
-        {
-            worst = std::min(worst, quality_of(mesh.tets[reshaped[k]]));
-            rejected = below_floor(worst);
+            const std::size_t k = (first + i) % num_new;
+            worst = std::min(worst, quality_of(new_tet(k)));
+            if ((rejected = below_floor(worst))) refused = k;
         }
         result.worst_after = worst;
         if (rejected) continue;
@@ -151,7 +163,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         found = true;
         chosen = place;
         if (attempt > 0)
-            context.touched.insert(context.touched.end(), reshaped.begin(), reshaped.end());
+            context.tets_changed(reshaped);
     }
     result.worst_before = ball_worst;
     if (!found) return result;

@@ -27,7 +27,11 @@ struct EdgeRemovalPlan
 
 /// Klincsek's program over the ring polygon: best[i][j] is the best worst quality of the tets
 /// over a triangulation of the sub-polygon ri..rj (with the chord (ri, rj) as its base).
-void best_triangulation(const TetMesh& mesh, const OperatorContext& context, EdgeRemovalPlan& plan)
+/// Partial triangulations whose worst is <= must_beat are dropped (a sub-polygon none of whose
+/// triangulations beats it gets best = must_beat and no choice): the whole one's worst is at
+/// most any part's, so nothing better than must_beat is lost, and the first best k is the same.
+void best_triangulation(const TetMesh& mesh, const OperatorContext& context, EdgeRemovalPlan& plan,
+                        double must_beat)
 {
     const auto& ring = plan.shell.ring;
     const int m = static_cast<int>(ring.size());
@@ -50,7 +54,7 @@ void best_triangulation(const TetMesh& mesh, const OperatorContext& context, Edg
         for (int i = 0; i + length < m; ++i)
         {
             const int j = i + length;
-            double best_here = kNever;
+            double best_here = must_beat;
             int best_k = -1;
             if (usable(i, j) || (i == 0 && j == m - 1))
                 for (int k = i + 1; k < j; ++k)
@@ -71,7 +75,7 @@ void best_triangulation(const TetMesh& mesh, const OperatorContext& context, Edg
             best[i * m + j] = best_here;
             choice[i * m + j] = best_k;
         }
-    plan.worst_after = best[m - 1];
+    plan.worst_after = choice[m - 1] < 0 ? kNever : best[m - 1];
     plan.triangles.clear();
     if (plan.worst_after == kNever) return;
     // unwind the choices into ring triangles
@@ -111,9 +115,10 @@ EdgeRemovalPlan plan_edge_removal(const TetMesh& mesh, const OperatorContext& co
             return plan;
     }
     plan.legal = true;
-    plan.worst_before = worst_quality(mesh, plan.shell.tets);
+    plan.worst_before = context.worst_quality(mesh, plan.shell.tets);
     // layers 3 and 4: geometry and quality, by the dynamic program
-    best_triangulation(mesh, context, plan);
+    best_triangulation(mesh, context, plan,
+                       options.exact_worst_after ? kNever : plan.worst_before + options.min_gain);
     return plan;
 }
 

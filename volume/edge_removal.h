@@ -19,13 +19,18 @@ struct EdgeRemovalOptions
 {
     int max_ring = 16;        ///< larger shells are left alone (the program is O(m^3))
     double min_gain = 1e-6;   ///< the new worst quality must beat the old one by this much
+    /// false: remove_edge's program drops every partial triangulation that can no longer beat
+    /// the shell's worst by min_gain (the same removals, found faster); worst_after is then
+    /// exact only when the edge is removed, else -infinity. The optimizer's choice.
+    bool exact_worst_after = true;
 };
 
 struct EdgeRemovalResult
 {
     bool removed = false;
     double worst_before = 0;  ///< worst Qe of the shell
-    double worst_after = 0;   ///< worst Qe of the best retriangulation (set even if not removed)
+    double worst_after = 0;   ///< worst Qe of the best retriangulation (set even if not removed,
+                              ///< unless options.exact_worst_after is false)
     int ring_size = 0;
 };
 

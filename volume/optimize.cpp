@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -44,7 +45,7 @@ struct QualitySummary
     double fraction_good = 0;  // Qe >= 0.5
 };
 
-QualitySummary summarize_quality(const TetMesh& mesh)
+QualitySummary summarize_quality(const TetMesh& mesh, const OperatorContext& context)
 {
     QualitySummary s;
     s.min = std::numeric_limits<double>::infinity();
@@ -52,7 +53,7 @@ QualitySummary summarize_quality(const TetMesh& mesh)
     for (int t = 0; t < mesh.num_tet_slots(); ++t)
     {
         if (mesh.is_dead(t)) continue;
-        const double q = mesh.quality(t);
+        const double q = context.quality(mesh, t);
         s.min = std::min(s.min, q);
         ++live;
         good += (q >= 0.5);
@@ -71,8 +72,9 @@ public:
     {
         if (!mesh_.has_adjacency()) mesh_.build_adjacency();
         context_ = OperatorContext(mesh_, &field);
+        context_.enable_caches();
         for (int k = 0; k < kNumOperators; ++k) report_.operators.push_back({kOperatorNames[k]});
-        report_.min_quality_before = summarize_quality(mesh_).min;
+        report_.min_quality_before = summarize_quality(mesh_, context_).min;
         if (options_.verbosity >= 2)
             std::printf("%-6s %-20s %10s %10s %9s %9s %9s\n", "sweep", "operator", "attempts",
                         "successes", "min Qe", "%Qe>=0.5", "time(s)");
@@ -154,7 +156,7 @@ public:
     {
         std::vector<int> work;
         for (int t = 0; t < mesh_.num_tet_slots(); ++t)
-            if (!mesh_.is_dead(t) && mesh_.quality(t) < threshold) work.push_back(t);
+            if (!mesh_.is_dead(t) && quality(t) < threshold) work.push_back(t);
         order_worst_first(work);
         for (int sweep = 0; sweep < options_.max_sweeps && !work.empty(); ++sweep)
         {
@@ -164,10 +166,10 @@ public:
             long successes = 0;
             for (int t : work)
             {
-                if (mesh_.is_dead(t) || mesh_.quality(t) >= threshold) continue;
+                if (mesh_.is_dead(t) || quality(t) >= threshold) continue;
                 const int result = improve_tet(t, threshold);
                 successes += (result != kNothing);
-                if (result != kReplaced && mesh_.quality(t) < threshold) still_bad.push_back(t);
+                if (result != kReplaced && quality(t) < threshold) still_bad.push_back(t);
             }
             ++report_.sweeps;
             print_sweep("sweep " + std::to_string(report_.sweeps), before);
@@ -175,48 +177,52 @@ public:
             // next: the new or reshaped tets that are bad, and the tets still bad that have
             // a vertex in a changed tet — every operator tried on a tet only involves tets
             // through its vertices, so a stuck tet whose vertices saw no change stays stuck
-            std::vector<int> changed_vertices;
+            // (a per-vertex mark, reset after use, instead of a sorted list: linear)
+            changed_vertex_.resize(mesh_.num_vertices(), 0);
             work.clear();
             for (int t : context_.touched)
             {
                 if (mesh_.is_dead(t)) continue;
-                for (int v : mesh_.tets[t]) changed_vertices.push_back(v);
-                if (mesh_.quality(t) < threshold) work.push_back(t);
+                for (int v : mesh_.tets[t]) changed_vertex_[v] = 1;
+                if (quality(t) < threshold) work.push_back(t);
             }
-            std::sort(changed_vertices.begin(), changed_vertices.end());
-            changed_vertices.erase(std::unique(changed_vertices.begin(), changed_vertices.end()),
-                                   changed_vertices.end());
             for (int t : still_bad)
             {
                 if (mesh_.is_dead(t)) continue;
                 const auto& tv = mesh_.tets[t];
-                if (std::any_of(tv.begin(), tv.end(), [&](int v) {
-                        return std::binary_search(changed_vertices.begin(),
-                                                  changed_vertices.end(), v);
-                    }))
+                if (std::any_of(tv.begin(), tv.end(), [&](int v) { return changed_vertex_[v] != 0; }))
                     work.push_back(t);
             }
+            for (int t : context_.touched)
+                if (!mesh_.is_dead(t))
+                    for (int v : mesh_.tets[t]) changed_vertex_[v] = 0;
             order_worst_first(work);
         }
     }
 
-    /// Sorts a work list by quality, worst first (ties by id), each tet once: the worst
-    /// elements get the first pick of the operators.
+    /// Sorts a work list worst first by quality band (kQualityBands per unit of Qe), by id
+    /// inside a band, each tet once: the worst elements get the first pick of the operators,
+    /// and inside a band the walk follows memory (ids follow space after adapt's renumbering)
+    /// instead of jumping across a mesh far larger than the caches for every tet.
     void order_worst_first(std::vector<int>& work) const
     {
         std::sort(work.begin(), work.end());
         work.erase(std::unique(work.begin(), work.end()), work.end());
-        std::vector<std::pair<double, int>> keyed;
+        std::vector<std::pair<long, int>> keyed;
         keyed.reserve(work.size());
-        for (int t : work) keyed.push_back({mesh_.quality(t), t});
+        for (int t : work) keyed.push_back({quality_band(quality(t)), t});
         std::sort(keyed.begin(), keyed.end());
         for (std::size_t k = 0; k < keyed.size(); ++k) work[k] = keyed[k].second;
     }
 
+    static constexpr double kQualityBands = 20;  // bands 0.05 wide
+    static long quality_band(double q) { return static_cast<long>(std::floor(q * kQualityBands)); }
+
     OptimizeReport finish()
     {
+        // measured before compact() renumbers the slots the cache is keyed by
+        report_.min_quality_after = summarize_quality(mesh_, context_).min;
         mesh_.compact();
-        report_.min_quality_after = summarize_quality(mesh_).min;
         if (options_.verbosity >= 2)
             std::printf("min Qe %.4f -> %.4f after %d sweeps\n", report_.min_quality_before,
                         report_.min_quality_after, report_.sweeps);
@@ -233,6 +239,8 @@ private:
 
     using SweepCounters = std::array<std::array<long, 2>, kNumOperators>;
 
+    double quality(int t) const { return context_.quality(mesh_, t); }
+
     SweepCounters counters() const
     {
         SweepCounters c;
@@ -241,13 +249,21 @@ private:
         return c;
     }
 
+    /// A too-short edge, ordered shortest first by band of L/hth (kRatioBands per unit), then
+    /// by ids: the shortest go first, and inside a band the walk follows memory (see
+    /// order_worst_first).
     struct ShortEdge
     {
-        double ratio;  // L / hth
+        static constexpr double kRatioBands = 16;
+        long band;     // floor(L / hth * kRatioBands)
         int u, v;      // u < v
+        ShortEdge(double ratio, int u_, int v_)
+            : band(static_cast<long>(std::floor(ratio * kRatioBands))), u(u_), v(v_)
+        {
+        }
         bool operator<(const ShortEdge& o) const
         {
-            return ratio != o.ratio ? ratio < o.ratio : (u != o.u ? u < o.u : v < o.v);
+            return band != o.band ? band < o.band : (u != o.u ? u < o.u : v < o.v);
         }
         bool operator==(const ShortEdge& o) const { return u == o.u && v == o.v; }
     };
@@ -262,20 +278,44 @@ private:
     }
 
     /// The too-short edges with a free endpoint among the edges of `tets` (live), sorted by
-    /// L/hth then ids, each once.
+    /// L/hth then ids, each once. An edge is seen from every tet around it (about five): the
+    /// pairs are deduplicated before the size field is evaluated, once per edge.
     std::vector<ShortEdge> short_edges(const std::vector<int>& tets) const
     {
+        // bucket the upper ends by the lower end (a counting sort, linear), then sort and
+        // deduplicate each small bucket: the edges come out in (u, v) order, each once
+        const int nv = mesh_.num_vertices();
+        std::vector<int> bucket_start(nv + 1, 0);
+        auto for_each_candidate = [&](auto&& visit) {
+            for (int t : tets)
+                for (const auto& ev : tet::kEdgeVertices)
+                {
+                    int u = mesh_.tets[t][ev[0]], v = mesh_.tets[t][ev[1]];
+                    if (!context_.constraints.is_free_vertex(u) &&
+                        !context_.constraints.is_free_vertex(v))
+                        continue;
+                    if (u > v) std::swap(u, v);
+                    visit(u, v);
+                }
+        };
+        for_each_candidate([&](int u, int) { ++bucket_start[u + 1]; });
+        for (int u = 0; u < nv; ++u) bucket_start[u + 1] += bucket_start[u];
+        std::vector<int> upper(bucket_start[nv]);
+        std::vector<int> fill(bucket_start.begin(), bucket_start.end() - 1);
+        for_each_candidate([&](int u, int v) { upper[fill[u]++] = v; });
+
         std::vector<ShortEdge> result;
-        for (int t : tets)
+        for (int u = 0; u < nv; ++u)
         {
-            for (const auto& ev : tet::kEdgeVertices)
+            const auto begin = upper.begin() + bucket_start[u];
+            auto end = upper.begin() + bucket_start[u + 1];
+            if (begin == end) continue;
+            std::sort(begin, end);
+            end = std::unique(begin, end);
+            const Vec3& pu = mesh_.points[u];
+            for (auto it = begin; it != end; ++it)
             {
-                int u = mesh_.tets[t][ev[0]], v = mesh_.tets[t][ev[1]];
-                if (!context_.constraints.is_free_vertex(u) &&
-                    !context_.constraints.is_free_vertex(v))
-                    continue;
-                if (u > v) std::swap(u, v);
-                const Vec3& pu = mesh_.points[u];
+                const int v = *it;
                 const Vec3& pv = mesh_.points[v];
                 const double length = (pv - pu).norm();
                 const double target = edge_target_size(*context_.field, pu, pv);
@@ -283,8 +323,6 @@ private:
             }
         }
         std::sort(result.begin(), result.end());
-        // the same edge seen from several tets has the same ratio: duplicates are adjacent
-        result.erase(std::unique(result.begin(), result.end()), result.end());
         return result;
     }
 
@@ -306,7 +344,7 @@ private:
             for (int e = 0; e < 6; ++e)
             {
                 ++report_.operators[kEdgeRemoval].attempts;
-                if (remove_edge(mesh_, context_, t, e).removed)
+                if (remove_edge(mesh_, context_, t, e, edge_removal_options_).removed)
                 {
                     ++report_.operators[kEdgeRemoval].successes;
                     report_.operators[kEdgeRemoval].seconds += seconds_since(start);
@@ -342,7 +380,7 @@ private:
                 {
                     ++report_.operators[kSmoothing].successes;
                     outcome = kMoved;
-                    if (mesh_.quality(t) >= threshold) break;
+                    if (quality(t) >= threshold) break;
                 }
             }
             report_.operators[kSmoothing].seconds += seconds_since(start);
@@ -353,7 +391,7 @@ private:
     void print_sweep(const std::string& label, const SweepCounters& before)
     {
         if (options_.verbosity < 2) return;
-        const QualitySummary q = summarize_quality(mesh_);
+        const QualitySummary q = summarize_quality(mesh_, context_);
         for (int k = 0; k < kNumOperators; ++k)
         {
             const long attempts = report_.operators[k].attempts - before[k][0];
@@ -367,7 +405,14 @@ private:
     }
 
     TetMesh& mesh_;
+    std::vector<char> changed_vertex_;  // scratch of improve_below, all zero between uses
     OptimizeOptions options_;
+    // only a removal matters here, not how good a refused one would have been
+    const EdgeRemovalOptions edge_removal_options_ = [] {
+        EdgeRemovalOptions o;
+        o.exact_worst_after = false;
+        return o;
+    }();
     OperatorContext context_;
     OptimizeReport report_;
 };

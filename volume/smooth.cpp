@@ -12,37 +12,64 @@ namespace hdimesh
 namespace
 {
 
+/// One tet of the moving ball: its face opposite the vertex, ordered so that (f0, f1, f2, P) is
+/// positive for P on the tet's side, with what tet_quality computes from the face alone done
+/// once. quality(p) is bitwise tet_quality(f0, f1, f2, p): the same operations in the same order,
+/// only the terms that do not depend on p are hoisted (a move tries many points per ball).
+struct BallFace
+{
+    std::array<Vec3, 3> f;
+    Vec3 e1, e2;               // f1 - f0, f2 - f0
+    double fixed_area = 0;     // triangle_area(f0, f2, f1), the last term of tet_quality's sum
+    double face_longest2 = 0;  // longest squared edge of the face
+    double perimeter = 0;      // |f1 - f0| + |f2 - f1| + |f0 - f2|
+
+    explicit BallFace(const std::array<Vec3, 3>& face) : f(face)
+    {
+        e1 = f[1] - f[0];
+        e2 = f[2] - f[0];
+        fixed_area = triangle_area(f[0], f[2], f[1]);
+        face_longest2 = std::max({e1.squaredNorm(), e2.squaredNorm(), (f[2] - f[1]).squaredNorm()});
+        perimeter = (f[1] - f[0]).norm() + (f[2] - f[1]).norm() + (f[0] - f[2]).norm();
+    }
+
+    double quality(const Vec3& p) const
+    {
+        // tet_quality(a, b, c, d) with a, b, c = f0, f1, f2 and d = p
+        const Vec3& a = f[0];
+        const Vec3& b = f[1];
+        const Vec3& c = f[2];
+        const Vec3& d = p;
+        const double volume = e1.dot(e2.cross(d - a)) / 6.0;
+        const double area = triangle_area(b, c, d) + triangle_area(a, d, c) +
+                            triangle_area(a, b, d) + fixed_area;
+        const double longest2 = std::max({face_longest2, (d - a).squaredNorm(),
+                                          (d - b).squaredNorm(), (d - c).squaredNorm()});
+        if (area <= 0.0 || longest2 <= 0.0) return 0.0;
+        constexpr double kAlpha = 4.898979485566356;  // 2*sqrt(6), as in tet_quality
+        return kAlpha * (3.0 * volume / area) / std::sqrt(longest2);
+    }
+};
+
 /// The ball of the moving vertex, reduced to what a move changes: each tet is its face
-/// opposite the vertex, ordered so that (f0, f1, f2, P) is positive for P on the tet's side.
+/// opposite the vertex.
 struct MovingBall
 {
     int vertex = -1;
     std::vector<int> tets;
-    std::vector<std::array<Vec3, 3>> faces;
+    std::vector<BallFace> faces;
     std::vector<int> neighbours;  // the other vertices of the ball, sorted, unique
     double mean_edge = 0;         // of the opposite faces: the scale of the steps
 
-    double quality_at(std::size_t i, const Vec3& p) const
-    {
-        return tet_quality(faces[i][0], faces[i][1], faces[i][2], p);
-    }
+    double quality_at(std::size_t i, const Vec3& p) const { return faces[i].quality(p); }
 
-    /// The worst quality with the vertex at p, stopping early once it is <= floor.
-    double worst_at(const Vec3& p, double floor = -std::numeric_limits<double>::infinity()) const
+    /// The worst quality with the vertex at p, stopping early once it is <= floor. When it
+    /// does not stop early, *worst_index gets the first tet of least quality.
+    double worst_at(const Vec3& p, double floor = -std::numeric_limits<double>::infinity(),
+                    std::size_t* worst_index = nullptr) const
     {
         double worst = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < faces.size(); ++i)
-        {
-            worst = std::min(worst, quality_at(i, p));
-            if (worst <= floor) break;
-        }
-        return worst;
-    }
-
-    std::size_t worst_index(const Vec3& p) const
-    {
         std::size_t index = 0;
-        double worst = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < faces.size(); ++i)
         {
             const double q = quality_at(i, p);
@@ -51,16 +78,54 @@ struct MovingBall
                 worst = q;
                 index = i;
             }
+            if (worst <= floor) break;
         }
-        return index;
+        if (worst_index != nullptr) *worst_index = index;
+        return worst;
     }
+
+    /// Whether the worst quality at p is above floor, deciding exactly as worst_at(p, floor)
+    /// > floor but testing first the tet that refused the previous point: a rejected
+    /// candidate usually fails on the same tet, so most rejections cost one evaluation. When
+    /// it returns true, *worst and *worst_index are worst_at's full results.
+    bool worst_above(const Vec3& p, double floor, double* worst, std::size_t* worst_index) const
+    {
+        const std::size_t hint = refused_last;
+        double hint_quality = 0;
+        if (hint < faces.size())
+        {
+            hint_quality = quality_at(hint, p);
+            if (hint_quality <= floor) return false;
+        }
+        double running = std::numeric_limits<double>::infinity();
+        std::size_t index = 0;
+        for (std::size_t i = 0; i < faces.size(); ++i)
+        {
+            const double q = i == hint ? hint_quality : quality_at(i, p);
+            if (q < running)
+            {
+                running = q;
+                index = i;
+            }
+            if (running <= floor)
+            {
+                refused_last = i;
+                return false;
+            }
+        }
+        *worst = running;
+        *worst_index = index;
+        return true;
+    }
+
+    mutable std::size_t refused_last = static_cast<std::size_t>(-1);  // the hint above
 };
 
 MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int v)
 {
     MovingBall ball;
     ball.vertex = v;
-    vertex_ball(mesh, context.vertex_tet[v], v, ball.tets);
+    context.ball(mesh, v, ball.tets);
     double edge_sum = 0;
     for (int t : ball.tets)
     {
@@ -71,8 +136,8 @@ MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int
         const Vec3& f0 = mesh.points[tv[fv[0]]];
         const Vec3& f1 = mesh.points[tv[fv[2]]];
         const Vec3& f2 = mesh.points[tv[fv[1]]];
-        ball.faces.push_back({f0, f1, f2});
-        edge_sum += (f1 - f0).norm() + (f2 - f1).norm() + (f0 - f2).norm();
+        ball.faces.emplace_back(std::array<Vec3, 3>{f0, f1, f2});
+        edge_sum += ball.faces.back().perimeter;
         for (int k : fv) ball.neighbours.push_back(tv[k]);
     }
     std::sort(ball.neighbours.begin(), ball.neighbours.end());
@@ -89,12 +154,13 @@ Vec3 nodal_shifting_target(const MovingBall& ball, const Vec3& current)
     double weight_sum = 0;
     for (std::size_t i = 0; i < ball.faces.size(); ++i)
     {
-        const auto& f = ball.faces[i];
+        const BallFace& face = ball.faces[i];
+        const auto& f = face.f;
         // (f0, f1, f2, P) positive: P lies on the side of (f1 - f0) x (f2 - f0)
-        const Vec3 normal = (f[1] - f[0]).cross(f[2] - f[0]);
+        const Vec3 normal = face.e1.cross(face.e2);
         const double norm = normal.norm();
         if (norm <= 0) continue;
-        const double edge = ((f[1] - f[0]).norm() + (f[2] - f[1]).norm() + (f[0] - f[2]).norm()) / 3;
+        const double edge = face.perimeter / 3;
         const Vec3 ideal = (f[0] + f[1] + f[2]) / 3 + (std::sqrt(2.0 / 3.0) * edge / norm) * normal;
         const double q = std::max(ball.quality_at(i, current), 1e-3);
         const double weight = 1.0 / (q * q);
@@ -105,6 +171,8 @@ Vec3 nodal_shifting_target(const MovingBall& ball, const Vec3& current)
 }
 
 /// No edge of the vertex may become too long or too short at p (edges already so may stay).
+/// The candidate's length and target are computed once per edge (the field is the costly part);
+/// the old edge is measured only when the new one fails.
 bool sizes_allow(const TetMesh& mesh, const OperatorContext& context, const MovingBall& ball,
                  const Vec3& from, const Vec3& to)
 {
@@ -112,8 +180,10 @@ bool sizes_allow(const TetMesh& mesh, const OperatorContext& context, const Movi
     for (int n : ball.neighbours)
     {
         const Vec3& q = mesh.points[n];
-        if (context.too_long(to, q) && !context.too_long(from, q)) return false;
-        if (context.too_short(to, q) && !context.too_short(from, q)) return false;
+        const double length = (q - to).norm();
+        const double target = edge_target_size(*context.field, to, q);
+        if (is_too_long(length, target) && !context.too_long(from, q)) return false;
+        if (is_too_short(length, target) && !context.too_short(from, q)) return false;
     }
     return true;
 }
@@ -141,17 +211,24 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
     if (!context.constraints.is_free_vertex(v) || context.vertex_tet[v] < 0) return result;
     const MovingBall ball = collect_ball(mesh, context, v);
     const Vec3 start = mesh.points[v];
-    const double worst_start = ball.worst_at(start);
+    // the index of the current worst tet comes with every full evaluation at the current point
+    std::size_t current_worst_index = 0;
+    const double worst_start = ball.worst_at(start, -std::numeric_limits<double>::infinity(),
+                                             &current_worst_index);
     result.worst_before = result.worst_after = worst_start;
 
     Vec3 current = start;
     double worst = worst_start;
     auto try_point = [&](const Vec3& candidate) {
         const double floor = worst + options.min_gain;
-        const double w = ball.worst_at(candidate, floor);
-        if (w <= floor || !sizes_allow(mesh, context, ball, start, candidate)) return false;
+        std::size_t index = 0;
+        double w = 0;
+        if (!ball.worst_above(candidate, floor, &w, &index) ||
+            !sizes_allow(mesh, context, ball, start, candidate))
+            return false;
         current = candidate;
         worst = w;
+        current_worst_index = index;  // w > floor: the evaluation went through every tet
         return true;
     };
 
@@ -169,7 +246,7 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
         const double fd_step = 1e-6 * ball.mean_edge;
         for (int iteration = 0; iteration < options.max_ascent_steps; ++iteration)
         {
-            const std::size_t w = ball.worst_index(current);
+            const std::size_t w = current_worst_index;
             const Vec3 g = quality_gradient(ball, w, current, fd_step);
             const double gnorm = g.norm();
             if (!(gnorm > 0)) break;
@@ -190,7 +267,7 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
     if (worst > worst_start + options.min_gain)
     {
         mesh.points[v] = current;
-        context.touched.insert(context.touched.end(), ball.tets.begin(), ball.tets.end());
+        context.tets_changed(ball.tets);
         result.moved = true;
         result.worst_after = worst;
     }
@@ -240,7 +317,7 @@ SmoothResult equalize_edge_sizes(TetMesh& mesh, OperatorContext& context, int v,
                                             !context.too_long(start, mesh.points[n]));
         if (creates_long) continue;
         mesh.points[v] = candidate;
-        context.touched.insert(context.touched.end(), ball.tets.begin(), ball.tets.end());
+        context.tets_changed(ball.tets);
         result.moved = true;
         result.worst_after = shape;
         return result;

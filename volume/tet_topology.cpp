@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <limits>
 
 #include "volume/tet_tables.h"
@@ -39,14 +40,6 @@ std::array<int, N> sorted(std::array<int, N> a)
 }
 
 }  // namespace
-
-int local_index(const TetMesh& mesh, int t, int v)
-{
-    const auto& tv = mesh.tets[t];
-    for (int k = 0; k < 4; ++k)
-        if (tv[k] == v) return k;
-    return -1;
-}
 
 void vertex_ball(const TetMesh& mesh, int seed, int v, std::vector<int>& ball)
 {
@@ -166,6 +159,9 @@ MeshConstraints::MeshConstraints(const TetMesh& mesh)
     edges_.reserve(mesh.edges.size());
     for (const auto& e : mesh.edges) edges_.push_back(sorted(e));
     std::sort(edges_.begin(), edges_.end());
+    on_listed_face_.assign(mesh.num_vertices(), 0);
+    for (const auto& face : faces_)
+        for (int v : face) on_listed_face_[v] = 1;
     free_vertex_.assign(mesh.num_vertices(), 0);
     for (int v = 0; v < mesh.num_vertices(); ++v)
         free_vertex_[v] = mesh.vertex_classes[v] == VertexClass::Interior;
@@ -182,6 +178,12 @@ bool MeshConstraints::is_constrained_face(const TetMesh& mesh, int t, int f) con
     const int n = mesh.neighbors[t][f];
     if (n == kNoTet || mesh.tet_refs[n] != mesh.tet_refs[t]) return true;
     if (faces_.empty()) return false;
+    // a face with a vertex on no listed face is not listed: skip the search (most faces)
+    const auto& fv = tet::kFaceVertices[f];
+    const auto& tv = mesh.tets[t];
+    for (int k : fv)
+        if (static_cast<std::size_t>(tv[k]) >= on_listed_face_.size() || !on_listed_face_[tv[k]])
+            return false;
     return std::binary_search(faces_.begin(), faces_.end(), sorted_face(mesh, t, f));
 }
 
@@ -200,11 +202,79 @@ bool MeshConstraints::is_removable_tet(int t) const
 void MeshConstraints::grow(int num_vertices)
 {
     if (static_cast<int>(free_vertex_.size()) < num_vertices) free_vertex_.resize(num_vertices, 1);
+    if (static_cast<int>(on_listed_face_.size()) < num_vertices)
+        on_listed_face_.resize(num_vertices, 0);
 }
 
 OperatorContext::OperatorContext(const TetMesh& mesh, const SizeField* size_field)
     : field(size_field), constraints(mesh), vertex_tet(vertex_to_tet(mesh))
 {
+}
+
+void OperatorContext::enable_caches()
+{
+    cache_enabled_ = true;
+    quality_cache_.clear();
+    forget_balls();
+}
+
+void OperatorContext::ball(const TetMesh& mesh, int v, std::vector<int>& ball) const
+{
+    if (!cache_enabled_)
+    {
+        vertex_ball(mesh, vertex_tet[v], v, ball);
+        return;
+    }
+    for (const auto& cached : ball_cache_)
+        if (cached.vertex == v)
+        {
+            ball = cached.tets;
+#ifndef NDEBUG
+            std::vector<int> fresh;
+            vertex_ball(mesh, vertex_tet[v], v, fresh);
+            assert(fresh == ball);  // a topology change bypassed replace_tets()
+#endif
+            return;
+        }
+    vertex_ball(mesh, vertex_tet[v], v, ball);
+    CachedBall& slot = ball_cache_[next_ball_];
+    next_ball_ = (next_ball_ + 1) % ball_cache_.size();
+    slot.vertex = v;
+    slot.tets = ball;
+}
+
+void OperatorContext::forget_balls() const
+{
+    for (auto& cached : ball_cache_) cached.vertex = -1;
+}
+
+double OperatorContext::quality(const TetMesh& mesh, int t) const
+{
+    if (!cache_enabled_) return mesh.quality(t);
+    if (static_cast<std::size_t>(t) >= quality_cache_.size())
+        quality_cache_.resize(std::max<std::size_t>(t + 1, mesh.tets.size()),
+                              std::numeric_limits<double>::quiet_NaN());
+    double& cached = quality_cache_[t];
+    if (std::isnan(cached)) cached = mesh.quality(t);
+    // a stale entry means some change bypassed tets_changed(): catch it in debug builds
+    assert(cached == mesh.quality(t));
+    return cached;
+}
+
+double OperatorContext::worst_quality(const TetMesh& mesh, const std::vector<int>& tets) const
+{
+    double worst = std::numeric_limits<double>::infinity();
+    for (int t : tets) worst = std::min(worst, quality(mesh, t));
+    return worst;
+}
+
+void OperatorContext::tets_changed(const int* begin, const int* end)
+{
+    touched.insert(touched.end(), begin, end);
+    if (!cache_enabled_) return;
+    for (const int* t = begin; t != end; ++t)
+        if (static_cast<std::size_t>(*t) < quality_cache_.size())
+            quality_cache_[*t] = std::numeric_limits<double>::quiet_NaN();
 }
 
 bool OperatorContext::too_long(const Vec3& p, const Vec3& q) const
@@ -247,6 +317,7 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
                               const std::vector<TetVertices>& added, int ref)
 {
     assert(mesh.has_adjacency());
+    context.forget_balls();
     auto is_removed = [&](int t) {
         return std::find(removed.begin(), removed.end(), t) != removed.end();
     };
@@ -327,7 +398,8 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
         context.vertex_tet.resize(mesh.num_vertices(), -1);
     for (int id : ids)
         for (int v : mesh.tets[id]) context.vertex_tet[v] = id;
-    context.touched.insert(context.touched.end(), ids.begin(), ids.end());
+    // (the surplus slots stay dead until compact(): their cached qualities are never read)
+    context.tets_changed(ids);
     return ids;
 }
 

@@ -13,8 +13,14 @@
 namespace hdimesh
 {
 
-/// Local index (0..3) of vertex v in tet t, or -1.
-int local_index(const TetMesh& mesh, int t, int v);
+/// Local index (0..3) of vertex v in tet t, or -1. Inline: every walk asks it per tet.
+inline int local_index(const TetMesh& mesh, int t, int v)
+{
+    const auto& tv = mesh.tets[t];
+    for (int k = 0; k < 4; ++k)
+        if (tv[k] == v) return k;
+    return -1;
+}
 
 /// The tets containing vertex v, walked from `seed` (a live tet containing v) across the faces
 /// through v, in a fixed breadth-first order. `ball` is cleared first.
@@ -65,6 +71,7 @@ private:
     std::vector<std::array<int, 3>> faces_;  // sorted triples, sorted
     std::vector<std::array<int, 2>> edges_;  // sorted pairs, sorted
     std::vector<char> free_vertex_;
+    std::vector<char> on_listed_face_;  // per vertex: a vertex of some face in faces_
     std::vector<int> required_tets_;  // sorted
 };
 
@@ -82,12 +89,42 @@ struct OperatorContext
     OperatorContext() = default;
     OperatorContext(const TetMesh& mesh, const SizeField* size_field);
 
+    /// Turns on two caches (off by default) for the optimizer's hot loops, which ask for the
+    /// same things many times: tet qualities per slot, and the last few vertex balls. While
+    /// they are on, every change of a tet's vertices or positions must go through
+    /// tets_changed() and every change of topology through replace_tets() (the operators in
+    /// volume/ do); a debug build checks every cached answer against a fresh one.
+    void enable_caches();
+    /// Qe of live tet t: mesh.quality(t), from the cache when it is on. Bitwise the same value.
+    double quality(const TetMesh& mesh, int t) const;
+    /// Minimum of quality() over a list of tets (+infinity for an empty list).
+    double worst_quality(const TetMesh& mesh, const std::vector<int>& tets) const;
+    /// The tets around vertex v, walked from vertex_tet[v] (vertex_ball's order), into `ball`.
+    void ball(const TetMesh& mesh, int v, std::vector<int>& ball) const;
+    /// Drops the cached balls (replace_tets calls it: the topology changed).
+    void forget_balls() const;
+    /// Records that the tets [begin, end) were created or reshaped: appended to touched, and
+    /// their cached qualities dropped.
+    void tets_changed(const int* begin, const int* end);
+    void tets_changed(const std::vector<int>& tets) { tets_changed(tets.data(), tets.data() + tets.size()); }
+
     /// Edge (p, q) would be too long for the field (false without a field).
     bool too_long(const Vec3& p, const Vec3& q) const;
     /// Edge (p, q) would be too short for the field (false without a field).
     bool too_short(const Vec3& p, const Vec3& q) const;
     /// Qt of edge (p, q) (1 without a field).
     double size_quality(const Vec3& p, const Vec3& q) const;
+
+private:
+    struct CachedBall
+    {
+        int vertex = -1;
+        std::vector<int> tets;
+    };
+    bool cache_enabled_ = false;
+    mutable std::vector<double> quality_cache_;  // per tet slot; NaN: not known
+    mutable std::array<CachedBall, 4> ball_cache_;  // filled round-robin
+    mutable std::size_t next_ball_ = 0;
 };
 
 /// Replaces the live tets `removed` by tets `added` (all of ref `ref`) that fill the same region
