@@ -11,6 +11,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "volume/reorder.h"
+
 namespace hdimesh::coupling
 {
 
@@ -60,93 +62,6 @@ double min_quality(const TetMesh& mesh)
     for (int t = 0; t < mesh.num_tet_slots(); ++t)
         if (!mesh.is_dead(t)) worst = std::min(worst, mesh.quality(t));
     return worst;
-}
-
-/// Spreads the 21 low bits of x to every third bit (Morton code helper).
-std::uint64_t spread_bits(std::uint64_t x)
-{
-    x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffull;
-    x = (x | x << 16) & 0x1f0000ff0000ffull;
-    x = (x | x << 8) & 0x100f00f00f00f00full;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-}
-
-/// Renumbers the vertices along a Morton (Z-order) curve of their positions and the tets by
-/// their smallest vertex, adjacency and every id list included. Why: refinement appends
-/// children and midpoints at the end of the arrays, so after a few passes the tets around a
-/// vertex lie all over memory; the final optimization walks vertex balls and edge shells
-/// millions of times and spends its time in cache misses. Ties keep the old order, so the
-/// result is deterministic. \pre the mesh is compact (no dead tets).
-void renumber_spatially(TetMesh& mesh)
-{
-    const int nv = mesh.num_vertices();
-    const int nt = mesh.num_tet_slots();
-    if (nv == 0 || nt == 0) return;
-    Vec3 low = mesh.points[0], high = mesh.points[0];
-    for (const Vec3& p : mesh.points)
-    {
-        low = low.cwiseMin(p);
-        high = high.cwiseMax(p);
-    }
-    const double extent = std::max((high - low).maxCoeff(), 1e-300);
-    const double scale = static_cast<double>((1 << 21) - 1) / extent;
-    std::vector<std::pair<std::uint64_t, int>> keyed(nv);
-    for (int v = 0; v < nv; ++v)
-    {
-        const Vec3 cell = (mesh.points[v] - low) * scale;
-        const std::uint64_t code = spread_bits(static_cast<std::uint64_t>(cell.x())) |
-                                   spread_bits(static_cast<std::uint64_t>(cell.y())) << 1 |
-                                   spread_bits(static_cast<std::uint64_t>(cell.z())) << 2;
-        keyed[v] = {code, v};
-    }
-    std::sort(keyed.begin(), keyed.end());
-    std::vector<int> old2new_verts(nv);
-    for (int k = 0; k < nv; ++k) old2new_verts[keyed[k].second] = k;
-
-    auto permute_vertices = [&](auto& values) {
-        auto copy = values;
-        for (int v = 0; v < nv; ++v) values[old2new_verts[v]] = copy[v];
-    };
-    permute_vertices(mesh.points);
-    permute_vertices(mesh.vertex_refs);
-    permute_vertices(mesh.vertex_classes);
-    for (auto& tv : mesh.tets)
-        for (int& v : tv) v = old2new_verts[v];
-    for (auto& tri : mesh.triangles)
-        for (int& v : tri) v = old2new_verts[v];
-    for (auto& e : mesh.edges)
-        for (int& v : e) v = old2new_verts[v];
-    for (int& v : mesh.corners) v = old2new_verts[v];
-    for (int& v : mesh.required_vertices) v = old2new_verts[v];
-
-    // tets by smallest (new) vertex id, a counting sort: stable, linear
-    std::vector<int> start(nv + 1, 0);
-    auto smallest = [&](int t) {
-        const auto& tv = mesh.tets[t];
-        return std::min(std::min(tv[0], tv[1]), std::min(tv[2], tv[3]));
-    };
-    for (int t = 0; t < nt; ++t) ++start[smallest(t) + 1];
-    for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
-    std::vector<int> old2new_tets(nt);
-    for (int t = 0; t < nt; ++t) old2new_tets[t] = start[smallest(t)]++;
-
-    auto permute_tets = [&](auto& values) {
-        auto copy = values;
-        for (int t = 0; t < nt; ++t) values[old2new_tets[t]] = copy[t];
-    };
-    permute_tets(mesh.tets);
-    permute_tets(mesh.tet_refs);
-    if (mesh.has_adjacency())
-    {
-        permute_tets(mesh.neighbors);
-        for (auto& row : mesh.neighbors)
-            for (int& n : row)
-                if (n != kNoTet) n = old2new_tets[n];
-    }
-    for (int& t : mesh.required_tets) t = old2new_tets[t];
 }
 
 std::string format_pass_row(const AdaptPassReport& p)

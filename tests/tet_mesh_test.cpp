@@ -1,8 +1,12 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "fixtures.h"
+#include "volume/check.h"
+#include "volume/reorder.h"
 #include "volume/tet_tables.h"
 
 using namespace hdimesh;
@@ -96,4 +100,42 @@ TEST_CASE("compact drops dead tets and unused vertices and returns its maps")
                 const auto& nb = m.neighbors[m.neighbors[t][f]];
                 CHECK(std::count(nb.begin(), nb.end(), t) == 1);
             }
+}
+
+TEST_CASE("spatial renumbering is a permutation that keeps the mesh, its adjacency and boundary")
+{
+    // A jittered 4x4x4 Kuhn box: box_mesh numbers vertices row by row, so the Morton order
+    // moves most of them; every tet, triangle and link must follow its vertices.
+    const TetMesh before = fixtures::box_mesh(4, 0.2, 7);
+    TetMesh m = before;
+    const CompactionMaps maps = renumber_spatially(m);
+    REQUIRE(maps.old2new_verts.size() == before.points.size());
+    REQUIRE(maps.old2new_tets.size() == before.tets.size());
+    std::vector<int> seen_verts(before.points.size(), 0), seen_tets(before.tets.size(), 0);
+    for (int v : maps.old2new_verts) ++seen_verts[static_cast<std::size_t>(v)];
+    for (int t : maps.old2new_tets) ++seen_tets[static_cast<std::size_t>(t)];
+    CHECK(std::count(seen_verts.begin(), seen_verts.end(), 1) == static_cast<long>(seen_verts.size()));
+    CHECK(std::count(seen_tets.begin(), seen_tets.end(), 1) == static_cast<long>(seen_tets.size()));
+    for (int v = 0; v < before.num_vertices(); ++v)
+    {
+        CHECK(m.points[maps.old2new_verts[v]] == before.points[v]);
+        CHECK(m.vertex_classes[maps.old2new_verts[v]] == before.vertex_classes[v]);
+    }
+    for (int t = 0; t < before.num_tet_slots(); ++t)
+    {
+        const int nt = maps.old2new_tets[t];
+        for (int k = 0; k < 4; ++k)
+        {
+            CHECK(m.tets[nt][k] == maps.old2new_verts[before.tets[t][k]]);
+            const int old_neighbor = before.neighbors[t][k];
+            CHECK(m.neighbors[nt][k] == (old_neighbor == kNoTet ? kNoTet : maps.old2new_tets[old_neighbor]));
+        }
+        CHECK(m.volume(nt) == before.volume(t));
+    }
+    for (std::size_t i = 0; i < before.triangles.size(); ++i)
+        for (int k = 0; k < 3; ++k) CHECK(m.triangles[i][k] == maps.old2new_verts[before.triangles[i][k]]);
+    CHECK(check_mesh(m).empty());
+    // tets are sorted by their smallest vertex
+    auto smallest = [&](int t) { return *std::min_element(m.tets[t].begin(), m.tets[t].end()); };
+    for (int t = 1; t < m.num_tet_slots(); ++t) CHECK(smallest(t - 1) <= smallest(t));
 }

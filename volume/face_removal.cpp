@@ -208,7 +208,7 @@ void grow_sandwich(const TetMesh& mesh, const OperatorContext& context, int t, i
 /// of stopping at edge k (the new tet over it) and removing the child across it (the worst of
 /// the child's own best edges); the seed's value is the worst of its three edges. Ties stop,
 /// so fewer faces are removed.
-void choose_faces(const TetMesh& mesh, MultiFacePlan& plan)
+void choose_faces(const TetMesh& mesh, const OperatorContext& context, MultiFacePlan& plan)
 {
     const auto& p = mesh.points;
     const Vec3& pa = p[plan.a];
@@ -268,8 +268,8 @@ void choose_faces(const TetMesh& mesh, MultiFacePlan& plan)
     }
     plan.worst_before = std::numeric_limits<double>::infinity();
     for (int i : plan.chosen)
-        plan.worst_before = std::min({plan.worst_before, mesh.quality(plan.faces[i].lower),
-                                      mesh.quality(plan.faces[i].upper)});
+        plan.worst_before = std::min({plan.worst_before, context.quality(mesh, plan.faces[i].lower),
+                                      context.quality(mesh, plan.faces[i].upper)});
 }
 
 MultiFacePlan plan_multi_face_removal(const TetMesh& mesh, const OperatorContext& context, int t,
@@ -278,7 +278,7 @@ MultiFacePlan plan_multi_face_removal(const TetMesh& mesh, const OperatorContext
     MultiFacePlan plan;
     grow_sandwich(mesh, context, t, local_face, options, plan);
     if (!plan.legal) return plan;
-    choose_faces(mesh, plan);
+    choose_faces(mesh, context, plan);
     // ab must be a new edge. Tested last, and only for a removal that would otherwise be
     // committed, because it walks the ball of a (three quarters of the operator's time when
     // tested first). It is a guard against round-off: if ab were an edge, the segment would

@@ -29,7 +29,7 @@ enum OperatorIndex
     kNumOperators = 5
 };
 
-const char* const kOperatorNames[kNumOperators] = {"edge removal", "face removal (2-3)",
+const char* const kOperatorNames[kNumOperators] = {"edge removal", "multi-face removal",
                                                    "smoothing", "collapse", "size smoothing"};
 
 using Clock = std::chrono::steady_clock;
@@ -356,7 +356,7 @@ private:
             for (int f = 0; f < 4; ++f)
             {
                 ++report_.operators[kFaceRemoval].attempts;
-                if (remove_face(mesh_, context_, t, f).removed)
+                if (remove_multi_face(mesh_, context_, t, f).removed)
                 {
                     ++report_.operators[kFaceRemoval].successes;
                     report_.operators[kFaceRemoval].seconds += seconds_since(start);

@@ -1,10 +1,10 @@
 #pragma once
 // The optimization driver (paper §3.7, §5): work lists of bad tets, each attacked by edge
-// removal, face removal (2-3) and smoothing of its free vertices; too-short edges collapsed
-// first in the final optimization. Later sweeps revisit only the tets an operator created or
-// reshaped and the stuck tets with a vertex in one of them, never the whole mesh. The
-// boundary (mesh.triangles and every non-interior vertex) never changes. Deterministic:
-// fixed traversal orders only.
+// removal, multi-face removal (the 2-3 flip and larger sandwiches) and smoothing of its free
+// vertices; too-short edges collapsed first in the final optimization. Later sweeps revisit
+// only the tets an operator created or reshaped and the stuck tets with a vertex in one of
+// them, never the whole mesh. The boundary (mesh.triangles and every non-interior vertex)
+// never changes. Deterministic: fixed traversal orders only.
 
 #include <string>
 #include <vector>
@@ -51,7 +51,7 @@ OptimizeReport improve_bad_elements(TetMesh& mesh, const SizeField& field,
 /// In detail, up to three rounds of: collapse too-short edges (shortest L/hth first; passes
 /// until none collapses), move the free ends of those left toward their target lengths,
 /// collapse again, then sweep the tets below target_quality (worst first) with edge removal,
-/// 2-3 flips and smoothing (at most max_sweeps sweeps). A round that changes no edge ends it.
+/// multi-face removal and smoothing (at most max_sweeps sweeps). A round that changes no edge ends it.
 OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field,
                              const OptimizeOptions& options = {});
 
