@@ -26,19 +26,7 @@ namespace
 
 const double kPi = 3.14159265358979323846;
 
-/// A mesh from points and tets listed positive, with its boundary triangles (ref 1).
-TetMesh mesh_from(const std::vector<Vec3>& points, const std::vector<TetVertices>& tets)
-{
-    TetMesh mesh;
-    for (const auto& p : points) mesh.add_vertex(p);
-    for (const auto& t : tets)
-    {
-        REQUIRE(signed_volume(points[t[0]], points[t[1]], points[t[2]], points[t[3]]) > 0);
-        mesh.add_tet(t);
-    }
-    fixtures::rebuild_boundary(mesh);
-    return mesh;
-}
+using fixtures::mesh_from_tets;
 
 /*  A sandwich: a polygon (vertices 0..n-1, counter-clockwise seen from above) triangulated by
     `faces` (counter-clockwise seen from above), the apex b above it and a below:
@@ -61,7 +49,7 @@ TetMesh sandwich_mesh(const std::vector<Vec3>& polygon, const std::vector<Triang
         tets.push_back({x, z, y, ia});
         tets.push_back({x, y, z, ia + 1});
     }
-    return mesh_from(points, tets);
+    return mesh_from_tets(points, tets);
 }
 
 /// The seed of face i of a sandwich: its lower tet, and the local face opposite a.
@@ -500,7 +488,7 @@ TEST_CASE("multi-face removal refused: the mesh stays bit for bit the same")
     {
         const double s = std::sqrt(3.0) / 2;
         TetMesh mesh =
-            mesh_from({{0, 0, -1.5}, {0, 0, 1.5}, {1, 0, 0}, {-0.5, s, 0}, {-0.5, -s, 0}},
+            mesh_from_tets({{0, 0, -1.5}, {0, 0, 1.5}, {1, 0, 0}, {-0.5, s, 0}, {-0.5, -s, 0}},
                       {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}});
         OperatorContext context(mesh, nullptr);
         const auto result = refuse(mesh, context, 0, local_index(mesh, 0, 3));  // opposite r1

@@ -5,8 +5,11 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
+#include "volume/geometry.h"
 #include "volume/tet_tables.h"
 
 namespace hdimesh::fixtures
@@ -30,6 +33,21 @@ constexpr std::array<std::array<int, 4>, 6> kKuhnTets = {{
 }};
 
 }  // namespace
+
+TetMesh mesh_from_tets(const std::vector<Vec3>& points, const std::vector<TetVertices>& tets)
+{
+    TetMesh mesh;
+    for (const Vec3& p : points) mesh.add_vertex(p);
+    for (std::size_t i = 0; i < tets.size(); ++i)
+    {
+        const TetVertices& t = tets[i];
+        if (!(signed_volume(points[t[0]], points[t[1]], points[t[2]], points[t[3]]) > 0))
+            throw std::invalid_argument("fixture tet " + std::to_string(i) + " is not positive");
+        mesh.add_tet(t);
+    }
+    rebuild_boundary(mesh);
+    return mesh;
+}
 
 void rebuild_boundary(TetMesh& mesh)
 {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "hdi/obj_reader.h"
 #include "volume/tet_mesh.h"
@@ -24,6 +25,10 @@ TetMesh kuhn_cube();
 /// [0,1]^3 as n^3 Kuhn cubes; interior vertices moved by up to jitter * (1/n) with a fixed
 /// seed (jitter < 0.25 keeps every tet positive).
 TetMesh box_mesh(int n, double jitter = 0.0, std::uint32_t seed = 1);
+
+/// A mesh from points and tets listed positive, with its adjacency and boundary triangles
+/// (ref 1). Throws std::invalid_argument naming the first tet that is not positive.
+TetMesh mesh_from_tets(const std::vector<Vec3>& points, const std::vector<TetVertices>& tets);
 
 /// Sets mesh.triangles from the faces without a neighbour (ref 1) and classifies vertices.
 void rebuild_boundary(TetMesh& mesh);

@@ -26,19 +26,7 @@ using namespace hdimesh;
 namespace
 {
 
-/// A mesh from points and tets listed positive, with its boundary triangles (ref 1).
-TetMesh mesh_from(const std::vector<Vec3>& points, const std::vector<TetVertices>& tets)
-{
-    TetMesh mesh;
-    for (const auto& p : points) mesh.add_vertex(p);
-    for (const auto& t : tets)
-    {
-        REQUIRE(signed_volume(points[t[0]], points[t[1]], points[t[2]], points[t[3]]) > 0);
-        mesh.add_tet(t);
-    }
-    fixtures::rebuild_boundary(mesh);
-    return mesh;
-}
+using fixtures::mesh_from_tets;
 
 void require_valid(const TetMesh& mesh)
 {
@@ -91,7 +79,7 @@ const double kPi = 3.14159265358979323846;
              a (0,0,-H)      r2 behind                                                       */
 TetMesh three_tet_shell(double height, double r0_z = 0.0)
 {
-    return mesh_from({{0, 0, -height},
+    return mesh_from_tets({{0, 0, -height},
                       {0, 0, height},
                       {1, 0, r0_z},
                       {-0.5, kRoot3 / 2, 0},
@@ -238,7 +226,7 @@ TEST_CASE("edge removal, ring of 6: the dynamic program finds the best of all tr
     }
     std::vector<TetVertices> tets;
     for (int i = 0; i < m; ++i) tets.push_back({0, 1, 2 + i, 2 + (i + 1) % m});
-    TetMesh mesh = mesh_from(points, tets);
+    TetMesh mesh = mesh_from_tets(points, tets);
     OperatorContext context(mesh, nullptr);
 
     // brute force: every triangulation of the convex ring polygon, by recursion on the chord
@@ -281,7 +269,7 @@ TEST_CASE("edge removal, ring of 6: the dynamic program finds the best of all tr
 TEST_CASE("2-3 flip: flat tet pair becomes three tets around the apex edge")
 {
     auto pair_mesh = [](double h, double q_shift) {
-        return mesh_from({{1, 0, 0}, {-0.5, kRoot3 / 2, 0}, {-0.5, -kRoot3 / 2, 0},
+        return mesh_from_tets({{1, 0, 0}, {-0.5, kRoot3 / 2, 0}, {-0.5, -kRoot3 / 2, 0},
                           {0, 0, -h}, {q_shift, 0, h}},
                          {{0, 1, 2, 4}, {0, 2, 1, 3}});
     };
@@ -439,7 +427,7 @@ TEST_CASE("collapse of a too-short edge: interior point near a corner merges int
         t[f] = 4;  // P replaces the vertex opposite face f: positive, as P is inside
         tets.push_back(t);
     }
-    TetMesh mesh = mesh_from(points, tets);
+    TetMesh mesh = mesh_from_tets(points, tets);
     REQUIRE(mesh.vertex_classes[4] == VertexClass::Interior);
     const ConstantSize field(1.0);
     REQUIRE(is_too_short((p - q[0]).norm(), 1.0));
