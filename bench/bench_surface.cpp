@@ -6,7 +6,7 @@
 // and the topology check (Euler characteristic, boundary loops) against the input.
 //
 //   bench_surface [--diagnose] [--uniform-only] [--floor F] [--hausd-fraction X] [--cone-defect DEG] [--budget F]
-//                [model.obj ...]
+//                [--iterations N] [model.obj ...]
 //   (default: the five models of issue 6 in data/; --floor / --hausd-fraction override
 //   SurfaceRemeshSettings::uniform_size_floor / uniform_hausd_fraction to explore them)
 //
@@ -215,6 +215,7 @@ int main(int argc, char** argv)
         else if (arg == "--floor" && i + 1 < argc) base.uniform_size_floor = std::stod(argv[++i]);
         else if (arg == "--hausd-fraction" && i + 1 < argc) base.uniform_hausd_fraction = std::stod(argv[++i]);
         else if (arg == "--budget" && i + 1 < argc) base.refine_short_edge_budget = std::stod(argv[++i]);
+        else if (arg == "--iterations" && i + 1 < argc) base.iterations = std::stoi(argv[++i]);
         else if (arg == "--cone-defect" && i + 1 < argc) base.features.cone_defect_deg = std::stod(argv[++i]);
         else models.push_back(arg);
     }
@@ -287,6 +288,7 @@ int main(int argc, char** argv)
             SurfaceMesh mesh = input;
             const double diagonal = bounding_box_diagonal(input);
             SurfaceRemeshSettings settings;
+            settings.iterations = base.iterations;
             settings.sizing.hmax = 2.0 * mean_edge_length(input);
             const auto start = std::chrono::steady_clock::now();
             remesh_surface(mesh, settings);

@@ -76,6 +76,15 @@ void ClosestPointTree::build()
     nodes_.clear();
     nodes_.reserve(2 * primitives_.size() / 4 + 2);
     if (!primitives_.empty()) build_node(0, static_cast<int>(primitives_.size()));
+    // The primitives in leaf order, so a leaf reads one contiguous block; position_ maps back.
+    std::vector<std::array<Vec3d, 3>> in_leaf_order(primitives_.size());
+    position_.resize(primitives_.size());
+    for (std::size_t i = 0; i < order_.size(); ++i)
+    {
+        in_leaf_order[i] = primitives_[order_[i]];
+        position_[order_[i]] = static_cast<int>(i);
+    }
+    primitives_ = std::move(in_leaf_order);
 }
 
 int ClosestPointTree::build_node(int first, int count)
@@ -115,17 +124,33 @@ int ClosestPointTree::build_node(int first, int count)
     return index;
 }
 
-Vec3d ClosestPointTree::closest_on(int primitive, const Vec3d& p) const
+Vec3d ClosestPointTree::closest_on(int position, const Vec3d& p) const
 {
-    const auto& t = primitives_[primitive];
+    const auto& t = primitives_[position];
     return segments_ ? closest_point_on_segment(p, t[0], t[1]) : closest_point_on_triangle(p, t[0], t[1], t[2]);
 }
 
 ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p) const
 {
+    return search(p, std::numeric_limits<double>::max());
+}
+
+ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p, int hint) const
+{
+    if (hint < 0 || hint >= static_cast<int>(primitives_.size())) return closest(p);
+    // Just above the hint's squared distance: the primitives closest to p all pass the bound, and
+    // the first of them in traversal order wins, as without a bound. The relative margin covers
+    // the rounding of box distances against point distances.
+    const double hint_d2 = (closest_on(position_[hint], p) - p).sqrnorm();
+    const Hit hit = search(p, hint_d2 * (1.0 + 1e-9) + std::numeric_limits<double>::min());
+    return hit.primitive >= 0 ? hit : closest(p);
+}
+
+ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) const
+{
     Hit best;
     if (nodes_.empty()) return best;
-    double best_d2 = std::numeric_limits<double>::max();
+    double best_d2 = bound_d2;
     auto box_d2 = [&](const Node& n) {
         double d2 = 0.0;
         for (int k = 0; k < 3; ++k)
@@ -136,19 +161,26 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p) const
         }
         return d2;
     };
-    // Depth-first, nearer child first, pruned by the best distance so far.
-    int stack[128];
+    // Depth-first, nearer child first, pruned by the best distance so far. A node's box distance
+    // is computed once, when its parent orders the children, and travels with it on the stack.
+    struct Pending
+    {
+        int node;
+        double d2;
+    };
+    Pending stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, box_d2(nodes_[0])};
     while (top > 0)
     {
-        const Node& n = nodes_[stack[--top]];
-        if (box_d2(n) >= best_d2) continue;
+        const Pending pending = stack[--top];
+        if (pending.d2 >= best_d2) continue;
+        const Node& n = nodes_[pending.node];
         if (n.left < 0)
         {
             for (int i = n.first; i < n.first + n.count; ++i)
             {
-                const Vec3d q = closest_on(order_[i], p);
+                const Vec3d q = closest_on(i, p);
                 const double d2 = (q - p).sqrnorm();
                 if (d2 < best_d2)
                 {
@@ -160,18 +192,15 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p) const
             continue;
         }
         const double dl = box_d2(nodes_[n.left]), dr = box_d2(nodes_[n.right]);
-        if (dl < dr)
-        {
-            stack[top++] = n.right;
-            stack[top++] = n.left;
-        }
-        else
-        {
-            stack[top++] = n.left;
-            stack[top++] = n.right;
-        }
+        // The farther child is pushed first (popped last); a child already beyond the best
+        // distance would be skipped when popped, so it is not pushed at all.
+        const Pending left{n.left, dl}, right{n.right, dr};
+        const Pending& near = dl < dr ? left : right;
+        const Pending& far = dl < dr ? right : left;
+        if (far.d2 < best_d2) stack[top++] = far;
+        if (near.d2 < best_d2) stack[top++] = near;
     }
-    best.distance = std::sqrt(best_d2);
+    if (best.primitive >= 0) best.distance = std::sqrt(best_d2);
     return best;
 }
 

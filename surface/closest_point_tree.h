@@ -33,6 +33,12 @@ public:
     static ClosestPointTree from_segments(const std::vector<std::array<Vec3d, 2>>& segments);
 
     Hit closest(const Vec3d& p) const;
+    /// The same hit as closest(p), found faster when `hint` (a primitive index, e.g. the one a
+    /// nearby point hit) is near p: its distance bounds the search from the start, so most nodes
+    /// are pruned without being opened. Ties resolve exactly as in closest(p) (the bound is set
+    /// just above the hint's distance, never at it), so the answer does not depend on the hint;
+    /// an out-of-range hint is ignored.
+    Hit closest(const Vec3d& p, int hint) const;
     bool empty() const { return primitives_.empty(); }
     std::size_t size() const { return primitives_.size(); }
 
@@ -45,11 +51,14 @@ private:
     };
     void build();
     int build_node(int first, int count);
-    Vec3d closest_on(int primitive, const Vec3d& p) const;
+    Vec3d closest_on(int position, const Vec3d& p) const;  // position in leaf order
+    // The nearest primitive among those closer than sqrt(bound_d2) (primitive -1 if none).
+    Hit search(const Vec3d& p, double bound_d2) const;
 
-    std::vector<std::array<Vec3d, 3>> primitives_;
+    std::vector<std::array<Vec3d, 3>> primitives_;  // in leaf order once built
     bool segments_ = false;
-    std::vector<int> order_;
+    std::vector<int> order_;     // leaf-order position -> index as given
+    std::vector<int> position_;  // index as given -> leaf-order position
     std::vector<Node> nodes_;
 };
 

@@ -37,25 +37,37 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
     SurfaceMesh& mesh = ctx.mesh;
     OpResult result;
     const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
-    if (!mesh.is_collapse_ok(h))
-        return result;  // Topology
+    // The layers from the cheapest rejection up (every layer must pass, so the order only decides
+    // the time and the reported layer): the class and the length bound are a few lookups and
+    // refuse most attempts of the remesh loop (a collapse that would make a neighbour too long);
+    // OpenMesh's topology test walks both rings; the distance to the model is a search.
     if (!class_allows_collapse(ctx, h))
     {
         result.status = OpStatus::Class;
         return result;
     }
+    const Vec3d p1 = mesh.point(v1);
+    if (max_new_length > 0.0)
+    {
+        for (auto w : mesh.vv_range(v0))
+            if (w != v1 && (mesh.point(w) - p1).norm() > max_new_length)
+            {
+                result.status = OpStatus::Quality;
+                return result;
+            }
+    }
+    if (!mesh.is_collapse_ok(h))
+        return result;  // Topology
 
     // Geometry and quality layers: the faces of v0 that survive, with v0 moved onto v1.
-    const Vec3d p1 = mesh.point(v1);
-    double old_min = 1.0, new_min = 1.0;
-    std::vector<Vec3d> centroids;  // of the changed faces, checked against the model last
-    for (auto f : mesh.vf_range(v0)) old_min = std::min(old_min, qe(face_points(mesh, f)));
-    if (require_quality_gain)
-        for (auto f : mesh.vf_range(v1)) old_min = std::min(old_min, qe(face_points(mesh, f)));
+    auto survives = [&](FaceHandle f) {
+        const auto fv = face_vertices(mesh, f);
+        return std::find(fv.begin(), fv.end(), v1) == fv.end();  // else removed by the collapse
+    };
+    double new_min = 1.0;
     for (auto f : mesh.vf_range(v0))
     {
-        const auto fv = face_vertices(mesh, f);
-        if (std::find(fv.begin(), fv.end(), v1) != fv.end()) continue;  // removed by the collapse
+        if (!survives(f)) continue;
         const auto before = face_points(mesh, f);
         const auto after = face_points_with(mesh, f, v0, p1);
         if (!turn_ok(normal(before), normal(after), ctx.limits.max_normal_turn_deg))
@@ -71,29 +83,30 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
             return result;
         }
         new_min = std::min(new_min, q);
-        if (ctx.limits.max_model_distance > 0.0) centroids.push_back((after[0] + after[1] + after[2]) / 3.0);
     }
-    if (max_new_length > 0.0)
-        for (auto w : mesh.vv_range(v0))
-            if (w != v1 && (mesh.point(w) - p1).norm() > max_new_length)
-            {
-                result.status = OpStatus::Quality;
-                return result;
-            }
-    if (require_quality_gain && !(new_min > old_min + 1e-9))
+    if (require_quality_gain)
     {
-        result.status = OpStatus::Quality;
-        return result;
-    }
-    for (const Vec3d& centroid : centroids)
-    {
-        const ProjectedPoint on_model = ctx.model.project(centroid, VertexClass::Smooth, kNoCurve);
-        if (on_model.ok && (on_model.point - centroid).norm() > ctx.limits.max_model_distance)
+        double old_min = 1.0;
+        for (const VertexHandle v : {v0, v1})
+            for (auto f : mesh.vf_range(v)) old_min = std::min(old_min, qe(face_points(mesh, f)));
+        if (!(new_min > old_min + 1e-9))
         {
-            result.status = OpStatus::Geometry;
+            result.status = OpStatus::Quality;
             return result;
         }
     }
+    // The centroids of the changed faces against the model, last: the expensive test.
+    if (ctx.limits.max_model_distance > 0.0)
+        for (auto f : mesh.vf_range(v0))
+        {
+            if (!survives(f)) continue;
+            const auto after = face_points_with(mesh, f, v0, p1);
+            if (!ctx.near_model((after[0] + after[1] + after[2]) / 3.0, v1, ctx.limits.max_model_distance))
+            {
+                result.status = OpStatus::Geometry;
+                return result;
+            }
+        }
     if (ctx.hooks.allow_collapse && !ctx.hooks.allow_collapse(mesh, h))
     {
         result.status = OpStatus::Hook;

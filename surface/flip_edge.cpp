@@ -23,7 +23,6 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
         result.status = OpStatus::Class;
         return result;
     }
-    if (!mesh.is_flip_ok(e)) return result;  // Topology
     //        c                 c
     //       / \               /|\      .
     //      a---b     ->      a | b
@@ -42,7 +41,37 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     const VertexHandle d = mesh.to_vertex_handle(mesh.next_halfedge_handle(h1));
     const Vec3d pa = mesh.point(a), pb = mesh.point(b), pc = mesh.point(c), pd = mesh.point(d);
 
+    // The layers from the cheapest rejection up (all must pass: the order only decides the time
+    // and the reported layer). Valence: four ring counts refuse most edges of a settled mesh;
+    // OpenMesh's topology test looks for the flipped edge in a ring. (c and d exist: a boundary
+    // edge is a feature.)
+    if (goal == FlipGoal::Valence)
+    {
+        const int va = static_cast<int>(mesh.valence(a)), vb = static_cast<int>(mesh.valence(b));
+        const int vc = static_cast<int>(mesh.valence(c)), vd = static_cast<int>(mesh.valence(d));
+        const int ta = target_valence(mesh, a), tb = target_valence(mesh, b);
+        const int tc = target_valence(mesh, c), td = target_valence(mesh, d);
+        const int before = std::abs(va - ta) + std::abs(vb - tb) + std::abs(vc - tc) + std::abs(vd - td);
+        const int after = std::abs(va - 1 - ta) + std::abs(vb - 1 - tb) + std::abs(vc + 1 - tc) + std::abs(vd + 1 - td);
+        if (after >= before)
+        {
+            result.status = OpStatus::Quality;
+            return result;
+        }
+    }
+    if (!mesh.is_flip_ok(e))
+    {
+        result.status = OpStatus::Topology;
+        return result;
+    }
     const std::array<Vec3d, 3> old0{pa, pb, pc}, old1{pb, pa, pd}, new0{pa, pd, pc}, new1{pd, pb, pc};
+    const double old_min = std::min(qe(old0), qe(old1)), new_min = std::min(qe(new0), qe(new1));
+    if (new_min < ctx.limits.min_new_quality ||
+        (goal == FlipGoal::Valence ? new_min < 0.5 * old_min : !(new_min > old_min + 1e-6)))
+    {
+        result.status = OpStatus::Quality;
+        return result;
+    }
     const Vec3d n_old0 = normal(old0), n_old1 = normal(old1), n_new0 = normal(new0), n_new1 = normal(new1);
     Vec3d n_mean = n_old0 + n_old1;
     if (n_mean.norm() > 0.0) n_mean.normalize();
@@ -55,36 +84,11 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
         result.status = OpStatus::Geometry;
         return result;
     }
-    const double old_min = std::min(qe(old0), qe(old1)), new_min = std::min(qe(new0), qe(new1));
-    if (new_min < ctx.limits.min_new_quality)
-    {
-        result.status = OpStatus::Quality;
-        return result;
-    }
-    if (goal == FlipGoal::Valence)
-    {
-        auto deviation = [&](VertexHandle v, int delta) {
-            return std::abs(static_cast<int>(mesh.valence(v)) + delta - target_valence(mesh, v));
-        };
-        const int before = deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0);
-        const int after = deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1);
-        if (after >= before || new_min < 0.5 * old_min)
-        {
-            result.status = OpStatus::Quality;
-            return result;
-        }
-    }
-    else if (!(new_min > old_min + 1e-6))
-    {
-        result.status = OpStatus::Quality;
-        return result;
-    }
     // Distance to the model last: it is the expensive test.
     if (ctx.limits.max_model_distance > 0.0)
     {
         const Vec3d mid = 0.5 * (pc + pd);
-        const ProjectedPoint on_model = ctx.model.project(mid, VertexClass::Smooth, kNoCurve);
-        if (on_model.ok && (on_model.point - mid).norm() > ctx.limits.max_model_distance)
+        if (!ctx.near_model(mid, c, ctx.limits.max_model_distance))
         {
             result.status = OpStatus::Geometry;
             return result;

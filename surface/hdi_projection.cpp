@@ -91,6 +91,7 @@ void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input, const 
         if (!out.ok) return out;
         const ProjectedPoint on_facets = facets->closest_on_input(out.point);
         out.ok = on_facets.ok && (on_facets.point - out.point).norm() <= max_deviation;
+        out.face = on_facets.face;
         return out;
     });
 }

@@ -81,6 +81,19 @@ struct OperatorContext
     int vertex_curve(VertexHandle v) const { return mesh.property(props.vertex_curve, v); }
     int edge_curve(EdgeHandle e) const { return mesh.property(props.edge_curve, e); }
     bool is_feature(EdgeHandle e) const { return edge_curve(e) != kNoCurve || mesh.is_boundary(e); }
+    /// The model face v was last projected onto (-1: unknown): the hint of projections near v.
+    int model_face(VertexHandle v) const { return mesh.property(props.vertex_model_face, v); }
+    /// Whether p (a point of a triangle at `near`) is within `distance` of the smooth model.
+    bool near_model(const Vec3d& p, VertexHandle near, double distance) const
+    {
+        return model.near_model(p, distance, model_face(near));
+    }
+    /// Distance from p (a point of a triangle at `near`) to the smooth model, searched from its face.
+    double distance_to_model(const Vec3d& p, VertexHandle near) const
+    {
+        const ProjectedPoint on_model = model.project_near(p, VertexClass::Smooth, kNoCurve, model_face(near));
+        return on_model.ok ? (on_model.point - p).norm() : 0.0;
+    }
 };
 
 /// Splits e at its midpoint projected onto the model (onto the edge's curve for a feature

@@ -15,6 +15,10 @@ struct ProjectedPoint
     Vec3d normal{0, 0, 0};   // unit surface normal at point (a ridge: either side's, or their mean)
     double k1 = 0.0, k2 = 0.0;  // principal curvatures where known (0 otherwise)
     bool ok = false;
+    /// Where the model knows it: the index of the model face at (for a curve point: beside) the
+    /// point, -1 otherwise. Opaque to the caller, who hands it back as the hint of a later query
+    /// near the point (project_near); it never changes a result, only the time to find it.
+    int face = -1;
 };
 
 class Projector
@@ -24,6 +28,22 @@ public:
     /// Projects p onto the model: a smooth vertex onto the surface, a ridge or boundary vertex
     /// onto its feature curve `curve`, a corner stays where it is.
     virtual ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const = 0;
+    /// The same as project(), told a model face near p (the `face` of an earlier projection of a
+    /// neighbouring point, or -1): a model that searches for p may start there. The result must
+    /// be the one project() gives; models without a search ignore the hint.
+    virtual ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const
+    {
+        static_cast<void>(face_hint);
+        return project(p, cls, curve);
+    }
+    /// Whether p is within `distance` of the smooth surface (as measured by project_near onto
+    /// it; a failed projection counts as within). A model may answer without the full search
+    /// when the hint face alone is near enough: the answer is the same.
+    virtual bool near_model(const Vec3d& p, double distance, int face_hint) const
+    {
+        const ProjectedPoint on_model = project_near(p, VertexClass::Smooth, kNoCurve, face_hint);
+        return !on_model.ok || (on_model.point - p).norm() <= distance;
+    }
 };
 
 /// The sphere of the given centre and radius (every class is projected radially): exact

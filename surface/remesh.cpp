@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "surface/closest_point_tree.h"
@@ -104,7 +105,12 @@ private:
                      short_edges, long_edges);
     }
 
-    void set_size(VertexHandle v) { mesh_.property(ctx_.props.vertex_size, v) = options_.size(mesh_.point(v)); }
+    void set_size(VertexHandle v)
+    {
+        const Vec3d& p = mesh_.point(v);
+        mesh_.property(ctx_.props.vertex_size, v) =
+            options_.size_near ? options_.size_near(p, ctx_.model_face(v)) : options_.size(p);
+    }
 
     void update_sizes()
     {
@@ -194,12 +200,6 @@ private:
         }
     }
 
-    double distance_to_model(const Vec3d& p) const
-    {
-        const ProjectedPoint on_model = ctx_.model.project(p, VertexClass::Smooth, kNoCurve);
-        return on_model.ok ? (on_model.point - p).norm() : 0.0;
-    }
-
     // The size an edge is judged against for the short-edge budget of the refinement.
     double reference_size(EdgeHandle e) const
     {
@@ -268,8 +268,11 @@ private:
                 const auto fv = detail::face_vertices(mesh_, f);
                 if (changed({fv[0], fv[1], fv[2]}))
                 {
-                    const double d = distance_to_model((p[0] + p[1] + p[2]) / 3.0);
-                    if (d > options_.tolerance) mark_longest(f, d, 0);
+                    // Near enough is decided by the hint face alone, mostly; the distance of a far
+                    // one ranks it.
+                    const Vec3d centroid = (p[0] + p[1] + p[2]) / 3.0;
+                    if (!ctx_.near_model(centroid, fv[0], options_.tolerance))
+                        mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
                 }
                 triangles.push_back(p);
                 face_of.push_back(f);
@@ -280,15 +283,26 @@ private:
                 const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
                 if (!changed({a, b})) continue;
                 const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
-                const double d = distance_to_model(mid);
-                if (d > options_.tolerance) edge_error[e.idx()] = std::max(edge_error[e.idx()], d);
+                if (ctx_.near_model(mid, a, options_.tolerance)) continue;
+                edge_error[e.idx()] = std::max(edge_error[e.idx()], ctx_.distance_to_model(mid, a));
             }
             split_vertices.clear();
-            const ClosestPointTree output = ClosestPointTree::from_triangles(std::move(triangles));
+            const ClosestPointTree output = ClosestPointTree::from_triangles(triangles);
             std::vector<std::size_t> still_far;
+            // Consecutive model points are mostly neighbours: the last hit is the hint of the
+            // next search, and a point within the tolerance of it is near without a search (the
+            // closest triangle can only be nearer; the same arithmetic as the search's).
+            int previous_hit = -1;
             for (const std::size_t i : far_points)
             {
-                const auto hit = output.closest(options_.model_points[i]);
+                const Vec3d& point = options_.model_points[i];
+                if (previous_hit >= 0)
+                {
+                    const auto& t = triangles[previous_hit];
+                    if ((closest_point_on_triangle(point, t[0], t[1], t[2]) - point).norm() <= options_.tolerance) continue;
+                }
+                const auto hit = output.closest(point, previous_hit);
+                previous_hit = hit.primitive;
                 const bool smooth = options_.model_point_smooth.empty() || options_.model_point_smooth[i];
                 if (hit.primitive < 0 || !(hit.distance > options_.tolerance)) continue;
                 mark_longest(face_of[hit.primitive], hit.distance, smooth ? i + 1 : 0);
@@ -404,9 +418,45 @@ private:
 
     std::size_t flip_edges(FlipGoal goal)
     {
+        // Valence flips: on a settled mesh most edges would not lower the valence deviation.
+        // A valence table kept up to date over the pass refuses them without circulating four
+        // rings per edge; try_flip repeats the test on the others and decides.
+        std::vector<int> valence;
+        if (goal == FlipGoal::Valence)
+        {
+            valence.resize(mesh_.n_vertices());
+            for (auto v : mesh_.vertices()) valence[v.idx()] = static_cast<int>(mesh_.valence(v));
+        }
+        auto deviation = [&](VertexHandle v, int delta) {
+            return std::abs(valence[v.idx()] + delta - (mesh_.is_boundary(v) ? 4 : 6));
+        };
         std::size_t done = 0;
         for (auto e : live_edges())
-            if (!mesh_.status(e).deleted() && try_flip(ctx_, e, goal).done()) ++done;
+        {
+            if (mesh_.status(e).deleted()) continue;
+            VertexHandle a, b, c, d;
+            if (goal == FlipGoal::Valence)
+            {
+                if (mesh_.is_boundary(e)) continue;  // a feature: never flipped
+                const HalfedgeHandle h0 = mesh_.halfedge_handle(e, 0), h1 = mesh_.halfedge_handle(e, 1);
+                a = mesh_.from_vertex_handle(h0);
+                b = mesh_.to_vertex_handle(h0);
+                c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
+                d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
+                if (deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1) >=
+                    deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0))
+                    continue;
+            }
+            if (!try_flip(ctx_, e, goal).done()) continue;
+            ++done;
+            if (goal == FlipGoal::Valence)
+            {
+                --valence[a.idx()];
+                --valence[b.idx()];
+                ++valence[c.idx()];
+                ++valence[d.idx()];
+            }
+        }
         report_.flips += done;
         return done;
     }
@@ -586,6 +636,18 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
 
     RemeshOptions options;
     options.size = [&sizes](const Vec3d& p) { return sizes.at(p); };
+    options.size_near = [&sizes](const Vec3d& p, int face_hint) { return sizes.at(p, face_hint); };
+    {
+        // The remeshed surface starts as the model's own input: each vertex's first hint is a face
+        // of its own (the model numbers the input faces in iteration order).
+        const SurfaceProperties props(mesh);
+        int model_face = 0;
+        for (auto f : mesh.faces())
+        {
+            for (auto v : mesh.fv_range(f)) mesh.property(props.vertex_model_face, v) = model_face;
+            ++model_face;
+        }
+    }
     options.iterations = settings.iterations;
     options.verbosity = settings.verbosity;
     if (settings.max_model_distance >= 0.0) options.max_model_distance = settings.max_model_distance;

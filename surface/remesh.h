@@ -30,6 +30,9 @@ struct RemeshOptions
     /// Target edge length at a point (required). Edges longer than 4/3 of it are split, shorter
     /// than 4/5 collapsed, which keeps Qt = min(h/L, L/h) ≥ 0.75 where the loop converges.
     std::function<double(const Vec3d&)> size;
+    /// Optional: the same size told a model face near the point (ProjectedPoint::face, e.g.
+    /// SizeMap::at): used instead of `size` when given, for the look-ups of a size on the model.
+    std::function<double(const Vec3d&, int face_hint)> size_near;
     int iterations = 10;
     int polish_passes = 3;  // after the iterations: quality flips + smart shifts over everything
     /// Operators refuse a change whose new triangles stray farther from the model (≤ 0: none).

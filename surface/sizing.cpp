@@ -29,7 +29,10 @@ SizeMap SizeMap::per_input_vertex(const SurfaceModel& model, std::vector<double>
     return map;
 }
 
-double SizeMap::at(const Vec3d& p) const { return model_ ? model_->interpolate(p, sizes_) : uniform_; }
+double SizeMap::at(const Vec3d& p, int face_hint) const
+{
+    return model_ ? model_->interpolate(p, sizes_, face_hint) : uniform_;
+}
 
 double mean_edge_length(const SurfaceMesh& mesh)
 {

@@ -30,7 +30,8 @@ class SizeMap
 public:
     static SizeMap uniform(double size);
     static SizeMap per_input_vertex(const SurfaceModel& model, std::vector<double> sizes);
-    double at(const Vec3d& p) const;
+    /// `face_hint`: an input face near p (SurfaceModel::project_near): the same size, found faster.
+    double at(const Vec3d& p, int face_hint = -1) const;
     bool is_uniform() const { return model_ == nullptr; }
     double uniform_size() const { return uniform_; }
     const std::vector<double>& vertex_sizes() const { return sizes_; }

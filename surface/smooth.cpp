@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -50,20 +51,45 @@ bool optimal_point_curve(const OperatorContext& ctx, VertexHandle v, Vec3d& opti
     return true;
 }
 
-// Worst Qe of the ball of v with v at p; -1 if a triangle turns too much or degenerates.
-double ball_quality(const OperatorContext& ctx, VertexHandle v, const Vec3d& p)
+// The ball of v collected once per shift (the trial positions only move v): each face's
+// points in face order, where v is among them, and its normal before the move.
+struct Ball
 {
-    using namespace detail;
-    double worst = 1.0;
-    for (auto f : ctx.mesh.vf_range(v))
+    struct Face
     {
-        const auto before = face_points(ctx.mesh, f);
-        const auto after = face_points_with(ctx.mesh, f, v, p);
-        if (!turn_ok(normal(before), normal(after), ctx.limits.max_normal_turn_deg)) return -1.0;
-        worst = std::min(worst, qe(after));
+        std::array<Vec3d, 3> points;
+        int moved = 0;  // index of v in points
+        Vec3d normal;
+    };
+    std::vector<Face> faces;
+
+    Ball(const SurfaceMesh& mesh, VertexHandle v)
+    {
+        for (auto f : mesh.vf_range(v))
+        {
+            const auto fv = detail::face_vertices(mesh, f);
+            Face face;
+            face.points = detail::face_points(mesh, f);
+            face.moved = fv[0] == v ? 0 : (fv[1] == v ? 1 : 2);
+            face.normal = detail::normal(face.points);
+            faces.push_back(face);
+        }
     }
-    return worst;
-}
+
+    // Worst Qe with v at p; -1 if a triangle turns too much or degenerates.
+    double quality(const Vec3d& p, double max_turn_deg) const
+    {
+        double worst = 1.0;
+        for (const Face& face : faces)
+        {
+            std::array<Vec3d, 3> after = face.points;
+            after[face.moved] = p;
+            if (!detail::turn_ok(face.normal, detail::normal(after), max_turn_deg)) return -1.0;
+            worst = std::min(worst, detail::qe(after));
+        }
+        return worst;
+    }
+};
 
 }  // namespace
 
@@ -83,15 +109,16 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         return result;
     }
     const Vec3d p = mesh.point(v);
+    const Ball ball(mesh, v);
     Vec3d optimal;
     Vec3d n(0, 0, 0);
     if (cls == VertexClass::Smooth)
     {
         // The tangent plane of the ball (its area-weighted normal): the vertex is on the model
         // already, so this is the plane of the local fit without another projection.
-        for (auto f : mesh.vf_range(v))
+        for (const Ball::Face& face : ball.faces)
         {
-            const auto q = detail::face_points(mesh, f);
+            const auto& q = face.points;
             n += OpenMesh::cross(q[1] - q[0], q[2] - q[0]);
         }
         if (!(n.norm() > 0.0)) return result;
@@ -108,15 +135,15 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         return result;
     }
 
-    const double old_quality = ball_quality(ctx, v, p);
+    const double old_quality = ball.quality(p, ctx.limits.max_normal_turn_deg);
     for (double step = options.step; step > options.step / 5.0; step *= 0.5)
     {
         Vec3d target = p + step * (optimal - p);
         if (cls == VertexClass::Smooth) target -= OpenMesh::dot(target - p, n) * n;  // stay in the plane
-        const ProjectedPoint projected = ctx.model.project(target, cls, ctx.vertex_curve(v));
+        const ProjectedPoint projected = ctx.model.project_near(target, cls, ctx.vertex_curve(v), ctx.model_face(v));
         if (!projected.ok) continue;
         const Vec3d q = projected.point;
-        const double new_quality = ball_quality(ctx, v, q);
+        const double new_quality = ball.quality(q, ctx.limits.max_normal_turn_deg);
         if (new_quality < ctx.limits.min_new_quality && new_quality < old_quality) continue;
         if (new_quality < 0.0) continue;
         if (options.smart && new_quality < old_quality - 1e-12) continue;
@@ -126,6 +153,7 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
             return result;
         }
         mesh.set_point(v, q);
+        if (projected.face >= 0) mesh.property(ctx.props.vertex_model_face, v) = projected.face;
         if (ctx.hooks.on_move) ctx.hooks.on_move(mesh, v, p);
         result.status = OpStatus::Done;
         result.vertex = v;

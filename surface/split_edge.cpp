@@ -26,11 +26,16 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
     // sheet or curve) and the new triangles must not turn.
     const Vec3d mid = 0.5 * (pa + pb);
     Vec3d p = mid;
+    int model_face = ctx.model_face(a);
     if (at && cls == VertexClass::Smooth) p = *at;
     else
     {
-        const ProjectedPoint projected = ctx.model.project(mid, cls, curve);
-        if (projected.ok) p = projected.point;
+        const ProjectedPoint projected = ctx.model.project_near(mid, cls, curve, model_face);
+        if (projected.ok)
+        {
+            p = projected.point;
+            if (projected.face >= 0) model_face = projected.face;
+        }
     }
     if ((p - mid).norm() > 0.5 * length)
     {
@@ -75,6 +80,7 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
     const VertexHandle v = mesh.add_vertex(p);
     mesh.property(ctx.props.vertex_class, v) = cls;
     mesh.property(ctx.props.vertex_curve, v) = cls == VertexClass::Smooth ? kNoCurve : curve;
+    mesh.property(ctx.props.vertex_model_face, v) = model_face;
     mesh.property(ctx.props.vertex_size, v) =
         0.5 * (mesh.property(ctx.props.vertex_size, a) + mesh.property(ctx.props.vertex_size, b));
     mesh.split(e, v);

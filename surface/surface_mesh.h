@@ -58,6 +58,9 @@ constexpr const char* vertex_curve = "hdimesh:v:curve";  // int, feature curve o
 constexpr const char* vertex_size = "hdimesh:v:size";    // double, target edge length at the vertex
 constexpr const char* edge_curve = "hdimesh:e:curve";    // int, feature curve of a ridge/boundary edge
 constexpr const char* face_ref = "hdimesh:f:ref";        // int, surface reference (material/patch)
+// int, the model face a vertex was last projected onto (ProjectedPoint::face; -1: none): the
+// hint of the next projection near it. Only speed depends on it, never a result.
+constexpr const char* vertex_model_face = "hdimesh:v:model_face";
 }  // namespace property_names
 
 /// Handles of the shared properties, created on the mesh if missing (smooth, no curve, size 0,
@@ -69,6 +72,7 @@ struct SurfaceProperties
     OpenMesh::VPropHandleT<double> vertex_size;
     OpenMesh::EPropHandleT<int> edge_curve;
     OpenMesh::FPropHandleT<int> face_ref;
+    OpenMesh::VPropHandleT<int> vertex_model_face;
 
     explicit SurfaceProperties(SurfaceMesh& mesh)
     {
@@ -96,6 +100,11 @@ struct SurfaceProperties
         {
             mesh.add_property(face_ref, property_names::face_ref);
             for (auto f : mesh.faces()) mesh.property(face_ref, f) = 0;
+        }
+        if (!mesh.get_property_handle(vertex_model_face, property_names::vertex_model_face))
+        {
+            mesh.add_property(vertex_model_face, property_names::vertex_model_face);
+            for (auto v : mesh.vertices()) mesh.property(vertex_model_face, v) = -1;
         }
     }
 };

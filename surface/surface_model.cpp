@@ -1,8 +1,9 @@
 #include "surface/surface_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -19,13 +20,16 @@ Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
 // of the vertex normal; 0 when the ring is too small to fit.
 double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& normal)
 {
-    std::set<int> ring;
+    // The 2-ring in increasing index order (the row order of the fit), without v.
+    std::vector<int> ring;
     for (auto w : mesh.vv_range(v))
     {
-        ring.insert(w.idx());
-        for (auto u : mesh.vv_range(w)) ring.insert(u.idx());
+        ring.push_back(w.idx());
+        for (auto u : mesh.vv_range(w)) ring.push_back(u.idx());
     }
-    ring.erase(v.idx());
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    ring.erase(std::remove(ring.begin(), ring.end(), v.idx()), ring.end());
     if (ring.size() < 6 || !(normal.norm() > 0.0)) return 0.0;
     const Eigen::Vector3d n = to_eigen(normal).normalized();
     const Eigen::Vector3d seed = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
@@ -71,6 +75,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     std::vector<std::array<Vec3d, 3>> tris;
     tris.reserve(input.n_faces());
     std::vector<Vec3d> face_normal_by_index(input.n_faces());
+    std::vector<int> model_face_by_index(input.n_faces(), -1);  // face handle index -> index here
     for (auto f : input.faces())
     {
         auto fv = input.cfv_iter(f);
@@ -81,13 +86,28 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         face_vertices_.push_back({i0, i1, i2});
         face_normals_.push_back(triangle_normal(a, b, c));
         face_normal_by_index[f.idx()] = face_normals_.back();
+        model_face_by_index[f.idx()] = static_cast<int>(face_vertices_.size()) - 1;
     }
     triangles_ = ClosestPointTree::from_triangles(std::move(tris));
+    face_neighbours_.reserve(face_vertices_.size());
+    for (auto f : input.faces())
+    {
+        std::array<int, 3> across{-1, -1, -1};
+        int k = 0;
+        for (auto h : input.fh_range(f))
+        {
+            const auto g = input.face_handle(input.opposite_halfedge_handle(h));
+            if (k < 3 && g.is_valid()) across[k] = model_face_by_index[g.idx()];
+            ++k;
+        }
+        face_neighbours_.push_back(across);
+    }
 
     int curve_count = 0;
     for (auto e : input.edges()) curve_count = std::max(curve_count, curve_of(e) + 1);
     std::vector<std::vector<std::array<Vec3d, 2>>> segments(curve_count);
     curve_normals_.assign(curve_count, {});
+    curve_faces_.assign(curve_count, {});
     for (auto e : input.edges())
     {
         const int c = curve_of(e);
@@ -95,11 +115,15 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         const auto h = input.halfedge_handle(e, 0);
         segments[c].push_back({input.point(input.from_vertex_handle(h)), input.point(input.to_vertex_handle(h))});
         Vec3d n(0, 0, 0);
+        int beside = -1;
         for (int i = 0; i < 2; ++i)
         {
             const auto f = input.face_handle(input.halfedge_handle(e, i));
-            if (f.is_valid()) n += face_normal_by_index[f.idx()];
+            if (!f.is_valid()) continue;
+            n += face_normal_by_index[f.idx()];
+            if (beside < 0) beside = model_face_by_index[f.idx()];
         }
+        curve_faces_[c].push_back(beside);
         const double len = n.norm();
         curve_normals_[c].push_back(len > 0 ? n / len : n);
     }
@@ -115,27 +139,45 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     }
 }
 
-ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p) const
+ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint) const
 {
     ProjectedPoint out;
-    const auto hit = triangles_.closest(p);
+    // (A walk from the hint to a tighter bound was measured: no faster, the descent dominates.)
+    const auto hit = triangles_.closest(p, face_hint);
     if (hit.primitive < 0) return out;
     out.point = hit.point;
     out.normal = face_normals_[hit.primitive];
+    out.face = hit.primitive;
     out.ok = true;
     return out;
 }
 
-double SurfaceModel::interpolate(const Vec3d& p, const std::vector<double>& values) const
+double SurfaceModel::interpolate(const Vec3d& p, const std::vector<double>& values, int face_hint) const
 {
-    const auto hit = triangles_.closest(p);
-    if (hit.primitive < 0) return 0.0;
-    const auto& fv = face_vertices_[hit.primitive];
+    int face = -1;
+    Vec3d q;
+    // Sizes are looked up at points just projected onto the hint face: a point within rounding of
+    // that face is taken on it without a search. Another face as near can only share its edge or
+    // corner (or touch it within rounding), where the piecewise-linear field is continuous.
+    if (face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
+    {
+        const auto& fv = face_vertices_[face_hint];
+        q = closest_point_on_triangle(p, points_[fv[0]], points_[fv[1]], points_[fv[2]]);
+        const double on_face = 1e-12 * diagonal_;
+        if ((q - p).sqrnorm() <= on_face * on_face) face = face_hint;
+    }
+    if (face < 0)
+    {
+        const auto hit = triangles_.closest(p, face_hint);
+        if (hit.primitive < 0) return 0.0;
+        face = hit.primitive;
+        q = hit.point;
+    }
+    const auto& fv = face_vertices_[face];
     const Vec3d a = points_[fv[0]], b = points_[fv[1]], c = points_[fv[2]];
-    // Barycentric coordinates of the hit point by sub-areas.
+    // Barycentric coordinates of the closest point by sub-areas.
     const double area = OpenMesh::cross(b - a, c - a).norm();
     if (!(area > 0.0)) return (values[fv[0]] + values[fv[1]] + values[fv[2]]) / 3.0;
-    const Vec3d q = hit.point;
     const double wa = OpenMesh::cross(b - q, c - q).norm() / area;
     const double wb = OpenMesh::cross(c - q, a - q).norm() / area;
     const double wc = std::max(0.0, 1.0 - wa - wb);
@@ -151,11 +193,57 @@ double SurfaceModel::distance_to_curve(const Vec3d& p, int curve) const
 
 ProjectedPoint SurfaceModel::project(const Vec3d& p, VertexClass cls, int curve) const
 {
+    return project_near(p, cls, curve, -1);
+}
+
+double SurfaceModel::face_distance2(const Vec3d& p, int face) const
+{
+    const auto& fv = face_vertices_[face];
+    return (closest_point_on_triangle(p, points_[fv[0]], points_[fv[1]], points_[fv[2]]) - p).sqrnorm();
+}
+
+int SurfaceModel::walk_toward(const Vec3d& p, int face, double stop_d2, double& d2) const
+{
+    // The hint is the face under a vertex near p; on a fine input p's own foot is a few faces
+    // away: step to the nearest neighbour while it is nearer.
+    constexpr int kMaxSteps = 8;
+    d2 = face_distance2(p, face);
+    for (int step = 0; step < kMaxSteps && !(d2 <= stop_d2); ++step)
+    {
+        int next = -1;
+        double next_d2 = d2;
+        for (const int g : face_neighbours_[face])
+            if (g >= 0)
+            {
+                const double g_d2 = face_distance2(p, g);
+                if (g_d2 < next_d2) next = g, next_d2 = g_d2;
+            }
+        if (next < 0) break;
+        face = next;
+        d2 = next_d2;
+    }
+    return face;
+}
+
+bool SurfaceModel::near_model(const Vec3d& p, double distance, int face_hint) const
+{
+    if (!smooth_ && face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
+    {
+        double d2 = 0.0;
+        face_hint = walk_toward(p, face_hint, distance * distance, d2);
+        // The same arithmetic as the search's distance: a face found within is a proof.
+        if (std::sqrt(d2) <= distance) return true;
+    }
+    return Projector::near_model(p, distance, face_hint);
+}
+
+ProjectedPoint SurfaceModel::project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const
+{
     switch (cls)
     {
     case VertexClass::Corner:
     {
-        ProjectedPoint out = closest_on_input(p);
+        ProjectedPoint out = closest_on_input(p, face_hint);
         out.point = p;
         return out;
     }
@@ -167,6 +255,7 @@ ProjectedPoint SurfaceModel::project(const Vec3d& p, VertexClass cls, int curve)
         ProjectedPoint out;
         out.point = hit.point;
         out.normal = curve_normals_[curve][hit.primitive];
+        out.face = curve_faces_[curve][hit.primitive];
         out.ok = true;
         return out;
     }
@@ -176,7 +265,7 @@ ProjectedPoint SurfaceModel::project(const Vec3d& p, VertexClass cls, int curve)
             ProjectedPoint out = smooth_(p);
             if (out.ok) return out;
         }
-        return closest_on_input(p);
+        return closest_on_input(p, face_hint);
     }
     return {};
 }

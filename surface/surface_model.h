@@ -28,9 +28,17 @@ public:
     void set_smooth_projection(SmoothProjection projection) { smooth_ = std::move(projection); }
 
     ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const override;
+    /// project() with the search over the input triangles started at `face_hint` (an input face
+    /// index, e.g. the `face` of the last projection of a neighbouring point): the same result.
+    ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const override;
+    /// Without a smooth projection: true at once when a face within `distance` is found by a
+    /// short walk from the hint face over its neighbours (the closest face can only be nearer),
+    /// else the search decides.
+    bool near_model(const Vec3d& p, double distance, int face_hint) const override;
 
-    /// Closest point on the input triangles, with that triangle's normal.
-    ProjectedPoint closest_on_input(const Vec3d& p) const;
+    /// Closest point on the input triangles, with that triangle's normal and index (`face`);
+    /// `face_hint` as in project_near.
+    ProjectedPoint closest_on_input(const Vec3d& p, int face_hint = -1) const;
     /// Distance from p to the input feature curve `curve` (infinity if there is none).
     double distance_to_curve(const Vec3d& p, int curve) const;
 
@@ -39,18 +47,29 @@ public:
     const std::vector<double>& input_curvature() const { return curvature_; }
     const std::vector<Vec3d>& input_points() const { return points_; }
     /// A per-input-vertex value at p: barycentric interpolation on the closest input triangle.
-    double interpolate(const Vec3d& p, const std::vector<double>& per_input_vertex) const;
+    /// `face_hint` as in project_near; besides, a p within 1e-12·diagonal of the hint face is
+    /// taken on it without a search (a size looked up right after a projection onto that face):
+    /// the value then differs from the search's by rounding only.
+    double interpolate(const Vec3d& p, const std::vector<double>& per_input_vertex, int face_hint = -1) const;
     double diagonal() const { return diagonal_; }
     std::size_t curve_count() const { return curves_.size(); }
 
 private:
+    // Squared distance from p to input face `face`.
+    double face_distance2(const Vec3d& p, int face) const;
+    // From `face` over edge neighbours to a face nearer to p, until one within sqrt(stop_d2),
+    // a local minimum or a few steps; d2: its squared distance. Only a hint: not a search.
+    int walk_toward(const Vec3d& p, int face, double stop_d2, double& d2) const;
+
     std::vector<Vec3d> points_;
     std::vector<Vec3d> face_normals_;
     std::vector<std::array<int, 3>> face_vertices_;
+    std::vector<std::array<int, 3>> face_neighbours_;  // across each edge (-1: open boundary)
     std::vector<double> curvature_;
     ClosestPointTree triangles_;
     std::vector<ClosestPointTree> curves_;
     std::vector<std::vector<Vec3d>> curve_normals_;  // per segment: mean of the adjacent face normals
+    std::vector<std::vector<int>> curve_faces_;      // per segment: an adjacent input face (a hint)
     SmoothProjection smooth_;
     double diagonal_ = 0.0;
 };

@@ -135,8 +135,7 @@ OpResult try_remove_vertex(OperatorContext& ctx, VertexHandle v)
         for (const auto& t : hole.triangles)
         {
             const Vec3d centroid = (mesh.point(ring[t[0]]) + mesh.point(ring[t[1]]) + mesh.point(ring[t[2]])) / 3.0;
-            const ProjectedPoint on_model = ctx.model.project(centroid, VertexClass::Smooth, kNoCurve);
-            if (on_model.ok && (on_model.point - centroid).norm() > ctx.limits.max_model_distance)
+            if (!ctx.near_model(centroid, ring[t[0]], ctx.limits.max_model_distance))
             {
                 result.status = OpStatus::Geometry;
                 return result;

@@ -1,0 +1,280 @@
+// The hinted queries of the surface model: a closest-point search told a nearby primitive, a
+// projection told a nearby model face, a size looked up on the face just projected onto, a
+// "within this distance of the model?" decided by a walk from the hint face. The hint buys time
+// only: every answer must be the one of the search without it, whatever the hint (right, a
+// neighbour, far away, out of range, stale), including the ties of points on shared edges and
+// vertices. Checked on a bumpy grid built here against brute force.
+//
+//   z = 0.3·sin(0.9 x)·cos(0.7 y) over the n×n grid, each square cut by one diagonal:
+//
+//     (0,n) +---+---+ ... +
+//           | / | / |     |
+//           +---+---+ ... +
+//           | / | / |     |
+//     (0,0) +---+---+ ... + (n,0)
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "surface/closest_point_tree.h"
+#include "surface/local_ops.h"
+#include "surface/surface_model.h"
+
+using namespace hdimesh::surface;
+
+namespace
+{
+
+double height(double x, double y) { return 0.3 * std::sin(0.9 * x) * std::cos(0.7 * y); }
+
+SurfaceMesh bumpy_grid(int n)
+{
+    SurfaceMesh mesh;
+    std::vector<VertexHandle> v;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) v.push_back(mesh.add_vertex(Vec3d(i, j, height(i, j))));
+    auto at = [&](int i, int j) { return v[j * (n + 1) + i]; };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+            mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            mesh.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    SurfaceProperties props(mesh);
+    for (auto x : mesh.vertices())
+    {
+        mesh.property(props.vertex_class, x) = VertexClass::Smooth;
+        mesh.property(props.vertex_curve, x) = kNoCurve;
+        mesh.property(props.vertex_model_face, x) = -1;
+    }
+    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
+    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
+    return mesh;
+}
+
+std::vector<std::array<Vec3d, 3>> triangles_of(const SurfaceMesh& mesh)
+{
+    std::vector<std::array<Vec3d, 3>> triangles;
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.cfv_iter(f);
+        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
+        triangles.push_back({a, b, c});
+    }
+    return triangles;
+}
+
+// Deterministic samples: uniform in the box [−1, n+1]² × [−1, 1] (near and far from the
+// surface), plus every grid vertex and edge midpoint (points on several triangles: ties).
+std::vector<Vec3d> sample_points(const SurfaceMesh& mesh, int n, int count)
+{
+    std::uint32_t state = 12345u;
+    auto uniform = [&](double lo, double hi) {
+        state = state * 1664525u + 1013904223u;
+        return lo + (hi - lo) * (state >> 8) / double(1u << 24);
+    };
+    std::vector<Vec3d> points;
+    for (int i = 0; i < count; ++i) points.emplace_back(uniform(-1, n + 1), uniform(-1, n + 1), uniform(-1, 1));
+    for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
+    for (auto e : mesh.edges())
+    {
+        const auto h = mesh.halfedge_handle(e, 0);
+        points.push_back(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
+    }
+    return points;
+}
+
+double brute_force_distance(const std::vector<std::array<Vec3d, 3>>& triangles, const Vec3d& p)
+{
+    double best = std::numeric_limits<double>::max();
+    for (const auto& t : triangles) best = std::min(best, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm());
+    return best;
+}
+
+}  // namespace
+
+TEST_CASE("closest point tree: a hinted query returns the exact hit, whatever the hint")
+{
+    const int n = 8;
+    const SurfaceMesh mesh = bumpy_grid(n);
+    const auto triangles = triangles_of(mesh);
+    const ClosestPointTree tree = ClosestPointTree::from_triangles(triangles);
+    const int count = static_cast<int>(triangles.size());
+    const auto points = sample_points(mesh, n, 400);
+
+    int wrong_distance = 0, differs = 0, queries = 0;
+    for (std::size_t k = 0; k < points.size(); ++k)
+    {
+        const Vec3d& p = points[k];
+        const auto exact = tree.closest(p);
+        REQUIRE(exact.primitive >= 0);
+        if (std::abs(exact.distance - brute_force_distance(triangles, p)) > 1e-12) ++wrong_distance;
+        // The right face, a neighbour, one far away, the ends, none, out of range.
+        const int hints[] = {exact.primitive, (exact.primitive + 1) % count, static_cast<int>(k * 7919 % count),
+                             0, count - 1, -1, count, -5};
+        for (const int hint : hints)
+        {
+            const auto hinted = tree.closest(p, hint);
+            ++queries;
+            if (hinted.primitive != exact.primitive || hinted.point != exact.point || hinted.distance != exact.distance)
+                ++differs;
+        }
+    }
+    CHECK(queries == 8 * static_cast<int>(points.size()));
+    CHECK(wrong_distance == 0);
+    CHECK(differs == 0);
+}
+
+TEST_CASE("closest point tree: hinted segment queries equal the exact ones")
+{
+    // A helix of 60 segments, queried from around it and at its own vertices (two segments each).
+    std::vector<std::array<Vec3d, 2>> segments;
+    auto helix = [](int i) { return Vec3d(std::cos(0.3 * i), std::sin(0.3 * i), 0.05 * i); };
+    for (int i = 0; i < 60; ++i) segments.push_back({helix(i), helix(i + 1)});
+    const ClosestPointTree tree = ClosestPointTree::from_segments(segments);
+    int differs = 0;
+    for (int k = 0; k <= 600; ++k)
+    {
+        const Vec3d p = k % 10 == 0 ? helix(k / 10) : Vec3d(1.5 * std::cos(0.37 * k), 1.5 * std::sin(0.23 * k), 0.005 * k);
+        const auto exact = tree.closest(p);
+        double brute = std::numeric_limits<double>::max();
+        for (const auto& s : segments) brute = std::min(brute, (closest_point_on_segment(p, s[0], s[1]) - p).norm());
+        CHECK(exact.distance == doctest::Approx(brute).epsilon(1e-12));
+        for (const int hint : {exact.primitive, (exact.primitive + 30) % 60, 0, 59, -1, 60})
+        {
+            const auto hinted = tree.closest(p, hint);
+            if (hinted.primitive != exact.primitive || hinted.point != exact.point) ++differs;
+        }
+    }
+    CHECK(differs == 0);
+}
+
+TEST_CASE("surface model: projections and size look-ups with a face hint equal those without")
+{
+    const int n = 8;
+    const SurfaceMesh mesh = bumpy_grid(n);
+    const SurfaceModel model(mesh);
+    // A linear field: barycentric interpolation reproduces it exactly on every triangle.
+    auto linear = [](const Vec3d& p) { return 1.0 + p[0] + 2.0 * p[1] - 0.5 * p[2]; };
+    std::vector<double> values;
+    for (auto v : mesh.vertices()) values.push_back(linear(mesh.point(v)));
+    const auto points = sample_points(mesh, n, 300);
+    const int faces = static_cast<int>(mesh.n_faces());
+
+    int differs = 0, off_field = 0, shortcut_off = 0;
+    for (std::size_t k = 0; k < points.size(); ++k)
+    {
+        const Vec3d& p = points[k];
+        const ProjectedPoint exact = model.project(p, VertexClass::Smooth, kNoCurve);
+        REQUIRE(exact.ok);
+        REQUIRE(exact.face >= 0);
+        for (const int hint : {exact.face, static_cast<int>(k * 31 % faces), -1, faces + 3})
+        {
+            const ProjectedPoint hinted = model.project_near(p, VertexClass::Smooth, kNoCurve, hint);
+            if (!hinted.ok || hinted.point != exact.point || hinted.normal != exact.normal || hinted.face != exact.face)
+                ++differs;
+        }
+        // A size looked up where a point was just projected: on the hint face without a search,
+        // equal to the searched value up to rounding; any other hint: the search, exactly.
+        const Vec3d q = exact.point;
+        const double searched = model.interpolate(q, values);
+        if (std::abs(searched - linear(q)) > 1e-9) ++off_field;
+        if (std::abs(model.interpolate(q, values, exact.face) - searched) > 1e-12 * std::abs(searched)) ++shortcut_off;
+        if (model.interpolate(q, values, (exact.face + faces / 2) % faces) != searched) ++differs;
+    }
+    CHECK(differs == 0);
+    CHECK(off_field == 0);
+    CHECK(shortcut_off == 0);
+}
+
+TEST_CASE("surface model: near_model decides as the exact distance does, from any hint")
+{
+    // The walk from the hint face may stop at a local minimum or run out of steps: then the search
+    // decides. Limits around the sampled distances make both answers frequent.
+    const int n = 8;
+    const SurfaceMesh mesh = bumpy_grid(n);
+    const SurfaceModel model(mesh);
+    const auto points = sample_points(mesh, n, 300);
+    const int faces = static_cast<int>(mesh.n_faces());
+    int disagree = 0, near = 0, far = 0;
+    for (std::size_t k = 0; k < points.size(); ++k)
+    {
+        const Vec3d& p = points[k];
+        const ProjectedPoint exact = model.project(p, VertexClass::Smooth, kNoCurve);
+        REQUIRE(exact.ok);
+        const double d = (exact.point - p).norm();
+        for (const double limit : {0.0, 0.5 * d, d, 1.5 * d + 1e-3, 0.05, 0.4})
+            for (const int hint : {exact.face, static_cast<int>(k * 31 % faces), 0, -1, faces})
+            {
+                const bool answer = model.near_model(p, limit, hint);
+                if (answer != (d <= limit)) ++disagree;
+                (answer ? near : far) += 1;
+            }
+    }
+    CHECK(disagree == 0);
+    CHECK(near > 1000);
+    CHECK(far > 1000);
+}
+
+TEST_CASE("shift_vertex: a stale or missing model-face hint moves every vertex exactly the same")
+{
+    // The bumpy grid as the model; a copy with its interior vertices pushed off their place
+    // (along x and y, then back onto the model) is smoothed twice: once with no hints, once with
+    // every hint pointing at a far corner face. Positions must match bit for bit, every moved
+    // vertex must lie on the model, and the hint must then name the face it lies on.
+    const int n = 8;
+    const SurfaceMesh input = bumpy_grid(n);
+    const SurfaceModel model(input);
+    SurfaceMesh start = input;
+    {
+        SurfaceProperties props(start);
+        for (auto v : start.vertices())
+        {
+            if (start.is_boundary(v)) continue;
+            const Vec3d p = start.point(v);
+            const Vec3d pushed(p[0] + 0.2 * std::sin(3.1 * v.idx()), p[1] + 0.2 * std::cos(1.7 * v.idx()), p[2]);
+            start.set_point(v, model.project(pushed, VertexClass::Smooth, kNoCurve).point);
+        }
+    }
+    auto folded_faces = [](const SurfaceMesh& mesh) {
+        int folded = 0;
+        for (auto f : mesh.faces())
+        {
+            auto fv = mesh.cfv_iter(f);
+            const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
+            if (!(OpenMesh::cross(b - a, c - a)[2] > 0.0)) ++folded;
+        }
+        return folded;
+    };
+    REQUIRE(folded_faces(start) == 0);
+    SurfaceMesh no_hints = start, stale_hints = start;
+    SurfaceProperties props_a(no_hints), props_b(stale_hints);
+    for (auto v : stale_hints.vertices()) stale_hints.property(props_b.vertex_model_face, v) = 0;
+    const SurfaceHooks hooks;
+    OperatorContext ctx_a(no_hints, model, hooks), ctx_b(stale_hints, model, hooks);
+    ShiftOptions options;
+    options.smart = false;
+    int moved = 0, differs = 0, off_model = 0, wrong_hint = 0;
+    for (int pass = 0; pass < 3; ++pass)
+        for (auto v : no_hints.vertices())
+        {
+            const bool a = shift_vertex(ctx_a, v, options).done();
+            const bool b = shift_vertex(ctx_b, v, options).done();
+            if (a != b || no_hints.point(v) != stale_hints.point(v)) ++differs;
+            if (!a) continue;
+            ++moved;
+            const ProjectedPoint on_model = model.project(no_hints.point(v), VertexClass::Smooth, kNoCurve);
+            if ((on_model.point - no_hints.point(v)).norm() > 1e-12) ++off_model;
+            if (stale_hints.property(props_b.vertex_model_face, v) != on_model.face) ++wrong_hint;
+        }
+    CHECK(moved > 0);
+    CHECK(differs == 0);
+    CHECK(off_model == 0);
+    CHECK(wrong_hint == 0);
+    // The smoothing kept every triangle facing up (no fold).
+    CHECK(folded_faces(no_hints) == 0);
+}
