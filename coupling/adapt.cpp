@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -146,7 +145,8 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     if (options.optimize)
     {
         const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-        if (mesh.num_live_tets() == mesh.num_tet_slots()) renumber_spatially(mesh);
+        mesh.compact();  // renumbering needs a compact mesh; the passes leave it so, this makes sure
+        renumber_spatially(mesh);
         optimize_mesh(mesh, field, options.optimizer);
     }
     if (projector)

@@ -61,6 +61,10 @@ struct AdaptReport
 
 /// Adapts mesh in place. \pre mesh passes check_mesh (positive tets, closed boundary).
 /// Throws InputError when the boundary cannot carry a surface model.
+/// Ids are not kept: the output is compact and, before the final optimization, renumbered
+/// along a space-filling curve (volume/reorder.h); refs, boundary triangles, feature edges,
+/// corners and vertex classes are carried. A solver that needs to transfer fields maps them
+/// by position (e.g. volume/point_locator.h on the old mesh), not by id.
 AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& options = {});
 
 /// The time split and the size verdict, preceded by the per-pass table when with_passes.

@@ -151,26 +151,33 @@ std::string data_path(const std::string& name) { return std::string(HDIMESH_DATA
 
 hdi::TriangleSurface icosphere(int levels)
 {
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+    using hdi::Vec3;
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;  // the golden ratio: icosahedron corners
     hdi::TriangleSurface s;
-    for (const hdi::Vec3& p : {hdi::Vec3(-1, t, 0), hdi::Vec3(1, t, 0), hdi::Vec3(-1, -t, 0), hdi::Vec3(1, -t, 0), hdi::Vec3(0, -1, t), hdi::Vec3(0, 1, t),
-                          hdi::Vec3(0, -1, -t), hdi::Vec3(0, 1, -t), hdi::Vec3(t, 0, -1), hdi::Vec3(t, 0, 1), hdi::Vec3(-t, 0, -1), hdi::Vec3(-t, 0, 1)})
+    for (const Vec3& p : {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0),
+                          Vec3(0, -1, t), Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t),
+                          Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
         s.points.push_back(p.normalized());
-    s.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},  {9, 8, 1}};
-    for (int level = 0; level < levels; ++level) {
-        std::map<std::pair<int, int>, int> midpoint;
-        auto middle = [&](int a, int b) {
+    s.triangles = {{0, 11, 5}, {0, 5, 1},   {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                   {1, 5, 9},  {5, 11, 4},  {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                   {3, 9, 4},  {3, 4, 2},   {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                   {4, 9, 5},  {2, 4, 11},  {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    for (int level = 0; level < levels; ++level)
+    {
+        std::map<std::pair<int, int>, int> midpoint;  // edge -> its new vertex, made once
+        auto middle = [&](int a, int b)
+        {
             const std::pair<int, int> key(std::min(a, b), std::max(a, b));
             const auto it = midpoint.find(key);
             if (it != midpoint.end()) return it->second;
-            s.points.push_back((s.points[static_cast<std::size_t>(a)] + s.points[static_cast<std::size_t>(b)]).normalized());
+            s.points.push_back((s.points[a] + s.points[b]).normalized());
             return midpoint[key] = static_cast<int>(s.points.size()) - 1;
         };
         std::vector<hdi::Triangle3> finer;
-        for (const hdi::Triangle3& tri : s.triangles) {
-            const int ab = middle(tri[0], tri[1]), bc = middle(tri[1], tri[2]), ca = middle(tri[2], tri[0]);
+        for (const hdi::Triangle3& tri : s.triangles)
+        {
+            const int ab = middle(tri[0], tri[1]), bc = middle(tri[1], tri[2]);
+            const int ca = middle(tri[2], tri[0]);
             finer.push_back({tri[0], ab, ca});
             finer.push_back({tri[1], bc, ab});
             finer.push_back({tri[2], ca, bc});
@@ -186,7 +193,7 @@ double mean_edge_length(const hdi::TriangleSurface& surface)
     double sum = 0;
     for (const hdi::Triangle3& t : surface.triangles)
         for (std::size_t i = 0; i < 3; ++i)
-            sum += (surface.points[static_cast<std::size_t>(t[i])] - surface.points[static_cast<std::size_t>(t[(i + 1) % 3])]).norm();
+            sum += (surface.points[t[i]] - surface.points[t[(i + 1) % 3]]).norm();
     return sum / (3.0 * static_cast<double>(surface.triangles.size()));
 }
 

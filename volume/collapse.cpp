@@ -103,6 +103,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         if (count > 0) places.push_back(centre / count);
     };
     bool found = false;
+    std::vector<int> reshaped_by_move;  // tets of `to` outside the shell, when `to` moves
     Vec3 chosen = to_position;
     std::size_t refused = static_cast<std::size_t>(-1);  // index of the last refusing new tet
     for (std::size_t attempt = 0; !found; ++attempt)
@@ -162,13 +163,13 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         if (!sizes_ok) continue;
         found = true;
         chosen = place;
-        if (attempt > 0)
-            context.tets_changed(reshaped);
+        if (attempt > 0) reshaped_by_move = reshaped;
     }
     result.worst_before = ball_worst;
     if (!found) return result;
 
     mesh.points[to] = chosen;
+    context.tets_changed(reshaped_by_move);  // their cached qualities are stale now
     replace_tets(mesh, context, config.ball, config.moved, ref);
     context.vertex_tet[from] = -1;
     result.collapsed = true;

@@ -111,11 +111,11 @@ bool has_vertex(const TetVertices& tv, int v)
     return std::find(tv.begin(), tv.end(), v) != tv.end();
 }
 
-/// Vertices a and b are joined by an edge (a is a vertex of the live tet `seed`).
-bool is_edge(const TetMesh& mesh, int seed, int a, int b)
+/// Vertices a and b are joined by an edge.
+bool is_edge(const TetMesh& mesh, const OperatorContext& context, int a, int b)
 {
     std::vector<int> ball;
-    vertex_ball(mesh, seed, a, ball);
+    context.ball(mesh, a, ball);
     return std::any_of(ball.begin(), ball.end(),
                        [&](int t) { return has_vertex(mesh.tets[t], b); });
 }
@@ -193,8 +193,10 @@ void grow_sandwich(const TetMesh& mesh, const OperatorContext& context, int t, i
             if (static_cast<int>(plan.faces.size()) >= max_faces) return;
             SandwichFace next;
             if (!sandwiched_neighbor(mesh, context, plan, plan.faces[i], k, next)) continue;
-            // a face met twice closes a cycle around an inner vertex: the tree stops there
-            // (removing every face around the vertex would delete it)
+            // a face met twice closes a cycle around an inner vertex: the tree keeps its first
+            // visit only. The vertex cannot be deleted: removing every face around it would
+            // leave an uncrossed edge whose two new tets face opposite ways (one of quality
+            // <= 0, so the program never picks it), and ring_is_simple guards the commit.
             const bool seen =
                 std::any_of(plan.faces.begin(), plan.faces.end(),
                             [&](const SandwichFace& f) { return f.lower == next.lower; });
@@ -285,7 +287,8 @@ MultiFacePlan plan_multi_face_removal(const TetMesh& mesh, const OperatorContext
     // lie in the mesh's skeleton, not inside the removed tets, so the new tets around it could
     // not all be positive (on an adapted sphere: 399 seeds with ab an edge, none positive).
     if (plan.worst_after > 0.0 && plan.worst_after > plan.worst_before + options.min_gain &&
-        is_edge(mesh, t, plan.a, plan.b))
+        !context.too_long(mesh.points[plan.a], mesh.points[plan.b]) &&
+        is_edge(mesh, context, plan.a, plan.b))
         plan.legal = false;
     return plan;
 }

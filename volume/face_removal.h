@@ -46,7 +46,9 @@ struct FaceRemovalResult
 
 /// Flips face `local_face` of tet t (2-3) when the face is interior and unconstrained, both tets
 /// share one ref, the new edge is not too long for context.field, all new tets are positive
-/// and the worst quality rises.
+/// and the worst quality rises. The optimizer uses remove_multi_face, which makes every flip
+/// this one makes and more; this plain 2-3 flip is the reference its k = 1 case is tested
+/// against. It does not check that the new edge is absent (positive new tets imply it).
 FaceRemovalResult remove_face(TetMesh& mesh, OperatorContext& context, int t, int local_face,
                               const FaceRemovalOptions& options = {});
 

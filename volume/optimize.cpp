@@ -265,7 +265,6 @@ private:
         {
             return band != o.band ? band < o.band : (u != o.u ? u < o.u : v < o.v);
         }
-        bool operator==(const ShortEdge& o) const { return u == o.u && v == o.v; }
     };
 
     std::vector<int> all_live_tets() const

@@ -1,6 +1,7 @@
 #include "volume/reorder.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -27,6 +28,7 @@ std::uint64_t spread_bits(std::uint64_t x)
 
 CompactionMaps renumber_spatially(TetMesh& mesh)
 {
+    assert(mesh.num_live_tets() == mesh.num_tet_slots() && "renumber_spatially needs a compact mesh");
     CompactionMaps maps;
     const int nv = mesh.num_vertices();
     const int nt = mesh.num_tet_slots();

@@ -403,11 +403,4 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
     return ids;
 }
 
-double worst_quality(const TetMesh& mesh, const std::vector<int>& tets)
-{
-    double worst = std::numeric_limits<double>::infinity();
-    for (int t : tets) worst = std::min(worst, mesh.quality(t));
-    return worst;
-}
-
 }  // namespace hdimesh

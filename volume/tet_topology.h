@@ -136,7 +136,4 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
                               const std::vector<int>& removed,
                               const std::vector<TetVertices>& added, int ref);
 
-/// Minimum quality over a list of tets (+infinity for an empty list).
-double worst_quality(const TetMesh& mesh, const std::vector<int>& tets);
-
 }  // namespace hdimesh
