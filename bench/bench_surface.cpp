@@ -5,7 +5,7 @@
 // point-triangle distances from vertices, edge midpoints and centroids, as surfstat.py samples),
 // and the topology check (Euler characteristic, boundary loops) against the input.
 //
-//   bench_surface [--diagnose] [--uniform-only] [--floor F] [--hausd-fraction X] [--cone-defect DEG] [--budget F]
+//   bench_surface [--diagnose | --diagnose-adaptive] [--verbose] [--uniform-only] [--floor F] [--hausd-fraction X] [--cone-defect DEG] [--budget F]
 //                [--iterations N] [model.obj ...]
 //   (default: the five models of issue 6 in data/; --floor / --hausd-fraction override
 //   SurfaceRemeshSettings::uniform_size_floor / uniform_hausd_fraction to explore them)
@@ -13,6 +13,8 @@
 // --diagnose: instead of the tables, per model the worst Hausdorff samples in both directions
 // (where, how far, the input's curvature radius there and the nearest input feature vertex) and
 // the triangles under 20°, with the classes of their vertices: where the targets are lost.
+// --diagnose-adaptive: the same for the adaptive default (radius/h against the mean input edge).
+// --verbose: the remesher's stage lines on stderr (twice: also its refused refinement splits).
 
 #include <algorithm>
 #include <chrono>
@@ -122,12 +124,14 @@ const char* class_name(VertexClass c)
 }
 
 // Where the Hausdorff distance and the small angles of the uniform remesh come from.
-void diagnose(const std::string& path, SurfaceRemeshSettings settings)
+// adaptive: the curvature-adaptive default of the second table instead (h there: the mean input edge).
+void diagnose(const std::string& path, SurfaceRemeshSettings settings, bool adaptive)
 {
     const SurfaceMesh input = read_surface(path);
     SurfaceMesh mesh = input;
     const double diagonal = bounding_box_diagonal(input);
-    settings.sizing.hsiz = 0.01 * diagonal;
+    if (adaptive) settings.sizing.hmax = 2.0 * mean_edge_length(input);
+    else settings.sizing.hsiz = 0.01 * diagonal;
     remesh_surface(mesh, settings);
     // The input classified as remesh_surface classifies it, for curvatures and feature distances.
     SurfaceMesh classified = input;
@@ -136,7 +140,7 @@ void diagnose(const std::string& path, SurfaceRemeshSettings settings)
     detect_features(classified, features);
     const SurfaceModel model(classified);
     const SurfaceProperties input_props(classified), output_props(mesh);
-    const double h = settings.sizing.hsiz;
+    const double h = adaptive ? mean_edge_length(input) : settings.sizing.hsiz;
     auto nearest_feature = [&](const Vec3d& p, VertexClass& cls) {
         double best = 1e300;
         for (auto v : classified.vertices())
@@ -148,7 +152,7 @@ void diagnose(const std::string& path, SurfaceRemeshSettings settings)
         }
         return best;
     };
-    const QualityReport q = measure_quality(mesh, h);
+    const QualityReport q = measure_quality(mesh, adaptive ? 0.0 : h);
     const auto d = hausdorff_distance(mesh, input);
     std::printf("== %s (h = %.4g, diag = %.4g): out->in %.3e, in->out %.3e, %% Qt >= 0.66 %.2f (too short %.2f, too long "
                 "%.2f), min angle %.2f\n",
@@ -205,12 +209,14 @@ void diagnose(const std::string& path, SurfaceRemeshSettings settings)
 int main(int argc, char** argv)
 {
     std::vector<std::string> models;
-    bool diagnostics = false, uniform_only = false;
+    bool diagnostics = false, uniform_only = false, adaptive_diagnostics = false;
     SurfaceRemeshSettings base;
     for (int i = 1; i < argc; ++i)
     {
         const std::string arg = argv[i];
         if (arg == "--diagnose") diagnostics = true;
+        else if (arg == "--diagnose-adaptive") diagnostics = adaptive_diagnostics = true;
+        else if (arg == "--verbose") ++base.verbosity;
         else if (arg == "--uniform-only") uniform_only = true;
         else if (arg == "--floor" && i + 1 < argc) base.uniform_size_floor = std::stod(argv[++i]);
         else if (arg == "--hausd-fraction" && i + 1 < argc) base.uniform_hausd_fraction = std::stod(argv[++i]);
@@ -224,7 +230,7 @@ int main(int argc, char** argv)
             models.push_back(std::string(HDIMESH_DATA_DIR) + "/" + name + ".obj");
     if (diagnostics)
     {
-        for (const std::string& path : models) diagnose(path, base);
+        for (const std::string& path : models) diagnose(path, base, adaptive_diagnostics);
         return 0;
     }
 

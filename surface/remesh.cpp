@@ -234,6 +234,10 @@ private:
             std::vector<double> edge_error(mesh_.n_edges(), 0.0);  // worst distance that asks for a split
             // A model point far from the output: the new vertex goes onto it (index + 1; 0: none).
             std::vector<std::size_t> edge_target(mesh_.n_edges(), 0);
+            // The far triangle that asked for the split: when the split of its longest edge is
+            // refused (a projection that jumps or turns a triangle over, beside a cone tip), one
+            // of its other edges may still bring it nearer.
+            std::vector<FaceHandle> edge_face(mesh_.n_edges());
             auto mark_longest = [&](FaceHandle f, double distance, std::size_t target) {
                 EdgeHandle longest;
                 double best = -1.0;
@@ -243,6 +247,7 @@ private:
                 {
                     edge_error[longest.idx()] = distance;
                     edge_target[longest.idx()] = target;
+                    edge_face[longest.idx()] = f;
                 }
             };
             // After the first round only the neighbourhood of the last splits changed (and the
@@ -311,9 +316,14 @@ private:
             far_points = std::move(still_far);
             std::vector<std::pair<double, EdgeHandle>> candidates;
             for (auto e : live_edges())
-                if (edge_error[e.idx()] > 0.0 &&
-                    mesh_.calc_edge_length(e) >= 2.0 * options_.refine_min_length_ratio * edge_size(e))
+            {
+                if (!(edge_error[e.idx()] > 0.0)) continue;
+                if (mesh_.calc_edge_length(e) >= 2.0 * options_.refine_min_length_ratio * edge_size(e))
                     candidates.emplace_back(edge_error[e.idx()], e);
+                else if (options_.verbosity > 1)
+                    std::fprintf(stderr, "remesh: refinement skips a short edge: distance %.3g, length/size %.3f\n",
+                                 edge_error[e.idx()], mesh_.calc_edge_length(e) / edge_size(e));
+            }
             // Farthest first; ties by index keep it deterministic.
             std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
                 return a.first != b.first ? a.first > b.first : a.second.idx() < b.second.idx();
@@ -338,6 +348,7 @@ private:
                 OpResult r;
                 if (edge_target[e.idx()] > 0) r = try_split(ctx_, e, &options_.model_points[edge_target[e.idx()] - 1]);
                 if (!r.done()) r = try_split(ctx_, e);
+                if (!r.done()) r = split_other_edge(edge_face[e.idx()], e);
                 if (!r.done())
                 {
                     if (options_.verbosity > 1)
@@ -348,7 +359,8 @@ private:
                 set_size(r.vertex);
                 split_vertices.push_back(r.vertex);
                 ++done;
-                // The two halves and the new edges across: the budget's count follows the split.
+                // The two halves and the new edges across: the budget's count follows the split
+                // (an approximation when another edge of the face was split instead).
                 edges += boundary ? 2 : 3;
                 if (was_short) --short_edges;  // replaced by its halves, counted below
                 for (auto oh : mesh_.voh_range(r.vertex))
@@ -382,6 +394,27 @@ private:
             }
         }
         return total;
+    }
+
+    // A refinement split of `refused` (the longest edge of the far face f) was refused: the
+    // other edges of f, longest first, at their projected midpoints, if not too short.
+    OpResult split_other_edge(FaceHandle f, EdgeHandle refused)
+    {
+        OpResult r;
+        if (!f.is_valid() || mesh_.status(f).deleted()) return r;
+        std::vector<std::pair<double, EdgeHandle>> others;
+        for (auto e : mesh_.fe_range(f))
+            if (e != refused) others.emplace_back(mesh_.calc_edge_length(e), e);
+        std::sort(others.begin(), others.end(), [](const auto& a, const auto& b) {
+            return a.first != b.first ? a.first > b.first : a.second.idx() < b.second.idx();
+        });
+        for (const auto& [length, e] : others)
+        {
+            if (length < 2.0 * options_.refine_min_length_ratio * edge_size(e)) break;
+            r = try_split(ctx_, e);
+            if (r.done()) return r;
+        }
+        return r;
     }
 
     // Edges still too short for the reference size (Qt < 0.66) were kept by the loop's bound on

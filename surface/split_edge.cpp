@@ -2,9 +2,17 @@
 
 #include "surface/local_ops.h"
 #include "surface/local_ops_geometry.h"
+#include "surface/surface_quality.h"
 
 namespace hdimesh::surface
 {
+namespace
+{
+// A split that turns its triangles past the limit (across a dropped crease) keeps no worse angle,
+// and its triangles may not fold against the model (its normal is one side's of the crease).
+constexpr double kMinAngleAcrossCreaseDeg = 10.0;
+constexpr double kMaxTurnAcrossCreaseDeg = 85.0;
+}  // namespace
 
 OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
 {
@@ -27,15 +35,12 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
     const Vec3d mid = 0.5 * (pa + pb);
     Vec3d p = mid;
     int model_face = ctx.model_face(a);
+    ProjectedPoint projected = ctx.model.project_near(at && cls == VertexClass::Smooth ? *at : mid, cls, curve, model_face);
     if (at && cls == VertexClass::Smooth) p = *at;
-    else
+    else if (projected.ok)
     {
-        const ProjectedPoint projected = ctx.model.project_near(mid, cls, curve, model_face);
-        if (projected.ok)
-        {
-            p = projected.point;
-            if (projected.face >= 0) model_face = projected.face;
-        }
+        p = projected.point;
+        if (projected.face >= 0) model_face = projected.face;
     }
     if ((p - mid).norm() > 0.5 * length)
     {
@@ -50,8 +55,18 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
         const Vec3d from = mesh.point(mesh.from_vertex_handle(h)), to = mesh.point(mesh.to_vertex_handle(h));
         const Vec3d opposite = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
         const Vec3d old_normal = triangle_normal(from, to, opposite);
-        if (!turn_ok(old_normal, triangle_normal(from, p, opposite), max_turn) ||
-            !turn_ok(old_normal, triangle_normal(p, to, opposite), max_turn))
+        const bool turn_from_old = turn_ok(old_normal, triangle_normal(from, p, opposite), max_turn) &&
+                                   turn_ok(old_normal, triangle_normal(p, to, opposite), max_turn);
+        // An edge across a crease the features dropped (a chord far from the model): its new
+        // vertex, on the model, turns the triangles a lot; that is the point of the split. Then
+        // the new triangles must not fold against the model under the new vertex, and stay well shaped.
+        const bool follows_model =
+            !turn_from_old && projected.ok && cls == VertexClass::Smooth &&
+            turn_ok(projected.normal, triangle_normal(from, p, opposite), kMaxTurnAcrossCreaseDeg) &&
+            turn_ok(projected.normal, triangle_normal(p, to, opposite), kMaxTurnAcrossCreaseDeg) &&
+            triangle_min_angle_deg(from, p, opposite) >= kMinAngleAcrossCreaseDeg &&
+            triangle_min_angle_deg(p, to, opposite) >= kMinAngleAcrossCreaseDeg;
+        if (!turn_from_old && !follows_model)
         {
             result.status = OpStatus::Geometry;
             return result;

@@ -29,6 +29,15 @@ inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c)
     return 0.5 * (b - a).cross(c - a).norm();
 }
 
+/// Qe from its parts: signed volume, sum of the four face areas, squared longest edge. Callers
+/// that hoist the parts not depending on a moving point (smoothing) share the formula here.
+inline double tet_quality_from_parts(double volume, double area, double longest2)
+{
+    if (area <= 0.0 || longest2 <= 0.0) return 0.0;
+    constexpr double kAlpha = 4.898979485566356;  // 2*sqrt(6)
+    return kAlpha * (3.0 * volume / area) / std::sqrt(longest2);
+}
+
 /// Tet shape quality Qe = 2*sqrt(6) * rho / h with rho = 3V / (sum of face areas) and h the
 /// longest edge. Signed: a negative tet gets a negative quality, so "worst" stays the minimum.
 inline double tet_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
@@ -39,9 +48,7 @@ inline double tet_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec
     const double longest2 = std::max({(b - a).squaredNorm(), (c - a).squaredNorm(),
                                       (d - a).squaredNorm(), (c - b).squaredNorm(),
                                       (d - b).squaredNorm(), (d - c).squaredNorm()});
-    if (area <= 0.0 || longest2 <= 0.0) return 0.0;
-    constexpr double kAlpha = 4.898979485566356;  // 2*sqrt(6)
-    return kAlpha * (3.0 * volume / area) / std::sqrt(longest2);
+    return tet_quality_from_parts(volume, area, longest2);
 }
 
 /// Triangle shape quality Qe = 2*sqrt(3) * rho / h with rho = 2A / perimeter.

@@ -45,9 +45,7 @@ struct BallFace
                             triangle_area(a, b, d) + fixed_area;
         const double longest2 = std::max({face_longest2, (d - a).squaredNorm(),
                                           (d - b).squaredNorm(), (d - c).squaredNorm()});
-        if (area <= 0.0 || longest2 <= 0.0) return 0.0;
-        constexpr double kAlpha = 4.898979485566356;  // 2*sqrt(6), as in tet_quality
-        return kAlpha * (3.0 * volume / area) / std::sqrt(longest2);
+        return tet_quality_from_parts(volume, area, longest2);
     }
 };
 
