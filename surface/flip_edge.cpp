@@ -11,6 +11,9 @@ namespace
 
 int target_valence(const SurfaceMesh& mesh, VertexHandle v) { return mesh.is_boundary(v) ? 4 : 6; }
 
+// A distance flip must bring the pair at least this much nearer (not a swap of rounding noise).
+constexpr double kDistanceFlipGain = 0.75;
+
 }  // namespace
 
 OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
@@ -66,8 +69,8 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     }
     const std::array<Vec3d, 3> old0{pa, pb, pc}, old1{pb, pa, pd}, new0{pa, pd, pc}, new1{pd, pb, pc};
     const double old_min = std::min(qe(old0), qe(old1)), new_min = std::min(qe(new0), qe(new1));
-    if (new_min < ctx.limits.min_new_quality ||
-        (goal == FlipGoal::Valence ? new_min < 0.5 * old_min : !(new_min > old_min + 1e-6)))
+    const bool keeps_enough = goal == FlipGoal::Quality ? new_min > old_min + 1e-6 : !(new_min < 0.5 * old_min);
+    if (new_min < ctx.limits.min_new_quality || !keeps_enough)
     {
         result.status = OpStatus::Quality;
         return result;
@@ -85,6 +88,19 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
         return result;
     }
     // Distance to the model last: it is the expensive test.
+    if (goal == FlipGoal::Distance)
+    {
+        auto farthest = [&](const Vec3d& mid, VertexHandle near, const std::array<Vec3d, 3>& t0,
+                            const std::array<Vec3d, 3>& t1) {
+            return std::max({ctx.distance_to_model(mid, near), ctx.distance_to_model((t0[0] + t0[1] + t0[2]) / 3.0, near),
+                             ctx.distance_to_model((t1[0] + t1[1] + t1[2]) / 3.0, near)});
+        };
+        if (!(farthest(0.5 * (pc + pd), c, new0, new1) < kDistanceFlipGain * farthest(0.5 * (pa + pb), a, old0, old1)))
+        {
+            result.status = OpStatus::Quality;
+            return result;
+        }
+    }
     if (ctx.limits.max_model_distance > 0.0)
     {
         const Vec3d mid = 0.5 * (pc + pd);

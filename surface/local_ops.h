@@ -115,6 +115,9 @@ enum class FlipGoal
 {
     Valence,  // pmp rule: valence deviation from 6 (4 on a boundary) decreases, quality kept
     Quality,  // the worst Qe of the two triangles rises
+    /// The pair comes nearer the model (the farthest of the edge midpoint and the two centroids
+    /// drops by a quarter: a chord across a crease turned along it) and keeps half its worst Qe.
+    Distance,
 };
 OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal);
 
