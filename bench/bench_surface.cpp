@@ -111,18 +111,6 @@ FeatureCheck check_features(const SurfaceMesh& input, SurfaceMesh& output, const
     return check;
 }
 
-const char* class_name(VertexClass c)
-{
-    switch (c)
-    {
-    case VertexClass::Smooth: return "smooth";
-    case VertexClass::Ridge: return "ridge";
-    case VertexClass::Boundary: return "boundary";
-    case VertexClass::Corner: return "corner";
-    }
-    return "?";
-}
-
 // Where the Hausdorff distance and the small angles of the uniform remesh come from.
 // adaptive: the curvature-adaptive default of the second table instead (h there: the mean input edge).
 void diagnose(const std::string& path, SurfaceRemeshSettings settings, bool adaptive)
@@ -170,7 +158,7 @@ void diagnose(const std::string& path, SurfaceRemeshSettings settings, bool adap
             const double feature = nearest_feature(on_input, cls);
             std::printf("  %-7s %10.3e (%9.4g %9.4g %9.4g) %12.3g %14.3g %9s\n", direction == 0 ? "out->in" : "in->out",
                         s.distance / diagonal, s.point[0], s.point[1], s.point[2], k > 0.0 ? 1.0 / (k * h) : 1e9,
-                        feature / h, class_name(cls));
+                        feature / h, to_string(cls));
         }
     }
     // Edges failing Qt against h, by where they are: on a curve, touching a corner or a curve,
@@ -196,9 +184,9 @@ void diagnose(const std::string& path, SurfaceRemeshSettings settings, bool adap
         const auto angles = triangle_angles_deg(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]));
         if (std::min({angles[0], angles[1], angles[2]}) >= 20.0 || shown++ >= 12) continue;
         std::printf("  small angle: face %d angles %.1f %.1f %.1f classes %s %s %s at (%.4g %.4g %.4g)\n", f.idx(), angles[0],
-                    angles[1], angles[2], class_name(mesh.property(output_props.vertex_class, v[0])),
-                    class_name(mesh.property(output_props.vertex_class, v[1])),
-                    class_name(mesh.property(output_props.vertex_class, v[2])), mesh.point(v[0])[0], mesh.point(v[0])[1],
+                    angles[1], angles[2], to_string(mesh.property(output_props.vertex_class, v[0])),
+                    to_string(mesh.property(output_props.vertex_class, v[1])),
+                    to_string(mesh.property(output_props.vertex_class, v[2])), mesh.point(v[0])[0], mesh.point(v[0])[1],
                     mesh.point(v[0])[2]);
     }
     std::printf("  %zu triangles under 20 degrees\n", shown);

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "surface/local_ops.h"
+#include "surface_fixtures.h"
 #include "surface/surface_quality.h"
 
 using namespace hdimesh::surface;
@@ -15,19 +16,7 @@ using namespace hdimesh::surface;
 namespace
 {
 
-// The plane z = 0 (normal +z) as a model: every class is projected vertically.
-class PlaneProjector final : public Projector
-{
-public:
-    ProjectedPoint project(const Vec3d& p, VertexClass, int) const override
-    {
-        ProjectedPoint out;
-        out.point = Vec3d(p[0], p[1], 0.0);
-        out.normal = Vec3d(0, 0, 1);
-        out.ok = true;
-        return out;
-    }
-};
+using hdimesh::surface::fixtures::PlaneProjector;
 
 // An icosahedron on the unit sphere, outward.
 SurfaceMesh icosahedron()

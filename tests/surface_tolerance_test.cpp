@@ -18,6 +18,7 @@
 #include "surface/closest_point_tree.h"
 #include "surface/features.h"
 #include "surface/local_ops.h"
+#include "surface_fixtures.h"
 #include "surface/remesh.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
@@ -28,19 +29,7 @@ using namespace hdimesh::surface;
 namespace
 {
 
-// The plane z = 0 as a model (every class projected vertically).
-class PlaneProjector final : public Projector
-{
-public:
-    ProjectedPoint project(const Vec3d& p, VertexClass, int) const override
-    {
-        ProjectedPoint out;
-        out.point = Vec3d(p[0], p[1], 0.0);
-        out.normal = Vec3d(0, 0, 1);
-        out.ok = true;
-        return out;
-    }
-};
+using hdimesh::surface::fixtures::PlaneProjector;
 
 // An n×n grid of unit squares in z = 0, each cut by its (i,j)-(i+1,j+1) diagonal, optionally
 // with the vertex (cx, cy) lifted to `tip` (a spike). Unclassified.
