@@ -17,7 +17,7 @@ struct ProjectedPoint
     bool ok = false;
     /// Where the model knows it: the index of the model face at (for a curve point: beside) the
     /// point, -1 otherwise. Opaque to the caller, who hands it back as the hint of a later query
-    /// near the point (project_near); it never changes a result, only the time to find it.
+    /// near the point (project_near); it never changes a projection, only the time to find it.
     int face = -1;
 };
 

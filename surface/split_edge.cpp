@@ -37,11 +37,8 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
     int model_face = ctx.model_face(a);
     ProjectedPoint projected = ctx.model.project_near(at && cls == VertexClass::Smooth ? *at : mid, cls, curve, model_face);
     if (at && cls == VertexClass::Smooth) p = *at;
-    else if (projected.ok)
-    {
-        p = projected.point;
-        if (projected.face >= 0) model_face = projected.face;
-    }
+    else if (projected.ok) p = projected.point;
+    if (projected.ok && projected.face >= 0) model_face = projected.face;  // the hint near p
     if ((p - mid).norm() > 0.5 * length)
     {
         result.status = OpStatus::Geometry;

@@ -59,7 +59,8 @@ constexpr const char* vertex_size = "hdimesh:v:size";    // double, target edge 
 constexpr const char* edge_curve = "hdimesh:e:curve";    // int, feature curve of a ridge/boundary edge
 constexpr const char* face_ref = "hdimesh:f:ref";        // int, surface reference (material/patch)
 // int, the model face a vertex was last projected onto (ProjectedPoint::face; -1: none): the
-// hint of the next projection near it. Only speed depends on it, never a result.
+// hint of the next projection near it. Projections do not depend on it; sizes interpolated on
+// the hinted face may differ by rounding (SurfaceModel::interpolate).
 constexpr const char* vertex_model_face = "hdimesh:v:model_face";
 }  // namespace property_names
 
