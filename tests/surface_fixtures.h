@@ -1,7 +1,11 @@
 #pragma once
 // Models for the surface operator tests (header-only: only the surface tests need OpenMesh).
 
+#include <vector>
+
+#include "fixtures.h"
 #include "surface/projector.h"
+#include "surface/surface_mesh.h"
 
 namespace hdimesh::surface::fixtures
 {
@@ -19,5 +23,25 @@ public:
         return out;
     }
 };
+
+/// The icosahedron on the unit sphere (hdimesh::fixtures::icosphere(0)), outward, every vertex
+/// smooth, no curves, face ref 1.
+inline SurfaceMesh icosahedron()
+{
+    const hdi::TriangleSurface ico = hdimesh::fixtures::icosphere(0);
+    SurfaceMesh mesh;
+    std::vector<VertexHandle> v;
+    for (const auto& p : ico.points) v.push_back(mesh.add_vertex(Vec3d(p.x(), p.y(), p.z())));
+    for (const auto& t : ico.triangles) mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
+    SurfaceProperties props(mesh);  // after the elements: their properties get initialised
+    for (auto x : mesh.vertices())
+    {
+        mesh.property(props.vertex_class, x) = VertexClass::Smooth;
+        mesh.property(props.vertex_curve, x) = kNoCurve;
+    }
+    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
+    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
+    return mesh;
+}
 
 }  // namespace hdimesh::surface::fixtures

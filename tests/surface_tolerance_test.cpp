@@ -68,29 +68,7 @@ void classify_flat(SurfaceMesh& mesh)
     for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
 }
 
-// The icosahedron on the unit sphere, outward, all smooth.
-SurfaceMesh icosahedron()
-{
-    SurfaceMesh mesh;
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    const double p[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                             {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<VertexHandle> v;
-    for (const auto& q : p) v.push_back(mesh.add_vertex(Vec3d(q[0], q[1], q[2]).normalized()));
-    const int f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                          {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                          {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (const auto& q : f) mesh.add_face(v[q[0]], v[q[1]], v[q[2]]);
-    SurfaceProperties props(mesh);
-    for (auto x : mesh.vertices())
-    {
-        mesh.property(props.vertex_class, x) = VertexClass::Smooth;
-        mesh.property(props.vertex_curve, x) = kNoCurve;
-    }
-    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
-    for (auto x : mesh.faces()) mesh.property(props.face_ref, x) = 1;
-    return mesh;
-}
+using hdimesh::surface::fixtures::icosahedron;
 
 // Points spread evenly over the unit sphere (a Fibonacci lattice): the "input vertices".
 std::vector<Vec3d> sphere_points(int n)
