@@ -3,7 +3,7 @@
 // time, size, min angle, % triangles with all angles ≥ 25°, % Qe ≥ 0.7, % edges Qt ≥ 0.66 (against
 // h), two-sided Hausdorff distance to the input relative to the diagonal (own measurement: exact
 // point-triangle distances from vertices, edge midpoints and centroids, as surfstat.py samples),
-// and the topology check (Euler characteristic, boundary loops) against the input.
+// and the topology check (Euler characteristic, components, boundary loops) against the input.
 //
 //   bench_surface [--diagnose | --diagnose-adaptive] [--verbose] [--uniform-only] [--floor F] [--hausd-fraction X] [--cone-defect DEG] [--budget F]
 //                [--iterations N] [model.obj ...]
@@ -35,31 +35,6 @@ using namespace hdimesh::surface;
 
 namespace
 {
-
-struct Topology
-{
-    long euler = 0;
-    int loops = 0;
-};
-
-Topology topology(const SurfaceMesh& mesh)
-{
-    Topology t;
-    t.euler = static_cast<long>(mesh.n_vertices()) - static_cast<long>(mesh.n_edges()) + static_cast<long>(mesh.n_faces());
-    std::set<int> seen;
-    for (auto h : mesh.halfedges())
-    {
-        if (!mesh.is_boundary(h) || seen.count(h.idx())) continue;
-        ++t.loops;
-        auto g = h;
-        do
-        {
-            seen.insert(g.idx());
-            g = mesh.next_halfedge_handle(g);
-        } while (g != h);
-    }
-    return t;
-}
 
 // The features of the input kept by the output (fandisk's targets): recall, i.e. the largest
 // distance from an input ridge edge's midpoint to the output's ridge edges; the largest distance
@@ -241,8 +216,8 @@ int main(int argc, char** argv)
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const QualityReport q = measure_quality(mesh, settings.sizing.hsiz);
             const auto d = hausdorff_distance(mesh, input);
-            const Topology before = topology(input), after = topology(mesh);
-            const bool topology_kept = before.euler == after.euler && before.loops == after.loops;
+            const SurfaceTopology before = measure_topology(input), after = measure_topology(mesh);
+            const bool topology_kept = before == after;
             std::string name = path.substr(path.find_last_of('/') + 1);
             name = name.substr(0, name.find_last_of('.'));
             char features[32];
@@ -289,12 +264,12 @@ int main(int argc, char** argv)
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const QualityReport q = measure_quality(mesh, 0.0);
             const auto d = hausdorff_distance(mesh, input);
-            const Topology before = topology(input), after = topology(mesh);
+            const SurfaceTopology before = measure_topology(input), after = measure_topology(mesh);
             std::string name = path.substr(path.find_last_of('/') + 1);
             name = name.substr(0, name.find_last_of('.'));
             std::printf("%-16s %7zu %7zu %8.2f %8.2f %8.2f %10.3e %10.3e %6s\n", name.c_str(), input.n_faces(), mesh.n_faces(),
                         seconds, q.min_angle_deg, q.percent_qe_ge_07, std::max(d[0], d[1]) / diagonal, 0.002,
-                        before.euler == after.euler && before.loops == after.loops ? "kept" : "LOST");
+                        before == after ? "kept" : "LOST");
         }
         catch (const std::exception& e)
         {

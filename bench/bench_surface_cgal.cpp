@@ -79,32 +79,6 @@ struct CgalRunResult
     std::size_t border_edges = 0;  // of the input
 };
 
-/// Topology figures the remesher must keep (issue 6): Euler characteristic and boundary loops.
-struct Topology
-{
-    long euler = 0;
-    int boundary_loops = 0;
-    bool operator==(const Topology& o) const
-    {
-        return euler == o.euler && boundary_loops == o.boundary_loops;
-    }
-};
-
-Topology topology_of(const SurfaceMesh& mesh)
-{
-    Topology t;
-    t.euler = static_cast<long>(mesh.n_vertices()) - static_cast<long>(mesh.n_edges()) +
-              static_cast<long>(mesh.n_faces());
-    std::vector<char> walked(mesh.n_halfedges(), 0);
-    for (auto h : mesh.halfedges())
-    {
-        if (!mesh.is_boundary(h) || walked[h.idx()]) continue;
-        ++t.boundary_loops;
-        for (auto g = h; !walked[g.idx()]; g = mesh.next_halfedge_handle(g)) walked[g.idx()] = 1;
-    }
-    return t;
-}
-
 CgalMesh to_cgal(const SurfaceMesh& mesh)
 {
     CgalMesh out;
@@ -342,7 +316,7 @@ int main(int argc, char** argv)
             const QualityReport q = measure_quality(output, target_length);
             const auto d = hausdorff_distance(output, input);
             const bool topology_kept =
-                rejected_faces == 0 && topology_of(input) == topology_of(output);
+                rejected_faces == 0 && measure_topology(input) == measure_topology(output);
             char constraints[32];
             std::snprintf(constraints, sizeof constraints, "%zu/%zu", run.sharp_edges,
                           run.border_edges);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
 #include "surface/closest_point_tree.h"
 
@@ -239,6 +240,37 @@ std::string format_quality_table(const QualityReport& before, const QualityRepor
     }
     out += "\n";
     return out;
+}
+
+SurfaceTopology measure_topology(const SurfaceMesh& mesh)
+{
+    SurfaceTopology t;
+    t.vertices = static_cast<long>(mesh.n_vertices());
+    t.edges = static_cast<long>(mesh.n_edges());
+    t.faces = static_cast<long>(mesh.n_faces());
+    // components: union-find over the edges, path halving
+    std::vector<int> parent(mesh.n_vertices());
+    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+    auto find = [&](int x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    for (auto e : mesh.edges())
+    {
+        const auto h = mesh.halfedge_handle(e, 0);
+        parent[find(mesh.from_vertex_handle(h).idx())] = find(mesh.to_vertex_handle(h).idx());
+    }
+    for (std::size_t i = 0; i < parent.size(); ++i)
+        if (find(static_cast<int>(i)) == static_cast<int>(i)) ++t.components;
+    // boundary loops: walk each unvisited boundary halfedge's cycle once
+    std::vector<char> walked(mesh.n_halfedges(), 0);
+    for (auto h : mesh.halfedges())
+    {
+        if (!mesh.is_boundary(h) || walked[h.idx()]) continue;
+        ++t.boundary_loops;
+        for (auto g = h; !walked[g.idx()]; g = mesh.next_halfedge_handle(g)) walked[g.idx()] = 1;
+    }
+    return t;
 }
 
 }  // namespace hdimesh::surface

@@ -29,6 +29,23 @@ inline double size_quality(double length, double size)
     return length < size ? length / size : size / length;
 }
 
+/// The topology a remesher must keep: counts, connected components (through edges) and loops
+/// of boundary edges (holes). Compare two meshes with ==.
+struct SurfaceTopology
+{
+    long vertices = 0, edges = 0, faces = 0;
+    int components = 0, boundary_loops = 0;
+    long euler() const { return vertices - edges + faces; }
+    bool operator==(const SurfaceTopology& o) const
+    {
+        return euler() == o.euler() && components == o.components && boundary_loops == o.boundary_loops;
+    }
+    bool operator!=(const SurfaceTopology& o) const { return !(*this == o); }
+};
+
+/// \pre no deleted elements (after garbage_collection()).
+SurfaceTopology measure_topology(const SurfaceMesh& mesh);
+
 /// Everything the before/after table of surfremesh prints.
 struct QualityReport
 {

@@ -5,7 +5,6 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <functional>
 #include <map>
 #include <set>
 
@@ -21,44 +20,6 @@ using namespace hdimesh::surface;
 
 namespace
 {
-
-struct Topology
-{
-    int vertices = 0, edges = 0, faces = 0, boundary_loops = 0, components = 0;
-    int euler() const { return vertices - edges + faces; }
-};
-
-Topology topology(const SurfaceMesh& mesh)
-{
-    Topology t;
-    t.vertices = static_cast<int>(mesh.n_vertices());
-    t.edges = static_cast<int>(mesh.n_edges());
-    t.faces = static_cast<int>(mesh.n_faces());
-    std::vector<int> parent(mesh.n_vertices());
-    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
-    std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
-    for (auto e : mesh.edges())
-    {
-        const auto h = mesh.halfedge_handle(e, 0);
-        parent[find(mesh.from_vertex_handle(h).idx())] = find(mesh.to_vertex_handle(h).idx());
-    }
-    std::set<int> roots;
-    for (auto v : mesh.vertices()) roots.insert(find(v.idx()));
-    t.components = static_cast<int>(roots.size());
-    std::set<int> seen;
-    for (auto h : mesh.halfedges())
-    {
-        if (!mesh.is_boundary(h) || seen.count(h.idx())) continue;
-        ++t.boundary_loops;
-        auto g = h;
-        do
-        {
-            seen.insert(g.idx());
-            g = mesh.next_halfedge_handle(g);
-        } while (g != h);
-    }
-    return t;
-}
 
 void check_manifold(const SurfaceMesh& mesh)
 {
@@ -137,7 +98,7 @@ TEST_CASE("a coarse sphere remeshed to h = 0.2 on the analytic sphere: sizes in 
     options.iterations = 8;
     const RemeshReport report = remesh(mesh, options, model);
     CHECK(report.splits > 0);
-    const Topology t = topology(mesh);
+    const SurfaceTopology t = measure_topology(mesh);
     CHECK(t.euler() == 2);
     CHECK(t.components == 1);
     CHECK(t.boundary_loops == 0);
@@ -184,7 +145,7 @@ TEST_CASE("the open box remeshed finer keeps its rim, its sharp edges and its co
     settings.sizing.hsiz = 0.15;
     const SurfaceRemeshResult result = remesh_surface(mesh, settings);
     CHECK(result.features.corners == 8);
-    const Topology before = topology(input), after = topology(mesh);
+    const SurfaceTopology before = measure_topology(input), after = measure_topology(mesh);
     CHECK(after.euler() == before.euler());
     CHECK(after.boundary_loops == 1);
     CHECK(after.components == 1);
@@ -226,8 +187,8 @@ TEST_CASE("fandisk at 3 % of the diagonal: ridges covered, ridge vertices on the
     remesh_surface(mesh, settings);
     const double diagonal = bounding_box_diagonal(input);
 
-    CHECK(topology(mesh).euler() == topology(input).euler());
-    CHECK(topology(mesh).components == 1);
+    CHECK(measure_topology(mesh).euler() == measure_topology(input).euler());
+    CHECK(measure_topology(mesh).components == 1);
     check_manifold(mesh);
 
     SurfaceProperties in_props(input), out_props(mesh);
@@ -296,7 +257,7 @@ TEST_CASE("hooks can veto every split: the mesh is unchanged by splits and the r
     const RemeshReport r = remesh(mesh, options, model, hooks);
     CHECK(asked > 0);
     CHECK(r.splits == 0);
-    CHECK(topology(mesh).euler() == 2);
+    CHECK(measure_topology(mesh).euler() == 2);
 }
 
 TEST_CASE("remesh on an HDI model of a sphere: vertices on the unit sphere within the model's accuracy")
@@ -317,7 +278,7 @@ TEST_CASE("remesh on an HDI model of a sphere: vertices on the unit sphere withi
     options.iterations = 4;
     const RemeshReport report = remesh(mesh, options, model);
     CHECK(report.collapses > 0);  // 0.25 is coarser than the input's edges
-    CHECK(topology(mesh).euler() == 2);
+    CHECK(measure_topology(mesh).euler() == 2);
     check_manifold(mesh);
     for (auto v : mesh.vertices()) CHECK(std::abs(mesh.point(v).norm() - 1.0) < 0.01);
     const QualityReport q = measure_quality(mesh, 0.25);
