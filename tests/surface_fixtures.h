@@ -24,6 +24,25 @@ public:
     }
 };
 
+/// An n×n grid of unit squares over the (x, y) plane at heights height(i, j), each square cut
+/// by its (i,j)-(i+1,j+1) diagonal. Unclassified: each test sets the properties it needs.
+template <class Height>
+SurfaceMesh triangulated_grid(int n, Height height)
+{
+    SurfaceMesh mesh;
+    std::vector<VertexHandle> v;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) v.push_back(mesh.add_vertex(Vec3d(i, j, height(i, j))));
+    auto at = [&](int i, int j) { return v[j * (n + 1) + i]; };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+            mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            mesh.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    return mesh;
+}
+
 /// The icosahedron on the unit sphere (hdimesh::fixtures::icosphere(0)), outward, every vertex
 /// smooth, no curves, face ref 1.
 inline SurfaceMesh icosahedron()

@@ -23,17 +23,7 @@ using hdimesh::surface::fixtures::icosahedron;
 // A flat n×n grid of unit squares in z = 0, each cut by its (i,j)-(i+1,j+1) diagonal.
 SurfaceMesh grid(int n)
 {
-    SurfaceMesh mesh;
-    std::vector<VertexHandle> v;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) v.push_back(mesh.add_vertex(Vec3d(i, j, 0)));
-    auto at = [&](int i, int j) { return v[j * (n + 1) + i]; };
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-        {
-            mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-            mesh.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-        }
+    SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(n, [](int, int) { return 0.0; });
     SurfaceProperties props(mesh);
     for (auto x : mesh.vertices())
     {

@@ -23,6 +23,7 @@
 #include "surface/closest_point_tree.h"
 #include "surface/local_ops.h"
 #include "surface/surface_model.h"
+#include "surface_fixtures.h"
 
 using namespace hdimesh::surface;
 
@@ -33,17 +34,7 @@ double height(double x, double y) { return 0.3 * std::sin(0.9 * x) * std::cos(0.
 
 SurfaceMesh bumpy_grid(int n)
 {
-    SurfaceMesh mesh;
-    std::vector<VertexHandle> v;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) v.push_back(mesh.add_vertex(Vec3d(i, j, height(i, j))));
-    auto at = [&](int i, int j) { return v[j * (n + 1) + i]; };
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-        {
-            mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-            mesh.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-        }
+    SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(n, height);
     SurfaceProperties props(mesh);
     for (auto x : mesh.vertices())
     {

@@ -35,22 +35,7 @@ using hdimesh::surface::fixtures::PlaneProjector;
 // with the vertex (cx, cy) lifted to `tip` (a spike). Unclassified.
 SurfaceMesh grid(int n, int cx = -1, int cy = -1, double tip = 0.0)
 {
-    SurfaceMesh mesh;
-    std::vector<VertexHandle> v;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i)
-        {
-            const double z = i == cx && j == cy ? tip : 0.0;
-            v.push_back(mesh.add_vertex(Vec3d(i, j, z)));
-        }
-    auto at = [&](int i, int j) { return v[j * (n + 1) + i]; };
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-        {
-            mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-            mesh.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-        }
-    return mesh;
+    return hdimesh::surface::fixtures::triangulated_grid(n, [&](int i, int j) { return i == cx && j == cy ? tip : 0.0; });
 }
 
 // Classified as the operators expect: the rim is boundary curve 0, the rest smooth, one ref.
