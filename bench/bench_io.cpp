@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "fixtures.h"
+#include "volume/check.h"
 #include "volume/tet_io.h"
 #include "volume/tet_mesh.h"
 
@@ -86,6 +87,11 @@ int main(int argc, char** argv)
             const double read_seconds = seconds_since(read_start);
             if (back.num_live_tets() != mesh.num_live_tets())
                 return std::fprintf(stderr, "%s: read %d tets, wrote %.0f\n", f.file, back.num_live_tets(), tets), 1;
+            // after the clock: the read-back mesh passes the checker like every mesh we make
+            const auto violations = check_mesh(back);
+            if (!violations.empty())
+                return std::fprintf(stderr, "%s: read-back mesh fails the checker:\n%s", f.file,
+                                    format_violations(violations).c_str()), 1;
             std::snprintf(read_rate, sizeof(read_rate), "%.3g", tets / read_seconds);
             read_memory = back.memory_bytes();
         }
