@@ -137,4 +137,19 @@ struct ShiftOptions
 /// their two curve neighbours; corners never move.
 OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& options = {});
 
+struct SlideOptions
+{
+    /// Band of the ball's edge lengths after the move (the cleanup allows a longer edge than the
+    /// loop's 4/3·h: one long edge costs less than a needle at a corner).
+    double max_edge_length = 1e300;
+    double min_edge_length = 0.0;
+    int samples = 16;             // trial points toward each curve neighbour
+    double min_gain_deg = 0.1;    // the worst angle must rise by at least this
+};
+/// Slides a ridge or boundary vertex along its curve (trial points toward its two curve
+/// neighbours, projected onto the curve) to where the worst angle of its ball is largest; done
+/// only when that angle rises, no face turns too far and the moved chords stay near the model.
+/// The cure for the narrow triangle at a corner between two curves that open up away from it.
+OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOptions& options = {});
+
 }  // namespace hdimesh::surface
