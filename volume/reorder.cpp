@@ -59,17 +59,8 @@ CompactionMaps renumber_spatially(TetMesh& mesh)
         auto copy = values;
         for (int v = 0; v < nv; ++v) values[old2new_verts[v]] = copy[v];
     };
-    permute_vertices(mesh.points);
-    permute_vertices(mesh.vertex_refs);
-    permute_vertices(mesh.vertex_classes);
-    for (auto& tv : mesh.tets)
-        for (int& v : tv) v = old2new_verts[v];
-    for (auto& tri : mesh.triangles)
-        for (int& v : tri) v = old2new_verts[v];
-    for (auto& e : mesh.edges)
-        for (int& v : e) v = old2new_verts[v];
-    for (int& v : mesh.corners) v = old2new_verts[v];
-    for (int& v : mesh.required_vertices) v = old2new_verts[v];
+    mesh.for_each_vertex_array(permute_vertices);
+    mesh.for_each_vertex_id([&](int& v) { v = old2new_verts[v]; });
 
     // tets by smallest (new) vertex id, a counting sort: stable, linear
     std::vector<int> start(nv + 1, 0);
@@ -87,8 +78,7 @@ CompactionMaps renumber_spatially(TetMesh& mesh)
         auto copy = values;
         for (int t = 0; t < nt; ++t) values[old2new_tets[t]] = copy[t];
     };
-    permute_tets(mesh.tets);
-    permute_tets(mesh.tet_refs);
+    mesh.for_each_tet_array(permute_tets);
     if (mesh.has_adjacency())
     {
         permute_tets(mesh.neighbors);

@@ -190,15 +190,7 @@ CompactionMaps TetMesh::compact()
 
     // vertices: keep those referenced by anything
     std::vector<char> used(nv, 0);
-    for (int t = 0; t < nt; ++t)
-        if (!is_dead(t))
-            for (int v : tets[t]) used[v] = 1;
-    for (const auto& tri : triangles)
-        for (int v : tri) used[v] = 1;
-    for (const auto& e : edges)
-        for (int v : e) used[v] = 1;
-    for (int v : corners) used[v] = 1;
-    for (int v : required_vertices) used[v] = 1;
+    for_each_vertex_id([&](int& v) { used[v] = 1; });
     maps.old2new_verts.assign(nv, -1);
     int kept = 0;
     for (int v = 0; v < nv; ++v)
@@ -206,40 +198,30 @@ CompactionMaps TetMesh::compact()
 
     const auto& v2v = maps.old2new_verts;
     const auto& t2t = maps.old2new_tets;
-    for (int v = 0; v < nv; ++v)
-    {
-        const int n = v2v[v];
-        if (n < 0) continue;
-        points[n] = points[v];
-        vertex_refs[n] = vertex_refs[v];
-        vertex_classes[n] = vertex_classes[v];
-    }
-    points.resize(kept);
-    vertex_refs.resize(kept);
-    vertex_classes.resize(kept);
+    // In place: an entity only ever moves to a smaller or equal index.
+    for_each_vertex_array([&](auto& values) {
+        for (int v = 0; v < nv; ++v)
+            if (v2v[v] >= 0) values[v2v[v]] = values[v];
+        values.resize(kept);
+    });
+    for_each_vertex_id([&](int& v) { v = v2v[v]; });
 
     const bool adjacency = has_adjacency();
-    for (int t = 0; t < nt; ++t)
+    auto keep_live_tets = [&](auto& values) {
+        for (int t = 0; t < nt; ++t)
+            if (t2t[t] >= 0) values[t2t[t]] = values[t];
+        values.resize(live);
+    };
+    for_each_tet_array(keep_live_tets);
+    if (adjacency)
     {
-        const int n = t2t[t];
-        if (n < 0) continue;
-        for (int k = 0; k < 4; ++k) tets[n][k] = v2v[tets[t][k]];
-        tet_refs[n] = tet_refs[t];
-        if (adjacency)
-            for (int k = 0; k < 4; ++k)
-                neighbors[n][k] = neighbors[t][k] == kNoTet ? kNoTet : t2t[neighbors[t][k]];
+        keep_live_tets(neighbors);
+        for (auto& row : neighbors)
+            for (int& n : row)
+                if (n != kNoTet) n = t2t[n];
     }
-    tets.resize(live);
-    tet_refs.resize(live);
-    if (adjacency) neighbors.resize(live);
     else neighbors.clear();
 
-    for (auto& tri : triangles)
-        for (int& v : tri) v = v2v[v];
-    for (auto& e : edges)
-        for (int& v : e) v = v2v[v];
-    for (int& v : corners) v = v2v[v];
-    for (int& v : required_vertices) v = v2v[v];
     std::vector<int> kept_required_tets;
     for (int t : required_tets)
         if (t2t[t] >= 0) kept_required_tets.push_back(t2t[t]);

@@ -101,6 +101,40 @@ struct TetMesh
     /// Drops dead tets and vertices used by no tet, triangle or edge; renumbers everything
     /// (adjacency included) and returns the maps.
     CompactionMaps compact();
+
+    // --- the arrays, listed once: whatever renumbers vertices or tets (compact(),
+    // renumber_spatially()) visits them through these, so a new array is added here only.
+    /// f(array) for every array holding one value per vertex id.
+    template <class F>
+    void for_each_vertex_array(F&& f)
+    {
+        f(points);
+        f(vertex_refs);
+        f(vertex_classes);
+    }
+    /// f(array) for every array holding one value per tet slot, except neighbors (its values
+    /// are tet ids: the renumbering maps them too).
+    template <class F>
+    void for_each_tet_array(F&& f)
+    {
+        f(tets);
+        f(tet_refs);
+    }
+    /// f(id) on every stored vertex id (by reference): live tets, triangles, edges, corners,
+    /// required vertices.
+    template <class F>
+    void for_each_vertex_id(F&& f)
+    {
+        for (auto& tv : tets)
+            if (tv[0] != kDeadTet)
+                for (int& v : tv) f(v);
+        for (auto& tri : triangles)
+            for (int& v : tri) f(v);
+        for (auto& e : edges)
+            for (int& v : e) f(v);
+        for (int& v : corners) f(v);
+        for (int& v : required_vertices) f(v);
+    }
 };
 
 }  // namespace hdimesh
