@@ -149,6 +149,9 @@ struct SnapOptions
     /// Model points around the star: none may end farther from the output near v than the
     /// larger of the tolerance and its distance before (the move may not open a gap elsewhere).
     std::vector<Vec3d> witnesses;
+    /// An angle repair instead: the target need not come near; the move must raise the star's
+    /// smallest angle, with the same distance checks (it keeps what the refinement reached).
+    bool raise_min_angle = false;
 };
 /// Moves v onto `target`, a point of the model the output passes far from (a smooth vertex onto
 /// a model point; a ridge or boundary vertex onto a point of its own curve, between its two

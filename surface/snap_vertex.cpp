@@ -17,6 +17,8 @@ namespace
 // chords cut, so its triangles may turn more than a smoothing move's, but not fold.
 constexpr double kMaxSnapTurnDeg = 60.0;
 constexpr double kMaxTurnFromModelDeg = 85.0;
+// A repair must raise the star's smallest angle by this much (not a move of rounding noise).
+constexpr double kMinAngleGainDeg = 0.1;
 // The fractions of the way to the target tried, the whole way first.
 constexpr double kSnapSteps[] = {1.0, 0.75, 0.5, 0.35};
 
@@ -114,6 +116,7 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
     witness_before.reserve(options.witnesses.size());
     for (const Vec3d& w : options.witnesses) witness_before.push_back(patch.distance(w, nullptr));
     double star_before = -1.0;  // the worst sample of the star before, computed when needed
+    const double bound = options.tolerance;
     auto worst_sample = [&](const Vec3d& at) {
         double worst = 0.0;
         for (auto f : mesh.vf_range(v))
@@ -130,8 +133,8 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         return worst;
     };
     auto check = [&](const Vec3d& q, const ProjectedPoint& q_on_model) {
-        // The target must come within the tolerance: the point of the move.
-        if (patch.distance(target, &q) > options.tolerance) return OpStatus::Geometry;
+        // The target must come within the tolerance: the point of the move (not of a repair).
+        if (!options.raise_min_angle && patch.distance(target, &q) > options.tolerance) return OpStatus::Geometry;
         double old_min_angle = 180.0, new_min_angle = 180.0;
         for (auto f : mesh.vf_range(v))
         {
@@ -144,16 +147,24 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
                 qe(after) < ctx.limits.min_new_quality)
                 return OpStatus::Geometry;
         }
-        if (new_min_angle < std::min(options.min_angle_deg, old_min_angle)) return OpStatus::Quality;
+        if (options.raise_min_angle ? !(new_min_angle > old_min_angle + kMinAngleGainDeg)
+                                    : new_min_angle < std::min(options.min_angle_deg, old_min_angle))
+            return OpStatus::Quality;
+        // Sizes: no edge of the star leaves the band or gets farther out of it; a repair may
+        // trade (a needle's short edge is what it repairs) but not add an edge out of the band.
+        int out_before = 0, out_after = 0;
         for (auto w : mesh.vv_range(v))
         {
             const Vec3d r = mesh.point(w);
             const double before = out_of_band((r - p).norm(), options.min_length, options.max_length);
             const double after = out_of_band((r - q).norm(), options.min_length, options.max_length);
-            if (after > 0.0 && after > before) return OpStatus::Quality;
+            out_before += before > 0.0;
+            out_after += after > 0.0;
+            if (!options.raise_min_angle && after > 0.0 && after > before) return OpStatus::Quality;
         }
+        if (out_after > out_before) return OpStatus::Quality;
         const double star_after = worst_sample(q);
-        if (star_after > 0.0)
+        if (star_after > bound)
         {
             if (star_before < 0.0) star_before = worst_sample(p);
             if (star_after > star_before) return OpStatus::Geometry;
@@ -161,7 +172,7 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         for (std::size_t i = 0; i < options.witnesses.size(); ++i)
         {
             const double after = patch.distance(options.witnesses[i], &q);
-            if (after > options.tolerance && after > witness_before[i] + 1e-12 * star_length) return OpStatus::Geometry;
+            if (after > bound && after > witness_before[i] + 1e-12 * star_length) return OpStatus::Geometry;
         }
         return OpStatus::Done;
     };
