@@ -111,10 +111,9 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
     }
 
     // The star with v at q: geometry, quality, distance both ways (a status, Done when legal).
+    // The 2-ring and the witnesses' distances before: computed once, when a position gets that far.
     const Patch patch(mesh, v);
     std::vector<double> witness_before;
-    witness_before.reserve(options.witnesses.size());
-    for (const Vec3d& w : options.witnesses) witness_before.push_back(patch.distance(w, nullptr));
     double star_before = -1.0;  // the worst sample of the star before, computed when needed
     const double bound = options.tolerance;
     auto worst_sample = [&](const Vec3d& at) {
@@ -168,6 +167,11 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         {
             if (star_before < 0.0) star_before = worst_sample(p);
             if (star_after > star_before) return OpStatus::Geometry;
+        }
+        if (witness_before.size() != options.witnesses.size())
+        {
+            witness_before.clear();
+            for (const Vec3d& w : options.witnesses) witness_before.push_back(patch.distance(w, nullptr));
         }
         for (std::size_t i = 0; i < options.witnesses.size(); ++i)
         {
