@@ -584,7 +584,14 @@ private:
                 FaceHandle face;  // the output triangle closest to the point
             };
             std::vector<FarHit> far_hits;
-            std::vector<char> snapped_now(mesh_.n_vertices(), 0);
+            std::vector<char> snapped_now(mesh_.n_vertices(), 0);  // moved by a snap in this round
+            // (A split later in the round adds vertices, and an edge it cut ends at one of them.)
+            auto snapped_end = [&](EdgeHandle e) {
+                const auto he = mesh_.halfedge_handle(e, 0);
+                for (const VertexHandle v : {mesh_.from_vertex_handle(he), mesh_.to_vertex_handle(he)})
+                    if (static_cast<std::size_t>(v.idx()) < snapped_now.size() && snapped_now[v.idx()]) return true;
+                return false;
+            };
             // Consecutive model points are mostly neighbours: the last hit is the hint of the
             // next search, and a point within the tolerance of it is near without a search (the
             // closest triangle can only be nearer; the same arithmetic as the search's).
@@ -632,8 +639,7 @@ private:
             {
                 if (!(edge_error[e.idx()] > 0.0)) continue;
                 // Marked before a snap moved an end: the next round looks at it again.
-                const auto he = mesh_.halfedge_handle(e, 0);
-                if (snapped_now[mesh_.from_vertex_handle(he).idx()] || snapped_now[mesh_.to_vertex_handle(he).idx()]) continue;
+                if (snapped_end(e)) continue;
                 if (mesh_.calc_edge_length(e) >= 2.0 * options_.refine_min_length_ratio * edge_size(e))
                     candidates.emplace_back(edge_error[e.idx()], e);
                 else if (options_.verbosity > 1)
@@ -652,7 +658,7 @@ private:
                 if (mesh_.status(e).deleted() || edge_target[e.idx()] > 0) continue;
                 const auto he = mesh_.halfedge_handle(e, 0);
                 const VertexHandle a = mesh_.from_vertex_handle(he), b = mesh_.to_vertex_handle(he);
-                if (snapped_now[a.idx()] || snapped_now[b.idx()]) continue;
+                if (snapped_end(e)) continue;
                 const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
                 const ProjectedPoint on_model = ctx_.model.project_near(mid, VertexClass::Smooth, kNoCurve, ctx_.model_face(a));
                 if (!on_model.ok) continue;
@@ -675,10 +681,7 @@ private:
                 if (budget < 1.0 && static_cast<double>(short_edges) >= budget * static_cast<double>(edges))
                     break;
                 if (mesh_.status(e).deleted()) continue;
-                {
-                    const auto he = mesh_.halfedge_handle(e, 0);
-                    if (snapped_now[mesh_.from_vertex_handle(he).idx()] || snapped_now[mesh_.to_vertex_handle(he).idx()]) continue;
-                }
+                if (snapped_end(e)) continue;
                 const bool boundary = mesh_.is_boundary(e);
                 const bool was_short = size_quality(mesh_.calc_edge_length(e), reference_size(e)) < 0.66;
                 // Onto the far model point if the triangles allow it, else at the projected midpoint.
