@@ -152,4 +152,30 @@ struct SlideOptions
 /// The cure for the narrow triangle at a corner between two curves that open up away from it.
 OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOptions& options = {});
 
+struct SnapOptions
+{
+    /// Distance to the model that counts as near, both ways (the refinement's tolerance).
+    double tolerance = 0.0;
+    /// No triangle of the star gets an angle under this (a star that had one already: under its worst).
+    double min_angle_deg = 30.0;
+    /// The star's edges stay within [min_length, max_length] (≤ 0: no bound); an edge out of the
+    /// band before may not get farther out.
+    double min_length = 0.0, max_length = 0.0;
+    /// Model points around the star: none may end farther from the output near v than the
+    /// larger of the tolerance and its distance before (the move may not open a gap elsewhere).
+    std::vector<Vec3d> witnesses;
+    /// An angle repair instead: the target need not come near; the move must raise the star's
+    /// smallest angle, with the same distance checks (it keeps what the refinement reached).
+    bool raise_min_angle = false;
+};
+/// Moves v onto `target`, a point of the model the output passes far from (a smooth vertex onto
+/// a model point; a ridge or boundary vertex onto a point of its own curve, between its two
+/// curve neighbours; corners never), or when that is refused part of the way (3/4, 1/2, 0.35,
+/// projected back onto the model). Accepted when the target comes within the tolerance of the
+/// star's 2-ring, no triangle of the star turns past 60° or folds against the model, the star
+/// keeps its angles and edge lengths (options), its centroids and edge midpoints stay within
+/// max(tolerance, worst before) of the model, and no witness ends farther from the output.
+/// Costs no vertex and no short edge, unlike a split. A refusal reports the full move's layer.
+OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& target, const SnapOptions& options);
+
 }  // namespace hdimesh::surface

@@ -1,0 +1,221 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "surface/closest_point_tree.h"
+#include "surface/local_ops.h"
+#include "surface/local_ops_geometry.h"
+#include "surface/surface_quality.h"
+
+namespace hdimesh::surface
+{
+namespace
+{
+
+// As a split onto the model (split_edge.cpp): a snap exists to bend the star over a crest the
+// chords cut, so its triangles may turn more than a smoothing move's, but not fold.
+constexpr double kMaxSnapTurnDeg = 60.0;
+constexpr double kMaxTurnFromModelDeg = 85.0;
+// A repair must raise the star's smallest angle by this much (not a move of rounding noise).
+constexpr double kMinAngleGainDeg = 0.1;
+// The fractions of the way to the target tried, the whole way first.
+constexpr double kSnapSteps[] = {1.0, 0.75, 0.5, 0.35};
+
+// The triangles of the 2-ring of v (every face touching v or a neighbour of v), with the index
+// of v in each (-1: v is not one of its vertices): the output near the star, before and after.
+struct Patch
+{
+    std::vector<std::array<Vec3d, 3>> triangles;
+    std::vector<int> moved;
+
+    Patch(const SurfaceMesh& mesh, VertexHandle v)
+    {
+        std::vector<FaceHandle> faces;
+        for (auto w : mesh.vv_range(v))
+            for (auto f : mesh.vf_range(w)) faces.push_back(f);
+        for (auto f : mesh.vf_range(v)) faces.push_back(f);
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+        for (const FaceHandle f : faces)
+        {
+            const auto fv = detail::face_vertices(mesh, f);
+            triangles.push_back(detail::face_points(mesh, f));
+            moved.push_back(fv[0] == v ? 0 : fv[1] == v ? 1 : fv[2] == v ? 2 : -1);
+        }
+    }
+
+    double distance(const Vec3d& p, const Vec3d* v_at) const
+    {
+        double best2 = 1e300;
+        for (std::size_t i = 0; i < triangles.size(); ++i)
+        {
+            std::array<Vec3d, 3> t = triangles[i];
+            if (v_at && moved[i] >= 0) t[moved[i]] = *v_at;
+            best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+        }
+        return std::sqrt(best2);
+    }
+};
+
+// How far a length is out of the band [lo, hi] (≤ 0 bounds: open), 0 inside.
+double out_of_band(double length, double lo, double hi)
+{
+    if (lo > 0.0 && length < lo) return lo - length;
+    if (hi > 0.0 && length > hi) return length - hi;
+    return 0.0;
+}
+
+}  // namespace
+
+OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& target, const SnapOptions& options)
+{
+    using namespace detail;
+    SurfaceMesh& mesh = ctx.mesh;
+    OpResult result;
+    if (mesh.status(v).deleted() || mesh.is_isolated(v)) return result;
+
+    // Class layer: corners stay; a smooth vertex on an open boundary is unclassified (left alone);
+    // a curve vertex only onto its own curve, between its curve neighbours (no fold along it).
+    const VertexClass cls = ctx.vertex_class(v);
+    const int curve = ctx.vertex_curve(v);
+    if (cls == VertexClass::Corner || (cls == VertexClass::Smooth && mesh.is_boundary(v)))
+    {
+        result.status = OpStatus::Class;
+        return result;
+    }
+    const Vec3d p = mesh.point(v);
+    double star_length = 0.0;
+    std::vector<Vec3d> curve_neighbours;
+    for (auto h : mesh.voh_range(v))
+    {
+        star_length = std::max(star_length, mesh.calc_edge_length(h));
+        if (cls != VertexClass::Smooth && ctx.edge_curve(mesh.edge_handle(h)) == curve)
+            curve_neighbours.push_back(mesh.point(mesh.to_vertex_handle(h)));
+    }
+    const ProjectedPoint on_model = ctx.model.project_near(target, cls, curve, ctx.model_face(v));
+    if (cls != VertexClass::Smooth)
+    {
+        const bool on_own_curve = on_model.ok && (on_model.point - target).norm() <= 1e-9 * star_length;
+        bool between = curve_neighbours.size() == 2;
+        if (between)
+        {
+            const double span = (curve_neighbours[1] - curve_neighbours[0]).norm();
+            between = (target - curve_neighbours[0]).norm() < span && (target - curve_neighbours[1]).norm() < span;
+        }
+        if (!on_own_curve || !between)
+        {
+            result.status = OpStatus::Class;
+            return result;
+        }
+    }
+
+    // The star with v at q: geometry, quality, distance both ways (a status, Done when legal).
+    // The 2-ring and the witnesses' distances before: computed once, when a position gets that far.
+    const Patch patch(mesh, v);
+    std::vector<double> witness_before;
+    double star_before = -1.0;  // the worst sample of the star before, computed when needed
+    const double bound = options.tolerance;
+    auto worst_sample = [&](const Vec3d& at) {
+        double worst = 0.0;
+        for (auto f : mesh.vf_range(v))
+        {
+            const auto t = face_points_with(mesh, f, v, at);
+            const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
+            if (!ctx.near_model(centroid, v, options.tolerance)) worst = std::max(worst, ctx.distance_to_model(centroid, v));
+        }
+        for (auto w : mesh.vv_range(v))
+        {
+            const Vec3d mid = 0.5 * (mesh.point(w) + at);
+            if (!ctx.near_model(mid, v, options.tolerance)) worst = std::max(worst, ctx.distance_to_model(mid, v));
+        }
+        return worst;
+    };
+    auto check = [&](const Vec3d& q, const ProjectedPoint& q_on_model) {
+        // The target must come within the tolerance: the point of the move (not of a repair).
+        if (!options.raise_min_angle && patch.distance(target, &q) > options.tolerance) return OpStatus::Geometry;
+        double old_min_angle = 180.0, new_min_angle = 180.0;
+        for (auto f : mesh.vf_range(v))
+        {
+            const auto before = face_points(mesh, f), after = face_points_with(mesh, f, v, q);
+            const Vec3d n_after = normal(after);
+            old_min_angle = std::min(old_min_angle, triangle_min_angle_deg(before[0], before[1], before[2]));
+            new_min_angle = std::min(new_min_angle, triangle_min_angle_deg(after[0], after[1], after[2]));
+            if (!turn_ok(normal(before), n_after, kMaxSnapTurnDeg) ||
+                (cls == VertexClass::Smooth && q_on_model.ok && !turn_ok(q_on_model.normal, n_after, kMaxTurnFromModelDeg)) ||
+                qe(after) < ctx.limits.min_new_quality)
+                return OpStatus::Geometry;
+        }
+        if (options.raise_min_angle ? !(new_min_angle > old_min_angle + kMinAngleGainDeg)
+                                    : new_min_angle < std::min(options.min_angle_deg, old_min_angle))
+            return OpStatus::Quality;
+        // Sizes: no edge of the star leaves the band or gets farther out of it; a repair may
+        // trade (a needle's short edge is what it repairs) but not add an edge out of the band.
+        int out_before = 0, out_after = 0;
+        for (auto w : mesh.vv_range(v))
+        {
+            const Vec3d r = mesh.point(w);
+            const double before = out_of_band((r - p).norm(), options.min_length, options.max_length);
+            const double after = out_of_band((r - q).norm(), options.min_length, options.max_length);
+            out_before += before > 0.0;
+            out_after += after > 0.0;
+            if (!options.raise_min_angle && after > 0.0 && after > before) return OpStatus::Quality;
+        }
+        if (out_after > out_before) return OpStatus::Quality;
+        const double star_after = worst_sample(q);
+        if (star_after > bound)
+        {
+            if (star_before < 0.0) star_before = worst_sample(p);
+            if (star_after > star_before) return OpStatus::Geometry;
+        }
+        if (witness_before.size() != options.witnesses.size())
+        {
+            witness_before.clear();
+            for (const Vec3d& w : options.witnesses) witness_before.push_back(patch.distance(w, nullptr));
+        }
+        for (std::size_t i = 0; i < options.witnesses.size(); ++i)
+        {
+            const double after = patch.distance(options.witnesses[i], &q);
+            if (after > bound && after > witness_before[i] + 1e-12 * star_length) return OpStatus::Geometry;
+        }
+        return OpStatus::Done;
+    };
+
+    // All the way onto the target, else part of the way (back onto the model): the target only
+    // has to come within the tolerance, and a shorter move keeps the star's shape.
+    // A refusal reports why the whole move was refused.
+    Vec3d q = target;
+    ProjectedPoint q_on_model = on_model;
+    OpStatus status = OpStatus::Geometry;
+    for (const double step : kSnapSteps)
+    {
+        if (step < 1.0)
+        {
+            q_on_model = ctx.model.project_near(p + step * (target - p), cls, curve, ctx.model_face(v));
+            if (!q_on_model.ok) continue;
+            q = q_on_model.point;
+        }
+        const OpStatus at_q = check(q, q_on_model);
+        if (step == 1.0 || at_q == OpStatus::Done) status = at_q;
+        if (status == OpStatus::Done) break;
+    }
+    if (status != OpStatus::Done)
+    {
+        result.status = status;
+        return result;
+    }
+
+    if (ctx.hooks.allow_move && !ctx.hooks.allow_move(mesh, v, q))
+    {
+        result.status = OpStatus::Hook;
+        return result;
+    }
+    mesh.set_point(v, q);
+    if (q_on_model.ok && q_on_model.face >= 0) mesh.property(ctx.props.vertex_model_face, v) = q_on_model.face;
+    if (ctx.hooks.on_move) ctx.hooks.on_move(mesh, v, p);
+    result.status = OpStatus::Done;
+    result.vertex = v;
+    return result;
+}
+
+}  // namespace hdimesh::surface

@@ -1,0 +1,191 @@
+// The refinement's snap (try_snap_vertex) and the point grid it takes its witnesses from, on
+// tiny meshes built here: the snapped vertex is on the model, the far point comes within the
+// tolerance, no witness ends farther than it was (or than the tolerance), the star keeps its
+// angles and orientation; refusals leave the mesh untouched.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "surface/closest_point_tree.h"
+#include "surface/local_ops.h"
+#include "surface/point_grid.h"
+#include "surface/surface_quality.h"
+#include "surface_fixtures.h"
+
+using namespace hdimesh::surface;
+
+namespace
+{
+
+// A roof over the (x, y) plane: a crest along x = 2.2 of height 0.3, plane flanks of slope 0.3.
+// Points are projected vertically (near enough for slopes of 0.3).
+double roof(double x) { return 0.3 * (1.0 - std::abs(x - 2.2)); }
+
+class RoofProjector final : public Projector
+{
+public:
+    ProjectedPoint project(const Vec3d& p, VertexClass, int) const override
+    {
+        ProjectedPoint out;
+        out.point = Vec3d(p[0], p[1], roof(p[0]));
+        const double slope = p[0] < 2.2 ? 0.3 : -0.3;
+        out.normal = Vec3d(-slope, 0, 1).normalize();
+        out.ok = true;
+        return out;
+    }
+};
+
+// The 4×4 grid of unit squares on the roof (vertices at z = roof(x)), boundary vertices on
+// curve 0, the four grid corners as corners.
+SurfaceMesh roof_grid()
+{
+    SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(4, [](int i, int) { return roof(i); });
+    SurfaceProperties props(mesh);
+    for (auto v : mesh.vertices())
+    {
+        const Vec3d p = mesh.point(v);
+        const bool corner = (p[0] == 0 || p[0] == 4) && (p[1] == 0 || p[1] == 4);
+        mesh.property(props.vertex_class, v) =
+            corner ? VertexClass::Corner : mesh.is_boundary(v) ? VertexClass::Boundary : VertexClass::Smooth;
+        mesh.property(props.vertex_curve, v) = mesh.is_boundary(v) && !corner ? 0 : kNoCurve;
+    }
+    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
+    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
+    return mesh;
+}
+
+VertexHandle vertex_at(const SurfaceMesh& mesh, const Vec3d& p)
+{
+    for (auto v : mesh.vertices())
+        if ((mesh.point(v) - p).norm() < 1e-12) return v;
+    return VertexHandle();
+}
+
+double distance_to_mesh(const SurfaceMesh& mesh, const Vec3d& p)
+{
+    double best = 1e300;
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.cfv_iter(f);
+        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
+        best = std::min(best, (closest_point_on_triangle(p, a, b, c) - p).norm());
+    }
+    return best;
+}
+
+std::vector<Vec3d> points_of(const SurfaceMesh& mesh)
+{
+    std::vector<Vec3d> points;
+    for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
+    return points;
+}
+
+// Model points: the roof sampled every half unit, and its crest.
+std::vector<Vec3d> roof_samples()
+{
+    std::vector<Vec3d> samples;
+    for (int i = 0; i <= 8; ++i)
+        for (int j = 0; j <= 8; ++j) samples.emplace_back(0.5 * i, 0.5 * j, roof(0.5 * i));
+    for (int j = 0; j <= 8; ++j) samples.emplace_back(2.2, 0.5 * j, roof(2.2));
+    return samples;
+}
+
+}  // namespace
+
+TEST_CASE("snap moves a vertex onto the crest the chords cut, and takes no model point away")
+{
+    //   y                 The grid's vertices sit on the roof at integer x; the crest (x = 2.2,
+    //   4 +---+---+-:-+   z = 0.3) runs between the columns x = 2 and 3, so the chords cut it:
+    //     |  /|  /| :/|   the crest point T = (2.2, 2, 0.3) is 0.09 from the output. Snapping
+    //   2 +---+---v-T-+   v = (2, 2) toward T brings T within the tolerance.
+    //     |  /|  /| :/|
+    //   0 +---+---+-:-+ x
+    //     0   1   2   3   4
+    SurfaceMesh mesh = roof_grid();
+    RoofProjector model;
+    SurfaceHooks hooks;
+    int moves = 0;
+    hooks.on_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++moves; };
+    OperatorContext ctx(mesh, model, hooks);
+    const VertexHandle v = vertex_at(mesh, Vec3d(2, 2, roof(2)));
+    REQUIRE(v.is_valid());
+    const Vec3d target(2.2, 2, roof(2.2));
+    SnapOptions options;
+    options.tolerance = 0.05;
+    options.min_angle_deg = 30.0;
+    options.min_length = 0.66;
+    options.max_length = 1.7;  // the grid's diagonals are 1.45 long; the snap stretches one to 1.6
+    options.witnesses = roof_samples();
+    REQUIRE(distance_to_mesh(mesh, target) > 0.08);
+    std::vector<double> before;
+    for (const Vec3d& w : options.witnesses) before.push_back(distance_to_mesh(mesh, w));
+    const std::size_t faces = mesh.n_faces(), vertices = mesh.n_vertices();
+
+    const OpResult r = try_snap_vertex(ctx, v, target, options);
+    REQUIRE(r.done());
+    CHECK(moves == 1);
+    CHECK(mesh.n_faces() == faces);
+    CHECK(mesh.n_vertices() == vertices);
+    const Vec3d p = mesh.point(v);
+    CHECK(p[2] == doctest::Approx(roof(p[0])));  // on the model
+    CHECK(distance_to_mesh(mesh, target) <= options.tolerance);
+    for (std::size_t i = 0; i < options.witnesses.size(); ++i)
+        CHECK(distance_to_mesh(mesh, options.witnesses[i]) <= std::max(options.tolerance, before[i]) + 1e-12);
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.cfv_iter(f);
+        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
+        CHECK(triangle_normal(a, b, c)[2] > 0.0);  // nothing folded
+        CHECK(triangle_min_angle_deg(a, b, c) >= options.min_angle_deg - 1e-9);
+    }
+    for (auto w : mesh.vv_range(v))
+    {
+        const double length = (mesh.point(w) - p).norm();
+        CHECK(length >= options.min_length);
+        CHECK(length <= options.max_length);
+    }
+}
+
+TEST_CASE("snap refuses a corner, a boundary vertex past its curve neighbour, a worse star, and changes nothing")
+{
+    //   The same roof grid. (0,0) is a corner; the boundary vertex (2,0) may slide along y = 0
+    //   between (1,0) and (3,0) only; an angle bound above the grid's 45° refuses any move.
+    SurfaceMesh mesh = roof_grid();
+    const SurfaceMesh original = mesh;
+    RoofProjector model;
+    OperatorContext ctx(mesh, model, {});
+    SnapOptions options;
+    options.tolerance = 0.05;
+    options.witnesses = roof_samples();
+
+    const VertexHandle corner = vertex_at(mesh, Vec3d(0, 0, roof(0)));
+    REQUIRE(corner.is_valid());
+    CHECK(try_snap_vertex(ctx, corner, Vec3d(0.3, 0.2, roof(0.3)), options).status == OpStatus::Class);
+    const VertexHandle boundary = vertex_at(mesh, Vec3d(2, 0, roof(2)));
+    REQUIRE(boundary.is_valid());
+    CHECK(try_snap_vertex(ctx, boundary, Vec3d(3.5, 0, roof(3.5)), options).status == OpStatus::Class);
+    SnapOptions strict = options;
+    strict.min_angle_deg = 60.0;
+    const VertexHandle v = vertex_at(mesh, Vec3d(2, 2, roof(2)));
+    CHECK(try_snap_vertex(ctx, v, Vec3d(2.2, 2, roof(2.2)), strict).status == OpStatus::Quality);
+    CHECK(points_of(mesh) == points_of(original));
+}
+
+TEST_CASE("point grid finds exactly the points within a radius")
+{
+    std::vector<Vec3d> points;
+    for (int i = 0; i < 7; ++i)
+        for (int j = 0; j < 7; ++j)
+            for (int k = 0; k < 3; ++k) points.emplace_back(0.37 * i - 1.0, 0.41 * j, -0.29 * k);
+    const PointGrid grid(points, 0.5);
+    for (const Vec3d& centre : {Vec3d(0, 0, 0), Vec3d(0.5, 1.2, -0.3), Vec3d(-5, -5, -5)})
+        for (const double radius : {0.0, 0.3, 0.8, 2.0})
+        {
+            std::vector<std::size_t> expected;
+            for (std::size_t i = 0; i < points.size(); ++i)
+                if ((points[i] - centre).norm() <= radius) expected.push_back(i);
+            CHECK(grid.within(centre, radius) == expected);
+        }
+}
