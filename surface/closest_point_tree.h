@@ -60,6 +60,7 @@ private:
     Hit search(const Vec3d& p, double bound_d2) const;
 
     std::vector<std::array<Vec3d, 3>> primitives_;  // in leaf order once built
+    std::vector<std::array<Vec3d, 2>> boxes_;       // per primitive in leaf order: lo, hi
     bool segments_ = false;
     std::vector<int> order_;     // leaf-order position -> index as given
     std::vector<int> position_;  // index as given -> leaf-order position
