@@ -11,34 +11,6 @@ namespace hdimesh::surface
 namespace
 {
 
-// George's optimal point for a smooth vertex: for each outer edge (a, b) of the ball, the apex
-// of the equilateral triangle on (a, b) in the tangent plane, on the vertex's side; weights
-// 1/Qe² so the worst triangles pull hardest.
-bool optimal_point_smooth(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& n, Vec3d& optimal)
-{
-    using namespace detail;
-    Vec3d sum(0, 0, 0);
-    double weight_sum = 0.0;
-    for (auto h : mesh.voh_range(v))
-    {
-        if (!mesh.face_handle(h).is_valid()) continue;
-        const Vec3d pa = mesh.point(mesh.to_vertex_handle(h));
-        const Vec3d pb = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
-        Vec3d side = OpenMesh::cross(n, pb - pa);  // (a, b, v) is counter-clockwise about n
-        const double len = side.norm();
-        if (!(len > 0.0)) return false;
-        side /= len;
-        const Vec3d ideal = 0.5 * (pa + pb) + (std::sqrt(3.0) / 2.0) * (pb - pa).norm() * side;
-        const double q = std::max(qe({mesh.point(v), pa, pb}), 0.05);
-        const double w = 1.0 / (q * q);
-        sum += w * ideal;
-        weight_sum += w;
-    }
-    if (!(weight_sum > 0.0)) return false;
-    optimal = sum / weight_sum;
-    return true;
-}
-
 // A curve vertex moves toward the point of its curve that balances its two curve edges.
 bool optimal_point_curve(const OperatorContext& ctx, VertexHandle v, Vec3d& optimal)
 {
@@ -109,6 +81,35 @@ struct Ball
     }
 };
 
+// George's optimal point for a smooth vertex: for each outer edge (a, b) of the ball, the apex
+// of the equilateral triangle on (a, b) in the tangent plane, on the vertex's side; weights
+// 1/Qe² so the worst triangles pull hardest. From the ball's faces (a, b: the points after v in
+// face order), in the order of the circulation around v that collected them.
+bool optimal_point_smooth(const Ball& ball, const Vec3d& n, Vec3d& optimal)
+{
+    using namespace detail;
+    Vec3d sum(0, 0, 0);
+    double weight_sum = 0.0;
+    for (const Ball::Face& face : ball.faces)
+    {
+        const Vec3d& pv = face.points[face.moved];
+        const Vec3d& pa = face.points[(face.moved + 1) % 3];
+        const Vec3d& pb = face.points[(face.moved + 2) % 3];
+        Vec3d side = OpenMesh::cross(n, pb - pa);  // (a, b, v) is counter-clockwise about n
+        const double len = side.norm();
+        if (!(len > 0.0)) return false;
+        side /= len;
+        const Vec3d ideal = 0.5 * (pa + pb) + (std::sqrt(3.0) / 2.0) * (pb - pa).norm() * side;
+        const double q = std::max(qe({pv, pa, pb}), 0.05);
+        const double w = 1.0 / (q * q);
+        sum += w * ideal;
+        weight_sum += w;
+    }
+    if (!(weight_sum > 0.0)) return false;
+    optimal = sum / weight_sum;
+    return true;
+}
+
 }  // namespace
 
 OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& options)
@@ -141,7 +142,7 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         }
         if (!(n.norm() > 0.0)) return result;
         n.normalize();
-        if (!optimal_point_smooth(mesh, v, n, optimal))
+        if (!optimal_point_smooth(ball, n, optimal))
         {
             result.status = OpStatus::Geometry;
             return result;
