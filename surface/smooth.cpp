@@ -67,7 +67,10 @@ struct Ball
     }
 
     // Worst Qe with v at p; -1 if a triangle turns more than the angle of cosine min_cos or degenerates.
-    double quality(const Vec3d& p, double min_cos) const
+    // Stops early, returning a value below `refused_below`, once the worst is under it: the
+    // caller refuses any such move whatever the exact value (a smart shift's refused trials
+    // were most of the polish's shifting).
+    double quality(const Vec3d& p, double min_cos, double refused_below) const
     {
         double worst = 1.0;
         for (const Face& face : faces)
@@ -76,6 +79,7 @@ struct Ball
             after[face.moved] = p;
             if (!detail::turn_ok_cos(face.normal, detail::normal(after), min_cos)) return -1.0;
             worst = std::min(worst, detail::qe(after));
+            if (worst < refused_below) return worst;
         }
         return worst;
     }
@@ -156,6 +160,9 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
 
     const double min_cos = detail::cos_deg(ctx.limits.max_normal_turn_deg);
     const double old_quality = ball.quality_before;
+    // Below this a trial is refused by one of the tests after ball.quality() below.
+    const double refused_below =
+        options.smart ? old_quality - 1e-12 : std::min(ctx.limits.min_new_quality, old_quality);
     for (double step = options.step; step > options.step / 5.0; step *= 0.5)
     {
         Vec3d target = p + step * (optimal - p);
@@ -163,7 +170,7 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         const ProjectedPoint projected = ctx.model.project_near(target, cls, ctx.vertex_curve(v), ctx.model_face(v));
         if (!projected.ok) continue;
         const Vec3d q = projected.point;
-        const double new_quality = ball.quality(q, min_cos);
+        const double new_quality = ball.quality(q, min_cos, refused_below);
         if (new_quality < ctx.limits.min_new_quality && new_quality < old_quality) continue;
         if (new_quality < 0.0) continue;
         if (options.smart && new_quality < old_quality - 1e-12) continue;
