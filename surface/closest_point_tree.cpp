@@ -225,7 +225,23 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
         const Pending& near = dl < dr ? left : right;
         const Pending& far = dl < dr ? right : left;
         if (far.d2 < best_d2) stack[top++] = far;
-        if (near.d2 < best_d2) stack[top++] = near;
+        if (near.d2 < best_d2)
+        {
+            stack[top++] = near;
+            // Opened next: its children's boxes (or its primitives) are wanted soon. The trees
+            // are larger than the cache; measured: the five models' sum of cpu s 4.12 -> 3.96.
+            const Node& next = nodes_[near.node];
+            if (next.left >= 0)
+            {
+                __builtin_prefetch(&nodes_[next.left]);
+                __builtin_prefetch(&nodes_[next.left + 1]);
+            }
+            else
+            {
+                __builtin_prefetch(&boxes_[next.first]);
+                __builtin_prefetch(&primitives_[next.first]);
+            }
+        }
     }
     if (best.primitive >= 0) best.distance = std::sqrt(best_d2);
     return best;
