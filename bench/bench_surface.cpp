@@ -6,7 +6,7 @@
 // and the topology check (Euler characteristic, components, boundary loops) against the input.
 //
 //   bench_surface [--diagnose | --diagnose-adaptive] [--verbose] [--uniform-only] [--floor F] [--hausd-fraction X] [--cone-defect DEG] [--budget F]
-//                [--iterations N] [model.obj ...]
+//                [--iterations N] [--save DIR] [model.obj ...]
 //   (default: the five models of issue 6 in data/; --floor / --hausd-fraction override
 //   SurfaceRemeshSettings::uniform_size_floor / uniform_hausd_fraction to explore them)
 //
@@ -15,6 +15,8 @@
 // the triangles under 20°, with the classes of their vertices: where the targets are lost.
 // --diagnose-adaptive: the same for the adaptive default (radius/h against the mean input edge).
 // --verbose: the remesher's stage lines on stderr (twice: also its refused refinement splits).
+// --save DIR: writes each uniform output as DIR/<model>.obj (outside the timing), e.g. to check
+// that a speed-up leaves the output bitwise identical (cmp the files of two builds).
 
 #include <algorithm>
 #include <chrono>
@@ -173,6 +175,7 @@ int main(int argc, char** argv)
 {
     std::vector<std::string> models;
     bool diagnostics = false, uniform_only = false, adaptive_diagnostics = false;
+    std::string save_dir;
     SurfaceRemeshSettings base;
     for (int i = 1; i < argc; ++i)
     {
@@ -185,6 +188,7 @@ int main(int argc, char** argv)
         else if (arg == "--hausd-fraction" && i + 1 < argc) base.uniform_hausd_fraction = std::stod(argv[++i]);
         else if (arg == "--budget" && i + 1 < argc) base.refine_short_edge_budget = std::stod(argv[++i]);
         else if (arg == "--iterations" && i + 1 < argc) base.iterations = std::stoi(argv[++i]);
+        else if (arg == "--save" && i + 1 < argc) save_dir = argv[++i];
         else if (arg == "--cone-defect" && i + 1 < argc) base.features.cone_defect_deg = std::stod(argv[++i]);
         else models.push_back(arg);
     }
@@ -225,6 +229,7 @@ int main(int argc, char** argv)
             std::printf("%-16s %7zu %7zu %8.2f %8.2f %8.2f %8.3f %8.2f %8.2f %10.3e %10s %6s\n", name.c_str(), input.n_faces(),
                         mesh.n_faces(), seconds, cpu, q.min_angle_deg, q.percent_all_angles_ge_25, q.percent_qe_ge_07,
                         q.percent_qt_ge_066, std::max(d[0], d[1]) / diagonal, features, topology_kept ? "kept" : "LOST");
+            if (!save_dir.empty()) write_surface(mesh, save_dir + "/" + name + ".obj");
             FeatureOptions feature_options = settings.features;
             feature_options.min_corner_spacing = 0.5 * settings.sizing.hsiz;  // as remesh_surface
             const FeatureCheck check = check_features(input, mesh, feature_options);

@@ -49,13 +49,18 @@ private:
         int first = 0, count = 0;  // leaf: primitives [first, first+count) of order_
         int left = -1, right = -1;
     };
+    struct BuildScratch
+    {
+        std::vector<Vec3d> lo, hi, centroid;  // per primitive (as given): box, sum of its points
+    };
     void build();
-    int build_node(int first, int count);
+    void build_node(int index, int first, int count, const BuildScratch& scratch);
     Vec3d closest_on(int position, const Vec3d& p) const;  // position in leaf order
     // The nearest primitive among those closer than sqrt(bound_d2) (primitive -1 if none).
     Hit search(const Vec3d& p, double bound_d2) const;
 
     std::vector<std::array<Vec3d, 3>> primitives_;  // in leaf order once built
+    std::vector<std::array<Vec3d, 2>> boxes_;       // per primitive in leaf order: lo, hi
     bool segments_ = false;
     std::vector<int> order_;     // leaf-order position -> index as given
     std::vector<int> position_;  // index as given -> leaf-order position

@@ -65,12 +65,13 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
         return std::find(fv.begin(), fv.end(), v1) == fv.end();  // else removed by the collapse
     };
     double new_min = 1.0;
+    const double min_cos = cos_deg(ctx.limits.max_normal_turn_deg);
     for (auto f : mesh.vf_range(v0))
     {
         if (!survives(f)) continue;
         const auto before = face_points(mesh, f);
         const auto after = face_points_with(mesh, f, v0, p1);
-        if (!turn_ok(normal(before), normal(after), ctx.limits.max_normal_turn_deg))
+        if (!turn_ok_cos(normal(before), normal(after), min_cos))
         {
             result.status = OpStatus::Geometry;
             return result;

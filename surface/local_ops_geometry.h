@@ -36,11 +36,21 @@ inline Vec3d normal(const std::array<Vec3d, 3>& p) { return triangle_normal(p[0]
 
 inline double cos_deg(double degrees) { return std::cos(degrees * M_PI / 180.0); }
 
+/// The new normal turned by at most the angle whose cosine is `min_cos` from the old one (and is
+/// not degenerate). The cosine once per operator, not per triangle: std::cos per tested triangle
+/// was 5 % of the remesher's time.
+inline bool turn_ok_cos(const Vec3d& old_normal, const Vec3d& new_normal, double min_cos)
+{
+    if (!(new_normal.sqrnorm() > 0.5)) return false;
+    if (!(old_normal.sqrnorm() > 0.5)) return true;  // the old triangle was degenerate: no reference
+    return OpenMesh::dot(old_normal, new_normal) >= min_cos;
+}
+
 /// The new normal turned by at most the allowed angle from the old one (and is not degenerate).
 inline bool turn_ok(const Vec3d& old_normal, const Vec3d& new_normal, double max_turn_deg)
 {
     if (!(new_normal.sqrnorm() > 0.5)) return false;
-    if (!(old_normal.sqrnorm() > 0.5)) return true;  // the old triangle was degenerate: no reference
+    if (!(old_normal.sqrnorm() > 0.5)) return true;
     return OpenMesh::dot(old_normal, new_normal) >= cos_deg(max_turn_deg);
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <memory>
 
 #include "surface/closest_point_tree.h"
@@ -123,8 +124,9 @@ private:
             else if (ratio > 1.0 / 0.66) ++long_edges;
         }
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-        std::fprintf(stderr, "remesh: after %s (%.2f s): %zu edges, %zu too short, %zu too long\n", stage, seconds, edges,
-                     short_edges, long_edges);
+        const double cpu = static_cast<double>(std::clock() - cpu_start_) / CLOCKS_PER_SEC;
+        std::fprintf(stderr, "remesh: after %s (%.2f s, cpu %.3f s): %zu edges, %zu too short, %zu too long\n", stage,
+                     seconds, cpu, edges, short_edges, long_edges);
     }
 
     void set_size(VertexHandle v)
@@ -446,11 +448,11 @@ private:
         {
             std::vector<FaceHandle> bad;
             for (auto f : mesh_.faces())
-                if (!mesh_.status(f).deleted() && face_min_angle(f) < options_.cleanup_angle_deg) bad.push_back(f);
+                if (!mesh_.status(f).deleted() && face_angle_below(f, options_.cleanup_angle_deg)) bad.push_back(f);
             std::size_t moved = 0;
             for (const FaceHandle f : bad)
             {
-                if (mesh_.status(f).deleted() || face_min_angle(f) >= options_.cleanup_angle_deg) continue;
+                if (mesh_.status(f).deleted() || !face_angle_below(f, options_.cleanup_angle_deg)) continue;
                 std::vector<EdgeHandle> edges;
                 for (auto e : mesh_.fe_range(f)) edges.push_back(e);
                 std::sort(edges.begin(), edges.end(), [&](EdgeHandle x, EdgeHandle y) {
@@ -862,10 +864,17 @@ private:
         }
     }
 
-    double face_min_angle(FaceHandle f) const
+    // Whether f's smallest angle (triangle_min_angle_deg) is under `degrees`. A triangle whose
+    // smallest angle is clearly larger (law of cosines, a degree of margin for its rounding) is
+    // answered without the three atan2: every cleanup round asks it of every face.
+    bool face_angle_below(FaceHandle f, double degrees) const
     {
         const auto p = detail::face_points(mesh_, f);
-        return triangle_min_angle_deg(p[0], p[1], p[2]);
+        double l2[3] = {(p[1] - p[2]).sqrnorm(), (p[2] - p[0]).sqrnorm(), (p[0] - p[1]).sqrnorm()};
+        std::sort(l2, l2 + 3);  // the smallest angle is opposite the shortest side
+        const double cosine = (l2[1] + l2[2] - l2[0]) / (2.0 * std::sqrt(l2[1] * l2[2]));
+        if (l2[0] > 0.0 && cosine < detail::cos_deg(degrees + 1.0)) return false;
+        return triangle_min_angle_deg(p[0], p[1], p[2]) < degrees;
     }
 
     // The worst triangles: try, in order, a quality flip of each edge, a collapse of the
@@ -879,12 +888,12 @@ private:
         {
             std::vector<FaceHandle> bad;
             for (auto f : mesh_.faces())
-                if (!mesh_.status(f).deleted() && face_min_angle(f) < options_.cleanup_angle_deg) bad.push_back(f);
+                if (!mesh_.status(f).deleted() && face_angle_below(f, options_.cleanup_angle_deg)) bad.push_back(f);
             if (bad.empty()) break;
             std::size_t changed = 0;
             for (const FaceHandle f : bad)
             {
-                if (mesh_.status(f).deleted() || face_min_angle(f) >= options_.cleanup_angle_deg) continue;
+                if (mesh_.status(f).deleted() || !face_angle_below(f, options_.cleanup_angle_deg)) continue;
                 if (improve_face(f, smart)) ++changed;
             }
             if (options_.verbosity > 0)
@@ -909,7 +918,7 @@ private:
             std::size_t done = 0;
             for (auto f : mesh_.faces())
             {
-                if (mesh_.status(f).deleted() || face_min_angle(f) >= options_.cleanup_angle_deg) continue;
+                if (mesh_.status(f).deleted() || !face_angle_below(f, options_.cleanup_angle_deg)) continue;
                 for (auto v : mesh_.fv_range(f))
                     if (try_slide(v)) ++done;
             }
@@ -974,6 +983,7 @@ private:
     const RemeshOptions& options_;
     OperatorContext ctx_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    std::clock_t cpu_start_ = std::clock();
     RemeshReport report_;
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first snap
 };
@@ -997,6 +1007,13 @@ RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const hdi::
 SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings)
 {
     SurfaceRemeshResult result;
+    // Verbose: the CPU time of the fixed costs before the remesher starts (features, model, sizes).
+    const std::clock_t cpu_start = std::clock();
+    auto report_setup = [&](const char* stage) {
+        if (settings.verbosity > 0)
+            std::fprintf(stderr, "remesh_surface: after %s (cpu %.3f s)\n", stage,
+                         static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+    };
     result.diagonal = bounding_box_diagonal(mesh);
     FeatureOptions features = settings.features;
     if (features.min_corner_spacing <= 0.0)
@@ -1007,8 +1024,10 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         features.min_corner_spacing = 0.5 * h;
     }
     result.features = detect_features(mesh, features);
+    report_setup("features");
     SurfaceModel model(mesh);
     if (settings.use_hdi) attach_hdi_projection(model, mesh);
+    report_setup("model");
 
     SizeMap sizes = SizeMap::uniform(settings.sizing.hsiz);
     if (settings.sizing.hsiz > 0.0 && settings.uniform_hausd_fraction > 0.0)
@@ -1108,6 +1127,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         options.refine_min_length_ratio = 0.15;
         options.refine_rounds = 20;
     }
+    report_setup("sizes and model points");
     result.report = remesh(mesh, options, model, {});
     return result;
 }

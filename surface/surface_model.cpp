@@ -16,28 +16,51 @@ namespace
 
 Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
 
+// The buffers of quadric_curvature, kept from one vertex to the next: allocating them per
+// vertex was a third of the model's build on stanford-bunny. (Stack matrices of a bounded size
+// were measured too: Eigen then takes other code paths and the curvatures differ in the last bits.)
+struct QuadricFitScratch
+{
+    std::vector<int> ring;
+    std::vector<int> in_ring_of;  // per vertex: the vertex whose ring holds it (-1: none yet)
+    Eigen::MatrixXd a;
+    Eigen::VectorXd rhs, c;
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+};
+
 // max(|k1|, |k2|) at v from z = a x² + b xy + c y² + d x + e y fitted to its 2-ring in the frame
 // of the vertex normal; 0 when the ring is too small to fit.
-double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& normal)
+double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& normal, QuadricFitScratch& scratch)
 {
-    // The 2-ring in increasing index order (the row order of the fit), without v.
-    std::vector<int> ring;
+    // The 2-ring in increasing index order (the row order of the fit), without v. Duplicates are
+    // dropped as they come (a vertex is stamped with the index of the ring it was put in), so
+    // the sort sees each vertex once.
+    std::vector<int>& ring = scratch.ring;
+    std::vector<int>& stamp = scratch.in_ring_of;
+    if (stamp.size() != mesh.n_vertices()) stamp.assign(mesh.n_vertices(), -1);
+    ring.clear();
+    stamp[v.idx()] = v.idx();
+    auto add = [&](VertexHandle u) {
+        if (stamp[u.idx()] == v.idx()) return;
+        stamp[u.idx()] = v.idx();
+        ring.push_back(u.idx());
+    };
     for (auto w : mesh.vv_range(v))
     {
-        ring.push_back(w.idx());
-        for (auto u : mesh.vv_range(w)) ring.push_back(u.idx());
+        add(w);
+        for (auto u : mesh.vv_range(w)) add(u);
     }
     std::sort(ring.begin(), ring.end());
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-    ring.erase(std::remove(ring.begin(), ring.end(), v.idx()), ring.end());
     if (ring.size() < 6 || !(normal.norm() > 0.0)) return 0.0;
     const Eigen::Vector3d n = to_eigen(normal).normalized();
     const Eigen::Vector3d seed = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     const Eigen::Vector3d e1 = n.cross(seed).normalized();
     const Eigen::Vector3d e2 = n.cross(e1);
     const Eigen::Vector3d origin = to_eigen(mesh.point(v));
-    Eigen::MatrixXd a(ring.size(), 5);
-    Eigen::VectorXd rhs(ring.size());
+    Eigen::MatrixXd& a = scratch.a;
+    Eigen::VectorXd& rhs = scratch.rhs;
+    a.resize(static_cast<Eigen::Index>(ring.size()), 5);
+    rhs.resize(static_cast<Eigen::Index>(ring.size()));
     int row = 0;
     for (int idx : ring)
     {
@@ -47,7 +70,9 @@ double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& n
         rhs(row) = d.dot(n);
         ++row;
     }
-    const Eigen::VectorXd c = a.colPivHouseholderQr().solve(rhs);
+    scratch.qr.compute(a);
+    scratch.c = scratch.qr.solve(rhs);
+    const Eigen::VectorXd& c = scratch.c;
     if (!c.allFinite()) return 0.0;
     Eigen::Matrix2d shape;
     shape << 2 * c(0), c(1), c(1), 2 * c(2);
@@ -130,12 +155,13 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     for (const auto& s : segments) curves_.push_back(ClosestPointTree::from_segments(s));
 
     curvature_.assign(input.n_vertices(), 0.0);
+    QuadricFitScratch scratch;
     for (auto v : input.vertices())
     {
         if (!is_smooth(v)) continue;
         Vec3d n(0, 0, 0);
         for (auto f : input.vf_range(v)) n += face_normal_by_index[f.idx()] * input.calc_face_area(f);
-        curvature_[v.idx()] = quadric_curvature(input, v, n);
+        curvature_[v.idx()] = quadric_curvature(input, v, n, scratch);
     }
 }
 

@@ -71,17 +71,6 @@ double max_distance(const std::vector<Vec3d>& points, const ClosestPointTree& tr
 
 }  // namespace
 
-double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c)
-{
-    const double lab = (b - a).norm(), lbc = (c - b).norm(), lca = (a - c).norm();
-    const double longest = std::max({lab, lbc, lca});
-    const double perimeter = lab + lbc + lca;
-    const double area = 0.5 * OpenMesh::cross(b - a, c - a).norm();
-    if (!(longest > 0.0) || !(perimeter > 0.0)) return 0.0;
-    const double inradius = 2.0 * area / perimeter;
-    return 2.0 * std::sqrt(3.0) * inradius / longest;
-}
-
 std::array<double, 3> triangle_angles_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 {
     auto angle = [](const Vec3d& apex, const Vec3d& p, const Vec3d& q) {
@@ -96,13 +85,6 @@ double triangle_min_angle_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 {
     const auto angles = triangle_angles_deg(a, b, c);
     return std::min({angles[0], angles[1], angles[2]});
-}
-
-Vec3d triangle_normal(const Vec3d& a, const Vec3d& b, const Vec3d& c)
-{
-    Vec3d n = OpenMesh::cross(b - a, c - a);
-    const double len = n.norm();
-    return len > 0.0 ? n / len : Vec3d(0, 0, 0);
 }
 
 double face_qe(const SurfaceMesh& mesh, FaceHandle f)

@@ -3,7 +3,9 @@
 // for an equilateral triangle), angles, edge size quality Qt, and the two-sided Hausdorff
 // distance between two surfaces. Used by the operators' quality layer and by the reports.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -13,13 +15,29 @@ namespace hdimesh::surface
 {
 
 /// Qe of the triangle (a, b, c): 2√3 · inradius / longest edge; 0 for a degenerate one.
-double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+/// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle;
+/// out of line they were 9 % of the remesher's time.)
+inline double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c)
+{
+    const double lab = (b - a).norm(), lbc = (c - b).norm(), lca = (a - c).norm();
+    const double longest = std::max({lab, lbc, lca});
+    const double perimeter = lab + lbc + lca;
+    const double area = 0.5 * OpenMesh::cross(b - a, c - a).norm();
+    if (!(longest > 0.0) || !(perimeter > 0.0)) return 0.0;
+    const double inradius = 2.0 * area / perimeter;
+    return 2.0 * std::sqrt(3.0) * inradius / longest;
+}
 /// Smallest interior angle of (a, b, c) in degrees (0 for a degenerate triangle).
 double triangle_min_angle_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c);
 /// The three interior angles in degrees, at a, b, c.
 std::array<double, 3> triangle_angles_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c);
 /// Unit normal of (a, b, c), zero for a degenerate triangle.
-Vec3d triangle_normal(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+inline Vec3d triangle_normal(const Vec3d& a, const Vec3d& b, const Vec3d& c)
+{
+    Vec3d n = OpenMesh::cross(b - a, c - a);
+    const double len = n.norm();
+    return len > 0.0 ? n / len : Vec3d(0, 0, 0);
+}
 /// Qe of a face of the mesh.
 double face_qe(const SurfaceMesh& mesh, FaceHandle f);
 /// Edge size quality Qt = min(h/L, L/h) with h the average of the two end sizes.

@@ -120,6 +120,44 @@ TEST_CASE("closest point tree: a hinted query returns the exact hit, whatever th
     CHECK(differs == 0);
 }
 
+TEST_CASE("closest point tree: off-surface ties (points over shared vertices) resolve as without a hint")
+{
+    // A point above a grid vertex, along the mean of its faces' normals (inside their normal
+    // cone where the bump is convex): its closest point is the vertex itself, at exactly the
+    // same distance from every triangle around it. The search picks the first of them in its
+    // own order; a hinted search and the leaf tests that skip primitives by their boxes must
+    // pick the same one (the remesher's outputs depend on which face it is: its hint, its normal).
+    const int n = 8;
+    const SurfaceMesh mesh = bumpy_grid(n);
+    const auto triangles = triangles_of(mesh);
+    const ClosestPointTree tree = ClosestPointTree::from_triangles(triangles);
+    const int count = static_cast<int>(triangles.size());
+    int differs = 0, at_vertex = 0, queries = 0;
+    for (auto v : mesh.vertices())
+    {
+        Vec3d normal(0, 0, 0);
+        for (auto f : mesh.vf_range(v)) normal += mesh.calc_face_normal(f);
+        if (!(normal.norm() > 0.0)) continue;
+        for (const double lift : {1e-6, 0.01, 0.2})
+        {
+            const Vec3d p = mesh.point(v) + lift * normal.normalized();
+            const auto exact = tree.closest(p);
+            REQUIRE(exact.primitive >= 0);
+            if (exact.point == mesh.point(v)) ++at_vertex;
+            for (const int hint : {exact.primitive, (exact.primitive + 1) % count, (exact.primitive + count / 2) % count, 0, -1})
+            {
+                const auto hinted = tree.closest(p, hint);
+                ++queries;
+                if (hinted.primitive != exact.primitive || hinted.point != exact.point || hinted.distance != exact.distance)
+                    ++differs;
+            }
+        }
+    }
+    CHECK(queries > 0);
+    CHECK(at_vertex > 0);  // the ties this test is about do occur
+    CHECK(differs == 0);
+}
+
 TEST_CASE("closest point tree: hinted segment queries equal the exact ones")
 {
     // A helix of 60 segments, queried from around it and at its own vertices (two segments each).
