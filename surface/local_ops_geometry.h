@@ -1,9 +1,11 @@
 #pragma once
 // Small geometric helpers shared by the operator files (split, collapse, flip, removal, shift):
-// a face's vertices and points, optionally with one vertex moved, and the angle tests.
+// a face's vertices and points, optionally with one vertex moved, the star of a vertex for
+// trials that move it, and the angle tests.
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "surface/surface_mesh.h"
 #include "surface/surface_quality.h"
@@ -52,6 +54,38 @@ inline bool turn_ok(const Vec3d& old_normal, const Vec3d& new_normal, double max
     if (!(new_normal.sqrnorm() > 0.5)) return false;
     if (!(old_normal.sqrnorm() > 0.5)) return true;
     return OpenMesh::dot(old_normal, new_normal) >= cos_deg(max_turn_deg);
+}
+
+/// A face around a vertex v, collected once for trial positions that move v only: its points in
+/// face order, the index of v among them and its normal before the move.
+struct StarFace
+{
+    std::array<Vec3d, 3> points;
+    int moved = 0;
+    Vec3d normal;
+
+    std::array<Vec3d, 3> with_moved_at(const Vec3d& p) const
+    {
+        std::array<Vec3d, 3> after = points;
+        after[moved] = p;
+        return after;
+    }
+};
+
+/// The faces around v in the order of OpenMesh's circulation (vf_range), into `out` (cleared
+/// first: callers may keep its capacity from one vertex to the next).
+inline void collect_star(const SurfaceMesh& mesh, VertexHandle v, std::vector<StarFace>& out)
+{
+    out.clear();
+    for (auto f : mesh.vf_range(v))
+    {
+        const auto fv = face_vertices(mesh, f);
+        StarFace face;
+        face.points = {mesh.point(fv[0]), mesh.point(fv[1]), mesh.point(fv[2])};
+        face.moved = fv[0] == v ? 0 : (fv[1] == v ? 1 : 2);
+        face.normal = normal(face.points);
+        out.push_back(face);
+    }
 }
 
 }  // namespace hdimesh::surface::detail

@@ -23,27 +23,13 @@ namespace
 // ends of its edges, collected once: trial positions only move v.
 struct SlideBall
 {
-    struct Face
-    {
-        std::array<Vec3d, 3> points;
-        int moved = 0;
-        Vec3d normal;
-    };
-    std::vector<Face> faces;
+    std::vector<detail::StarFace> faces;
     std::vector<Vec3d> neighbours;
     Vec3d centre;  // v before the move
 
     SlideBall(const SurfaceMesh& mesh, VertexHandle v) : centre(mesh.point(v))
     {
-        for (auto f : mesh.vf_range(v))
-        {
-            const auto fv = detail::face_vertices(mesh, f);
-            Face face;
-            face.points = detail::face_points(mesh, f);
-            face.moved = fv[0] == v ? 0 : (fv[1] == v ? 1 : 2);
-            face.normal = detail::normal(face.points);
-            faces.push_back(face);
-        }
+        detail::collect_star(mesh, v, faces);
         for (auto w : mesh.vv_range(v)) neighbours.push_back(mesh.point(w));
     }
 
@@ -59,10 +45,9 @@ struct SlideBall
             if (length < options.min_edge_length && length < now) return -1.0;
         }
         double worst = 180.0;
-        for (const Face& face : faces)
+        for (const detail::StarFace& face : faces)
         {
-            std::array<Vec3d, 3> after = face.points;
-            after[face.moved] = p;
+            const std::array<Vec3d, 3> after = face.with_moved_at(p);
             if (!detail::turn_ok(face.normal, detail::normal(after), max_turn_deg)) return -1.0;
             worst = std::min(worst, triangle_min_angle_deg(after[0], after[1], after[2]));
         }
@@ -124,8 +109,7 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
     if (ctx.limits.max_model_distance > 0.0)
         for (const auto& face : ball.faces)
         {
-            std::array<Vec3d, 3> after = face.points;
-            after[face.moved] = best_point.point;
+            const std::array<Vec3d, 3> after = face.with_moved_at(best_point.point);
             if (!ctx.near_model((after[0] + after[1] + after[2]) / 3.0, v, ctx.limits.max_model_distance))
             {
                 result.status = OpStatus::Geometry;

@@ -27,12 +27,7 @@ bool optimal_point_curve(const OperatorContext& ctx, VertexHandle v, Vec3d& opti
 // points in face order, where v is among them, and its normal before the move.
 struct Ball
 {
-    struct Face
-    {
-        std::array<Vec3d, 3> points;
-        int moved = 0;  // index of v in points
-        Vec3d normal;
-    };
+    using Face = detail::StarFace;
     std::vector<Face> faces;
     // quality() at v's own position: every normal is unchanged, so it only asks for one that
     // is not degenerate (measured: the recomputed normals were 4 % of the remesher's time).
@@ -41,17 +36,11 @@ struct Ball
     Ball(const SurfaceMesh& mesh, VertexHandle v)
     {
         faces.swap(storage());
-        faces.clear();
-        for (auto f : mesh.vf_range(v))
+        detail::collect_star(mesh, v, faces);
+        for (const Face& face : faces)
         {
-            const auto fv = detail::face_vertices(mesh, f);
-            Face face;
-            face.points = {mesh.point(fv[0]), mesh.point(fv[1]), mesh.point(fv[2])};
-            face.moved = fv[0] == v ? 0 : (fv[1] == v ? 1 : 2);
-            face.normal = detail::normal(face.points);
-            if (quality_before >= 0.0)
-                quality_before = face.normal.sqrnorm() > 0.5 ? std::min(quality_before, detail::qe(face.points)) : -1.0;
-            faces.push_back(face);
+            if (quality_before < 0.0) break;
+            quality_before = face.normal.sqrnorm() > 0.5 ? std::min(quality_before, detail::qe(face.points)) : -1.0;
         }
     }
     ~Ball() { faces.swap(storage()); }
@@ -75,8 +64,7 @@ struct Ball
         double worst = 1.0;
         for (const Face& face : faces)
         {
-            std::array<Vec3d, 3> after = face.points;
-            after[face.moved] = p;
+            const std::array<Vec3d, 3> after = face.with_moved_at(p);
             if (!detail::turn_ok_cos(face.normal, detail::normal(after), min_cos)) return -1.0;
             worst = std::min(worst, detail::qe(after));
             if (worst < refused_below) return worst;
