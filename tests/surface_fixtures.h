@@ -24,6 +24,29 @@ public:
     }
 };
 
+/// Every vertex smooth with no curve and no model-face hint, every edge off curves, every face
+/// ref 1: the starting classification of the operator tests, which then set their features.
+inline void mark_all_smooth(SurfaceMesh& mesh)
+{
+    SurfaceProperties props(mesh);
+    for (auto v : mesh.vertices())
+    {
+        mesh.property(props.vertex_class, v) = VertexClass::Smooth;
+        mesh.property(props.vertex_curve, v) = kNoCurve;
+        mesh.property(props.vertex_model_face, v) = -1;
+    }
+    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
+    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
+}
+
+/// The vertex at p (exactly, to 1e-12), or an invalid handle.
+inline VertexHandle vertex_at(const SurfaceMesh& mesh, const Vec3d& p)
+{
+    for (auto v : mesh.vertices())
+        if ((mesh.point(v) - p).norm() < 1e-12) return v;
+    return VertexHandle();
+}
+
 /// An n×n grid of unit squares over the (x, y) plane at heights height(i, j), each square cut
 /// by its (i,j)-(i+1,j+1) diagonal. Unclassified: each test sets the properties it needs.
 template <class Height>
@@ -52,14 +75,7 @@ inline SurfaceMesh icosahedron()
     std::vector<VertexHandle> v;
     for (const auto& p : ico.points) v.push_back(mesh.add_vertex(Vec3d(p.x(), p.y(), p.z())));
     for (const auto& t : ico.triangles) mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
-    SurfaceProperties props(mesh);  // after the elements: their properties get initialised
-    for (auto x : mesh.vertices())
-    {
-        mesh.property(props.vertex_class, x) = VertexClass::Smooth;
-        mesh.property(props.vertex_curve, x) = kNoCurve;
-    }
-    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
-    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
+    mark_all_smooth(mesh);  // after the elements: their properties get initialised
     return mesh;
 }
 

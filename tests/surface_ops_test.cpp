@@ -36,12 +36,7 @@ SurfaceMesh grid(int n)
     return mesh;
 }
 
-VertexHandle vertex_at(const SurfaceMesh& mesh, const Vec3d& p)
-{
-    for (auto v : mesh.vertices())
-        if ((mesh.point(v) - p).norm() < 1e-12) return v;
-    return VertexHandle();
-}
+using hdimesh::surface::fixtures::vertex_at;
 
 int euler(const SurfaceMesh& mesh)
 {

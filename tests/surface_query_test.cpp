@@ -35,15 +35,7 @@ double height(double x, double y) { return 0.3 * std::sin(0.9 * x) * std::cos(0.
 SurfaceMesh bumpy_grid(int n)
 {
     SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(n, height);
-    SurfaceProperties props(mesh);
-    for (auto x : mesh.vertices())
-    {
-        mesh.property(props.vertex_class, x) = VertexClass::Smooth;
-        mesh.property(props.vertex_curve, x) = kNoCurve;
-        mesh.property(props.vertex_model_face, x) = -1;
-    }
-    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
-    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
+    hdimesh::surface::fixtures::mark_all_smooth(mesh);
     return mesh;
 }
 

@@ -49,15 +49,8 @@ struct NarrowCorner
         mesh.add_face(r, u, w);
         mesh.add_face(c, r, t);
         mesh.add_face(r, w, t);
+        fixtures::mark_all_smooth(mesh);
         SurfaceProperties props(mesh);
-        for (auto v : mesh.vertices())
-        {
-            mesh.property(props.vertex_class, v) = VertexClass::Smooth;
-            mesh.property(props.vertex_curve, v) = kNoCurve;
-            mesh.property(props.vertex_model_face, v) = -1;
-        }
-        for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
-        for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
         for (VertexHandle v : {c, a2, w}) mesh.property(props.vertex_class, v) = VertexClass::Corner;
         mesh.property(props.vertex_class, a) = mesh.property(props.vertex_class, r) = VertexClass::Ridge;
         mesh.property(props.vertex_curve, a) = 0;

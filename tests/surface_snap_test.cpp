@@ -56,12 +56,7 @@ SurfaceMesh roof_grid()
     return mesh;
 }
 
-VertexHandle vertex_at(const SurfaceMesh& mesh, const Vec3d& p)
-{
-    for (auto v : mesh.vertices())
-        if ((mesh.point(v) - p).norm() < 1e-12) return v;
-    return VertexHandle();
-}
+using hdimesh::surface::fixtures::vertex_at;
 
 double distance_to_mesh(const SurfaceMesh& mesh, const Vec3d& p)
 {

@@ -14,6 +14,7 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "surface/local_ops.h"
 #include "surface/surface_quality.h"
+#include "surface_fixtures.h"
 #pragma GCC diagnostic pop
 
 using namespace hdimesh::surface;
@@ -57,16 +58,9 @@ SurfaceMesh chord_under_crease(double w, double height = kRoofHeight)
     const VertexHandle c = mesh.add_vertex(Vec3d(0, w, height)), d = mesh.add_vertex(Vec3d(0, -w, height));
     mesh.add_face(a, b, c);
     mesh.add_face(b, a, d);
+    hdimesh::surface::fixtures::mark_all_smooth(mesh);
     SurfaceProperties props(mesh);
-    for (auto v : mesh.vertices())
-    {
-        mesh.property(props.vertex_class, v) = VertexClass::Smooth;
-        mesh.property(props.vertex_curve, v) = kNoCurve;
-        mesh.property(props.vertex_model_face, v) = -1;
-        mesh.property(props.vertex_size, v) = 1.0;
-    }
-    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
-    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
+    for (auto v : mesh.vertices()) mesh.property(props.vertex_size, v) = 1.0;
     return mesh;
 }
 
