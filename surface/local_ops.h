@@ -139,17 +139,23 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
 
 struct SlideOptions
 {
-    /// Band of the ball's edge lengths after the move (the cleanup allows a longer edge than the
-    /// loop's 4/3·h: one long edge costs less than a needle at a corner).
-    double max_edge_length = 1e300;
-    double min_edge_length = 0.0;
-    int samples = 16;             // trial points toward each curve neighbour
-    double min_gain_deg = 0.1;    // the worst angle must rise by at least this
+    /// Band of the star's edge lengths after the move (≤ 0: no bound); an edge already out of
+    /// it may not get farther out. The narrow-corner cure allows a longer edge than the loop's
+    /// 4/3·h: one long edge costs less than a needle at a corner.
+    double min_length = 0.0, max_length = 0.0;
+    /// > 0: the moved faces' centroids and edge midpoints stay within the larger of this and
+    /// their worst distance before from the model (the refinement's tolerance); ≤ 0: within
+    /// OperatorLimits::max_model_distance (if set).
+    double tolerance = 0.0;
+    int samples = 16;           // trial points toward each curve neighbour
+    double min_gain_deg = 0.1;  // the worst angle must rise by at least this
 };
 /// Slides a ridge or boundary vertex along its curve (trial points toward its two curve
-/// neighbours, projected onto the curve) to where the worst angle of its ball is largest; done
-/// only when that angle rises, no face turns too far and the moved chords stay near the model.
-/// The cure for the narrow triangle at a corner between two curves that open up away from it.
+/// neighbours, up to 0.8 of the way, projected onto the curve) to the legal trial where the
+/// worst angle of its star is largest; done when that angle beats the present one by
+/// min_gain_deg. A trial is legal when no face turns past the operator limit, the edges keep
+/// the band and the moved chords stay near the model. The cure for the narrow triangle at a
+/// corner between two curves that open up away from it.
 OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOptions& options = {});
 
 struct SnapOptions

@@ -21,35 +21,60 @@ namespace
 
 // The faces around v (points in face order, index of v, normal before the move) and the other
 // ends of its edges, collected once: trial positions only move v.
-struct SlideBall
+struct SlideStar
 {
     std::vector<detail::StarFace> faces;
     std::vector<Vec3d> neighbours;
     Vec3d centre;  // v before the move
 
-    SlideBall(const SurfaceMesh& mesh, VertexHandle v) : centre(mesh.point(v))
+    SlideStar(const SurfaceMesh& mesh, VertexHandle v) : centre(mesh.point(v))
     {
         detail::collect_star(mesh, v, faces);
         for (auto w : mesh.vv_range(v)) neighbours.push_back(mesh.point(w));
     }
 
-    // Worst angle (degrees) of the ball with v at p; -1 when a face turns too much or an edge
-    // leaves the allowed band.
-    double worst_angle(const Vec3d& p, const SlideOptions& options, double max_turn_deg) const
+    // Worst angle (degrees) with v at p, no legality test: the present state.
+    double worst_angle(const Vec3d& p) const
     {
-        // An edge may not leave the band, nor get farther out of it than it is.
-        for (const Vec3d& w : neighbours)
-        {
-            const double length = (w - p).norm(), now = (w - centre).norm();
-            if (length > options.max_edge_length && length > now) return -1.0;
-            if (length < options.min_edge_length && length < now) return -1.0;
-        }
         double worst = 180.0;
         for (const detail::StarFace& face : faces)
         {
             const std::array<Vec3d, 3> after = face.with_moved_at(p);
-            if (!detail::turn_ok(face.normal, detail::normal(after), max_turn_deg)) return -1.0;
             worst = std::min(worst, triangle_min_angle_deg(after[0], after[1], after[2]));
+        }
+        return worst;
+    }
+
+    // Layer 1, the band: no edge leaves it, nor gets farther out of it than it is.
+    bool lengths_ok(const Vec3d& p, const SlideOptions& options) const
+    {
+        for (const Vec3d& w : neighbours)
+        {
+            const double length = (w - p).norm(), now = (w - centre).norm();
+            if (options.max_length > 0.0 && length > options.max_length && length > now) return false;
+            if (options.min_length > 0.0 && length < options.min_length && length < now) return false;
+        }
+        return true;
+    }
+
+    // Layer 2, the turn of every face.
+    bool turns_ok(const Vec3d& p, double min_cos) const
+    {
+        for (const detail::StarFace& face : faces)
+            if (!detail::turn_ok_cos(face.normal, detail::normal(face.with_moved_at(p)), min_cos)) return false;
+        return true;
+    }
+
+    // The farthest of the faces' centroids and edge midpoints from the model with v at p.
+    double worst_distance(const OperatorContext& ctx, VertexHandle v, const Vec3d& p) const
+    {
+        double worst = 0.0;
+        for (const detail::StarFace& face : faces)
+        {
+            const std::array<Vec3d, 3> t = face.with_moved_at(p);
+            const Vec3d samples[4] = {(t[0] + t[1] + t[2]) / 3.0, 0.5 * (t[0] + t[1]), 0.5 * (t[1] + t[2]),
+                                      0.5 * (t[2] + t[0])};
+            for (const Vec3d& x : samples) worst = std::max(worst, ctx.distance_to_model(x, v));
         }
         return worst;
     }
@@ -61,7 +86,8 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
 {
     SurfaceMesh& mesh = ctx.mesh;
     OpResult result;
-    // Topology: an interior curve vertex with exactly two curve edges (a corner never moves).
+    // Topology and class: a ridge or boundary vertex with exactly two curve edges (a corner
+    // never moves).
     const VertexClass cls = ctx.vertex_class(v);
     if (cls != VertexClass::Ridge && cls != VertexClass::Boundary)
     {
@@ -78,13 +104,19 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
         return result;
     }
 
-    // Geometry and quality: trial points along the chords toward either curve neighbour,
-    // projected onto the curve; the best worst angle wins if it beats the present one.
     const Vec3d p = mesh.point(v);
-    const SlideBall ball(mesh, v);
-    const double before = ball.worst_angle(p, SlideOptions{1e300, 0.0, options.samples}, ctx.limits.max_normal_turn_deg);
-    double best = before;
+    const SlideStar star(mesh, v);
+    const double before = star.worst_angle(p);
+    const double min_cos = detail::cos_deg(ctx.limits.max_normal_turn_deg);
+    // The distance bound: the tolerance (or the operators' limit), never tighter than now.
+    double max_distance = options.tolerance > 0.0 ? options.tolerance : ctx.limits.max_model_distance;
+    if (max_distance > 0.0) max_distance = std::max(max_distance, star.worst_distance(ctx, v, p));
+
+    // Every trial through the layers (band, turn, distance: the costliest last), then the best
+    // worst angle among the legal ones.
+    double best = -1.0;
     ProjectedPoint best_point;
+    OpStatus refusal = OpStatus::Quality;
     for (const Vec3d& end : curve_ends)
         for (int i = 1; i <= options.samples; ++i)
         {
@@ -93,29 +125,26 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
             const ProjectedPoint q =
                 ctx.model.project_near(p + t * (end - p), cls, ctx.vertex_curve(v), ctx.model_face(v));
             if (!q.ok) continue;
-            const double angle = ball.worst_angle(q.point, options, ctx.limits.max_normal_turn_deg);
-            if (angle > best + options.min_gain_deg)
+            const double angle = star.worst_angle(q.point);
+            if (!(angle > best) || !(angle > before + options.min_gain_deg)) continue;
+            if (!star.lengths_ok(q.point, options) || !star.turns_ok(q.point, min_cos))
             {
-                best = angle;
-                best_point = q;
+                refusal = OpStatus::Geometry;
+                continue;
             }
+            if (max_distance > 0.0 && star.worst_distance(ctx, v, q.point) > max_distance)
+            {
+                refusal = OpStatus::Geometry;
+                continue;
+            }
+            best = angle;
+            best_point = q;
         }
     if (!best_point.ok)
     {
-        result.status = OpStatus::Quality;
+        result.status = refusal;
         return result;
     }
-    // The chords of the moved faces stay near the model (the vertex itself is on its curve).
-    if (ctx.limits.max_model_distance > 0.0)
-        for (const auto& face : ball.faces)
-        {
-            const std::array<Vec3d, 3> after = face.with_moved_at(best_point.point);
-            if (!ctx.near_model((after[0] + after[1] + after[2]) / 3.0, v, ctx.limits.max_model_distance))
-            {
-                result.status = OpStatus::Geometry;
-                return result;
-            }
-        }
     if (ctx.hooks.allow_move && !ctx.hooks.allow_move(mesh, v, best_point.point))
     {
         result.status = OpStatus::Hook;

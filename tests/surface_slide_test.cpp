@@ -93,28 +93,81 @@ struct NarrowCorner
     }
 };
 
+// The plane z = 0, with the two curves as input polylines: curve 0 = C-A-A2, curve 1 =
+// C-R-M-W, where M = (1.5, 0.8) bends off the chord R-W (a curve vertex is projected onto its
+// own polyline, as SurfaceModel does; anything else straight down).
+class CornerModel final : public Projector
+{
+public:
+    ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const override
+    {
+        ProjectedPoint out;
+        out.normal = Vec3d(0, 0, 1);
+        out.ok = true;
+        out.point = Vec3d(p[0], p[1], 0.0);
+        if ((cls == VertexClass::Ridge || cls == VertexClass::Boundary) && (curve == 0 || curve == 1))
+            out.point = closest_on_polyline(out.point, polylines()[curve]);
+        return out;
+    }
+
+    static double distance_to_curve(const Vec3d& p, int curve) { return (closest_on_polyline(p, polylines()[curve]) - p).norm(); }
+
+private:
+    static const std::vector<std::vector<Vec3d>>& polylines()
+    {
+        static const std::vector<std::vector<Vec3d>> lines = {
+            {Vec3d(0, 0, 0), Vec3d(1, 0, 0), Vec3d(2, 0, 0)},
+            {Vec3d(0, 0, 0), Vec3d(1, 0.3, 0), Vec3d(1.5, 0.8, 0), Vec3d(1.9, 1.0, 0)}};
+        return lines;
+    }
+
+    static Vec3d closest_on_polyline(const Vec3d& p, const std::vector<Vec3d>& line)
+    {
+        Vec3d best = line.front();
+        for (std::size_t i = 0; i + 1 < line.size(); ++i)
+        {
+            const Vec3d d = line[i + 1] - line[i];
+            const double t = std::clamp(OpenMesh::dot(p - line[i], d) / d.sqrnorm(), 0.0, 1.0);
+            const Vec3d q = line[i] + t * d;
+            if ((q - p).norm() < (best - p).norm()) best = q;
+        }
+        return best;
+    }
+};
+
 }  // namespace
 
 TEST_CASE("slide_curve_vertex opens a narrow corner by sliding along the bending curve")
 {
     NarrowCorner m;
-    const fixtures::PlaneProjector plane;
-    OperatorContext ctx(m.mesh, plane, {});
+    const CornerModel model;
+    SurfaceHooks hooks;
+    int moves = 0;
+    Vec3d reported_old(0, 0, 0);
+    hooks.on_move = [&](const SurfaceMesh&, VertexHandle v, const Vec3d& old_point) {
+        CHECK(v == m.r);
+        reported_old = old_point;
+        ++moves;
+    };
+    OperatorContext ctx(m.mesh, model, hooks);
     const double corner_before = std::atan2(0.3, 1.0) * 180.0 / M_PI;
     const double worst_before = m.worst_angle_around(m.r);
     CHECK(worst_before == doctest::Approx(corner_before).epsilon(1e-9));
 
     const OpResult result = slide_curve_vertex(ctx, m.r);
     REQUIRE(result.done());
-    // R is still on its curve (the chord R-W of the polyline, the plane projector keeps it
-    // there), moved away from the corner, and the sector opened.
+    // R is on its own input curve (the polyline through M, not the chord R-W the trials were
+    // taken on), moved away from the corner, and the sector opened.
     const Vec3d moved = m.mesh.point(m.r);
-    const Vec3d along = Vec3d(1.9, 1.0, 0) - Vec3d(1, 0.3, 0);
-    const Vec3d offset = moved - Vec3d(1, 0.3, 0);
-    CHECK(std::abs(OpenMesh::cross(along, offset).norm()) < 1e-12);
-    CHECK(OpenMesh::dot(along, offset) > 0.0);
+    CHECK(CornerModel::distance_to_curve(moved, 1) < 1e-12);
+    const Vec3d chord = Vec3d(1.9, 1.0, 0) - Vec3d(1, 0.3, 0);
+    CHECK(OpenMesh::cross(chord, moved - Vec3d(1, 0.3, 0)).norm() > 1e-3);
+    CHECK(OpenMesh::dot(chord, moved - Vec3d(1, 0.3, 0)) > 0.0);
     CHECK(m.worst_angle_around(m.r) > worst_before + 0.1);
     CHECK(m.all_faces_up());
+    // The hook saw the one move, with the old point.
+    CHECK(moves == 1);
+    CHECK(reported_old == Vec3d(1, 0.3, 0));
     // Nothing else moved.
     CHECK(m.mesh.point(m.c) == Vec3d(0, 0, 0));
     CHECK(m.mesh.point(m.a) == Vec3d(1, 0, 0));
@@ -131,9 +184,29 @@ TEST_CASE("slide_curve_vertex refuses smooth vertices, corners, and slides out o
     // No edge of R's ball may grow beyond 0.95 (only R-A is shorter now): a slide toward W
     // lengthens R-C, one toward C lengthens R-W, both already longer.
     SlideOptions tight;
-    tight.max_edge_length = 0.95;
-    tight.min_edge_length = 0.0;
-    CHECK(slide_curve_vertex(ctx, m.r, tight).status == OpStatus::Quality);
+    tight.max_length = 0.95;
+    CHECK(slide_curve_vertex(ctx, m.r, tight).status == OpStatus::Geometry);
+    CHECK(m.points() == before);
+}
+
+TEST_CASE("slide_curve_vertex asks allow_move and commits nothing on a veto")
+{
+    NarrowCorner m;
+    const CornerModel model;
+    SurfaceHooks hooks;
+    int asked = 0, moved = 0;
+    hooks.allow_move = [&](const SurfaceMesh&, VertexHandle v, const Vec3d& point) {
+        CHECK(v == m.r);
+        CHECK(CornerModel::distance_to_curve(point, 1) < 1e-12);
+        ++asked;
+        return false;
+    };
+    hooks.on_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++moved; };
+    OperatorContext ctx(m.mesh, model, hooks);
+    const auto before = m.points();
+    CHECK(slide_curve_vertex(ctx, m.r).status == OpStatus::Hook);
+    CHECK(asked == 1);
+    CHECK(moved == 0);
     CHECK(m.points() == before);
 }
 
