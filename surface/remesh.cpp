@@ -235,6 +235,22 @@ private:
         return options_.refine_reference_size > 0.0 ? options_.refine_reference_size : edge_size(e);
     }
 
+    // The curve edge (boundary or ridge) of f nearest to model point `point` (invalid: none).
+    EdgeHandle nearest_curve_edge(FaceHandle f, std::size_t point) const
+    {
+        const Vec3d& q = options_.model_points[point];
+        EdgeHandle nearest;
+        double best = 1e300;
+        for (auto e : mesh_.fe_range(f))
+        {
+            if (!ctx_.is_feature(e)) continue;
+            const auto h = mesh_.halfedge_handle(e, 0);
+            const double d = (closest_point_on_segment(q, mesh_.point(mesh_.from_vertex_handle(h)), mesh_.point(mesh_.to_vertex_handle(h))) - q).sqrnorm();
+            if (d < best) best = d, nearest = e;
+        }
+        return nearest;
+    }
+
     std::size_t count_short_edges() const
     {
         std::size_t n = 0;
@@ -580,16 +596,19 @@ private:
             std::vector<double> edge_error(mesh_.n_edges(), 0.0);  // worst distance that asks for a split
             // A model point far from the output: the new vertex goes onto it (index + 1; 0: none).
             std::vector<std::size_t> edge_target(mesh_.n_edges(), 0);
+            auto mark_edge = [&](EdgeHandle e, double distance, std::size_t target) {
+                if (distance > edge_error[e.idx()])
+                {
+                    edge_error[e.idx()] = distance;
+                    edge_target[e.idx()] = target;
+                }
+            };
             auto mark_longest = [&](FaceHandle f, double distance, std::size_t target) {
                 EdgeHandle longest;
                 double best = -1.0;
                 for (auto e : mesh_.fe_range(f))
                     if (mesh_.calc_edge_length(e) > best) best = mesh_.calc_edge_length(e), longest = e;
-                if (distance > edge_error[longest.idx()])
-                {
-                    edge_error[longest.idx()] = distance;
-                    edge_target[longest.idx()] = target;
-                }
+                mark_edge(longest, distance, target);
             };
             // After the first round only the neighbourhood of the last splits changed (and the
             // places refused before stay refused): the projections there only.
@@ -686,7 +705,13 @@ private:
                         split_vertices.push_back(snapped);
                         continue;
                     }
-                    mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
+                    // A curve point (of the input's boundary or ridges) is reached by a split of
+                    // the face's curve edge nearest to it: the new vertex goes onto the curve
+                    // beside it. The longest edge may be an interior one, whose split leaves the
+                    // curve's chord where it was (a scan's staircase boundary: never reached).
+                    const EdgeHandle curve_edge = smooth ? EdgeHandle() : nearest_curve_edge(far.face, far.point);
+                    if (curve_edge.is_valid()) mark_edge(curve_edge, far.distance, 0);
+                    else mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
                 }
                 still_far.push_back(far.point);
             }
