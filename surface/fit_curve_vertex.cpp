@@ -145,13 +145,18 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
                 qe(after) < ctx.limits.min_new_quality || triangle_min_angle_deg(after[0], after[1], after[2]) < min_angle)
                 return false;
         }
+        int out_before = 0, out_after = 0;
         for (const Vec3d& w : neighbours)
         {
+            const double length = (w - q).norm();
             const double before = out_of_band((w - p).norm(), options.min_length, options.max_length);
-            const double after = out_of_band((w - q).norm(), options.min_length, options.max_length);
-            if (after > 0.0 && after > before) return false;
+            const double after = out_of_band(length, options.min_length, options.max_length);
+            out_before += before > 0.0;
+            out_after += after > 0.0;
+            const bool shorter_above_floor = options.floor_length > 0.0 && length < options.min_length && length >= options.floor_length;
+            if (after > before && !shorter_above_floor) return false;
         }
-        return true;
+        return out_after <= out_before;
     };
 
     // Candidates: on the curve strictly between the curve neighbours (no fold along it).

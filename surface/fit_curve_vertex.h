@@ -22,6 +22,9 @@ struct CurveFitOptions
     /// The star's edges stay within [min_length, max_length] (≤ 0: no bound); an edge out of the
     /// band before may not get farther out.
     double min_length = 0.0, max_length = 0.0;
+    /// > 0: an edge already under min_length may get shorter, down to this, when no edge of the
+    /// star newly leaves the band (the size quality counts the edges out of it).
+    double floor_length = 0.0;
     /// Model points around the star (the input's vertices and edge midpoints): the distances
     /// in->out. Those on v's curve between its curve neighbours are also the candidate positions.
     std::vector<Vec3d> witnesses;

@@ -370,6 +370,9 @@ private:
                 fit.min_angle_deg = options_.snap_min_angle_deg;
                 fit.min_length = 0.66 * size;
                 fit.max_length = size / 0.66;
+                // A staircase boundary (a scan's) needs a vertex on each stair corner: an edge
+                // already short may follow a tread, down to the refinement's own shortest edges.
+                fit.floor_length = options_.refine_min_length_ratio * size;
                 double reach = 0.0;
                 for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
                 for (const std::size_t i : grid.within(mesh_.point(v), reach)) fit.witnesses.push_back(options_.model_points[i]);
