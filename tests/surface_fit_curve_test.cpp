@@ -175,3 +175,36 @@ TEST_CASE("fit_curve_vertex refuses a smooth vertex, a corner and a vertex alrea
     CHECK(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(3, 0, 0)), options).status == OpStatus::Quality);
     CHECK(points_of(mesh) == before);
 }
+
+TEST_CASE("fit_curve_vertex shortens an edge already under the band only with a floor, and never below it")
+{
+    // The grid's unit edges are all under a band starting at 1.2: the fit onto the zig Z shortens
+    // v's edge to (2, 0) from 1 to 0.91. Without a floor that is refused; with a floor under 0.91
+    // it is done (no edge newly leaves the band); with a floor over it, refused again.
+    ZigProjector model;
+    auto options_with_floor = [](double floor) {
+        CurveFitOptions options;
+        options.tolerance = 0.05;
+        options.min_angle_deg = 30.0;
+        options.min_length = 1.2;
+        options.max_length = 3.0;
+        options.floor_length = floor;
+        options.witnesses = zig_witnesses();
+        return options;
+    };
+    for (const double floor : {0.0, 0.95})
+    {
+        SurfaceMesh mesh = zig_grid();
+        OperatorContext ctx(mesh, model, {});
+        const std::vector<Vec3d> before = points_of(mesh);
+        CHECK_FALSE(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(1, 0, 0)), options_with_floor(floor)).done());
+        CHECK(points_of(mesh) == before);
+    }
+    SurfaceMesh mesh = zig_grid();
+    OperatorContext ctx(mesh, model, {});
+    const VertexHandle v = vertex_at(mesh, Vec3d(1, 0, 0));
+    const CurveFitOptions options = options_with_floor(0.5);
+    REQUIRE(fit_curve_vertex(ctx, v, options).done());
+    for (auto w : mesh.vv_range(v)) CHECK((mesh.point(w) - mesh.point(v)).norm() >= options.floor_length);
+    CHECK(distance_to_mesh(mesh, kZigPolyline[1]) <= options.tolerance);
+}
