@@ -167,6 +167,9 @@ struct SnapOptions
     /// The star's edges stay within [min_length, max_length] (≤ 0: no bound); an edge out of the
     /// band before may not get farther out.
     double min_length = 0.0, max_length = 0.0;
+    /// > 0: an edge already under min_length may get shorter, down to this (the count of edges
+    /// out of the band, which the size quality counts, still may not grow).
+    double floor_length = 0.0;
     /// Model points around the star: none may end farther from the output near v than the
     /// larger of the tolerance and its distance before (the move may not open a gap elsewhere).
     std::vector<Vec3d> witnesses;

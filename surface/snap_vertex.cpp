@@ -159,7 +159,10 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
             const double after = out_of_band((r - q).norm(), options.min_length, options.max_length);
             out_before += before > 0.0;
             out_after += after > 0.0;
-            if (!options.raise_min_angle && after > 0.0 && after > before) return OpStatus::Quality;
+            const double length = (r - q).norm();
+            const bool shorter_above_floor =
+                options.floor_length > 0.0 && length < options.min_length && length >= options.floor_length;
+            if (!options.raise_min_angle && after > 0.0 && after > before && !shorter_above_floor) return OpStatus::Quality;
         }
         if (out_after > out_before) return OpStatus::Quality;
         const double star_after = worst_sample(q);

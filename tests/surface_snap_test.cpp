@@ -168,6 +168,35 @@ TEST_CASE("snap refuses a corner, a boundary vertex past its curve neighbour, a 
     CHECK(points_of(mesh) == points_of(original));
 }
 
+TEST_CASE("snap shortens an edge already under the band only down to its floor")
+{
+    //   The roof grid with a band starting at 1.2: its unit edges are all under it. Snapping
+    //   v = (2, 2) toward the crest shortens its edge to (3, 2) (to 0.8 the whole way): refused
+    //   without a floor, done with a floor of 0.5, and no edge of the star ends under the floor.
+    RoofProjector model;
+    const Vec3d target(2.2, 2, roof(2.2));
+    SnapOptions options;
+    options.tolerance = 0.05;
+    options.min_angle_deg = 30.0;
+    options.min_length = 1.2;
+    options.max_length = 3.0;
+    options.witnesses = roof_samples();
+    {
+        SurfaceMesh mesh = roof_grid();
+        OperatorContext ctx(mesh, model, {});
+        const std::vector<Vec3d> before = points_of(mesh);
+        CHECK(try_snap_vertex(ctx, vertex_at(mesh, Vec3d(2, 2, roof(2))), target, options).status == OpStatus::Quality);
+        CHECK(points_of(mesh) == before);
+    }
+    SurfaceMesh mesh = roof_grid();
+    OperatorContext ctx(mesh, model, {});
+    const VertexHandle v = vertex_at(mesh, Vec3d(2, 2, roof(2)));
+    options.floor_length = 0.5;
+    REQUIRE(try_snap_vertex(ctx, v, target, options).done());
+    CHECK(distance_to_mesh(mesh, target) <= options.tolerance);
+    for (auto w : mesh.vv_range(v)) CHECK((mesh.point(w) - mesh.point(v)).norm() >= options.floor_length);
+}
+
 TEST_CASE("point grid finds exactly the points within a radius")
 {
     std::vector<Vec3d> points;
