@@ -517,7 +517,9 @@ private:
     std::size_t repair_small_angles()
     {
         std::size_t repaired = 0;
-        if (!(options_.tolerance > 0.0) || !(options_.snap_min_angle_deg > 0.0)) return repaired;
+        if (!(options_.tolerance > 0.0)) return repaired;
+        // The moves are snaps (raise_min_angle): off with the snaps; the flips and collapses stay.
+        const bool moves = options_.snap_min_angle_deg > 0.0;
         for (int round = 0; round < 3; ++round)
         {
             std::vector<FaceHandle> bad;
@@ -553,6 +555,7 @@ private:
                 }
                 for (auto v : mesh_.fv_range(f))
                 {
+                    if (!moves) break;
                     const VertexClass cls = ctx_.vertex_class(v);
                     if (cls == VertexClass::Corner || (cls == VertexClass::Smooth && mesh_.is_boundary(v))) continue;
                     Vec3d sum(0, 0, 0);
@@ -566,6 +569,7 @@ private:
                     if (try_snap(v, balanced.point, true))
                     {
                         set_size(v);
+                        ++report_.shifts;
                         ++moved;
                     }
                 }
@@ -576,7 +580,6 @@ private:
                              bad.size(), moved);
             if (moved == 0) break;
         }
-        report_.shifts += repaired;
         return repaired;
     }
 
@@ -730,7 +733,6 @@ private:
                 }
                 still_far.push_back(far.point);
             }
-            report_.refinement_snaps += snaps;
             far_points = std::move(still_far);
             std::vector<std::pair<double, EdgeHandle>> candidates;
             for (auto e : live_edges())
@@ -766,6 +768,7 @@ private:
                 snapped_now[snapped.idx()] = 1;
                 split_vertices.push_back(snapped);
             }
+            report_.refinement_snaps += snaps;
             std::size_t short_edges = count_short_edges(), edges = live_edges().size();
             std::size_t done = 0, splits = 0;  // changes of the round (splits and distance flips), splits
             // The budget goes to the worst places first: a round splits only near the worst
