@@ -715,6 +715,14 @@ private:
                 const bool smooth = options_.model_point_smooth.empty() || options_.model_point_smooth[far.point];
                 if (!mesh_.status(far.face).deleted())
                 {
+                    // A snap earlier in the round moved a vertex of this triangle: its distance is
+                    // stale; the next round measures it again.
+                    if (snap && std::any_of(mesh_.fv_begin(far.face), mesh_.fv_end(far.face),
+                                            [&](VertexHandle v) { return snapped_now[v.idx()] != 0; }))
+                    {
+                        still_far.push_back(far.point);
+                        continue;
+                    }
                     const VertexHandle snapped = snap ? snap_toward(far.point, far.face, smooth) : VertexHandle();
                     if (snapped.is_valid())
                     {
@@ -846,13 +854,18 @@ private:
             // turn a distance-flipped edge back (a distance flip accepts half the old quality).
             // Protecting those edges was measured worse (rocker-arm 2.48e-3 -> 3.21e-3): the
             // refinement's outcome is fragile there; see the issue note.
+            // After the polish nothing checks the tolerance again: the settle flips keep it.
             for (const VertexHandle v : split_vertices)
             {
                 std::vector<EdgeHandle> around;
                 for (auto f : mesh_.vf_range(v))
                     for (auto e : mesh_.fe_range(f)) around.push_back(e);
                 for (const EdgeHandle e : around)
-                    if (!mesh_.status(e).deleted() && try_flip(ctx_, e, FlipGoal::Quality).done()) ++report_.flips;
+                {
+                    if (mesh_.status(e).deleted()) continue;
+                    const bool flipped = after_polish ? flip_keeping_tolerance(e) : try_flip(ctx_, e, FlipGoal::Quality).done();
+                    if (flipped) ++report_.flips;
+                }
             }
         }
         return total;
