@@ -135,13 +135,17 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         // The target must come within the tolerance: the point of the move (not of a repair).
         if (!options.raise_min_angle && patch.distance(target, &q) > options.tolerance) return OpStatus::Geometry;
         double old_min_angle = 180.0, new_min_angle = 180.0;
+        // Bending over a crest needs the larger turn; a repair move is an ordinary smoothing
+        // move and keeps the operators' limit.
+        const double turn_limit = options.raise_min_angle ? ctx.limits.max_normal_turn_deg
+                                                          : std::max(ctx.limits.max_normal_turn_deg, kMaxSnapTurnDeg);
         for (auto f : mesh.vf_range(v))
         {
             const auto before = face_points(mesh, f), after = face_points_with(mesh, f, v, q);
             const Vec3d n_after = normal(after);
             old_min_angle = std::min(old_min_angle, triangle_min_angle_deg(before[0], before[1], before[2]));
             new_min_angle = std::min(new_min_angle, triangle_min_angle_deg(after[0], after[1], after[2]));
-            if (!turn_ok(normal(before), n_after, kMaxSnapTurnDeg) ||
+            if (!turn_ok(normal(before), n_after, turn_limit) ||
                 (cls == VertexClass::Smooth && q_on_model.ok && !turn_ok(q_on_model.normal, n_after, kMaxTurnFromModelDeg)) ||
                 qe(after) < ctx.limits.min_new_quality)
                 return OpStatus::Geometry;
