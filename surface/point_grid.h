@@ -16,8 +16,12 @@ class PointGrid
 {
 public:
     PointGrid() = default;
-    /// `cell` > 0: the edge of a grid cell (queries of radius about `cell` open 27 cells).
+    /// `cell` > 0: the edge of a grid cell (queries of radius about `cell` open 27 cells; a
+    /// radius r opens (2r/cell + 1)³). The grid keeps a pointer to `points`, which must outlive
+    /// it unchanged: not copyable, so a copy cannot outlive them by accident.
     PointGrid(const std::vector<Vec3d>& points, double cell);
+    PointGrid(const PointGrid&) = delete;
+    PointGrid& operator=(const PointGrid&) = delete;
 
     /// Indices (in the order given) of the points within `radius` of p, in increasing order.
     std::vector<std::size_t> within(const Vec3d& p, double radius) const;

@@ -292,7 +292,8 @@ private:
     VertexHandle snap_one_of(std::vector<VertexHandle> vertices, const Vec3d& target, bool smooth_point)
     {
         std::sort(vertices.begin(), vertices.end(), [&](VertexHandle a, VertexHandle b) {
-            return (mesh_.point(a) - target).sqrnorm() < (mesh_.point(b) - target).sqrnorm();
+            const double da = (mesh_.point(a) - target).sqrnorm(), db = (mesh_.point(b) - target).sqrnorm();
+            return da != db ? da < db : a.idx() < b.idx();  // ties by index: deterministic
         });
         for (const VertexHandle v : vertices)
         {
@@ -311,8 +312,8 @@ private:
         return VertexHandle();
     }
 
-    // try_snap_vertex with the star's edges kept in the Qt band of the reference size (or of
-    // v's size) and the model points around the star and the target as witnesses.
+    // The model points in a grid of cells of about one size, built on first use (snaps, the
+    // tolerance-keeping flips and collapses ask it for the points around a star).
     const PointGrid& model_point_grid()
     {
         if (!model_point_grid_)
@@ -331,6 +332,8 @@ private:
         return *model_point_grid_;
     }
 
+    // try_snap_vertex with the star's edges kept in the Qt band of the reference size (or of
+    // v's size) and the model points around the star and the target as witnesses.
     bool try_snap(VertexHandle v, const Vec3d& target, bool raise_min_angle)
     {
         const PointGrid& grid = model_point_grid();
@@ -532,7 +535,8 @@ private:
                 std::vector<EdgeHandle> edges;
                 for (auto e : mesh_.fe_range(f)) edges.push_back(e);
                 std::sort(edges.begin(), edges.end(), [&](EdgeHandle x, EdgeHandle y) {
-                    return mesh_.calc_edge_length(x) > mesh_.calc_edge_length(y);
+                    const double lx = mesh_.calc_edge_length(x), ly = mesh_.calc_edge_length(y);
+                    return lx != ly ? lx > ly : x.idx() < y.idx();
                 });
                 bool flipped = false;
                 for (const EdgeHandle e : edges)

@@ -42,17 +42,19 @@ public:
 SurfaceMesh roof_grid()
 {
     SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(4, [](int i, int) { return roof(i); });
+    hdimesh::surface::fixtures::mark_all_smooth(mesh);
+    // The rim is one boundary curve (0) between the four corners.
     SurfaceProperties props(mesh);
     for (auto v : mesh.vertices())
     {
+        if (!mesh.is_boundary(v)) continue;
         const Vec3d p = mesh.point(v);
         const bool corner = (p[0] == 0 || p[0] == 4) && (p[1] == 0 || p[1] == 4);
-        mesh.property(props.vertex_class, v) =
-            corner ? VertexClass::Corner : mesh.is_boundary(v) ? VertexClass::Boundary : VertexClass::Smooth;
-        mesh.property(props.vertex_curve, v) = mesh.is_boundary(v) && !corner ? 0 : kNoCurve;
+        mesh.property(props.vertex_class, v) = corner ? VertexClass::Corner : VertexClass::Boundary;
+        mesh.property(props.vertex_curve, v) = corner ? kNoCurve : 0;
     }
-    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
-    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
+    for (auto e : mesh.edges())
+        if (mesh.is_boundary(e)) mesh.property(props.edge_curve, e) = 0;
     return mesh;
 }
 
