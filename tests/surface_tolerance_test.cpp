@@ -9,6 +9,7 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 // OpenMesh's PropertyT<Vec3d>::push_back copies a default-constructed (deliberately
@@ -18,6 +19,7 @@
 #include "surface/closest_point_tree.h"
 #include "surface/features.h"
 #include "surface/local_ops.h"
+#include "surface/local_ops_geometry.h"
 #include "surface_fixtures.h"
 #include "surface/remesh.h"
 #include "surface/surface_io.h"
@@ -228,6 +230,55 @@ TEST_CASE("refinement to a tolerance brings a coarse sphere within it both ways,
     CHECK(refined_report.refinement_splits > 0);
     CHECK(refined[0] <= tolerance + 1e-12);
     CHECK(refined[1] <= tolerance + 1e-12);
+}
+
+TEST_CASE("after the polish, snaps and the angle repair keep the tolerance: within it both ways, fewer vertices")
+{
+    // The same coarse sphere, refined to the tolerance once with the final refinement's snaps
+    // and angle repair and once without them (snap_min_angle_deg = 0): snapping a vertex onto
+    // a far model point costs no vertex where a split would add one, and neither path leaves
+    // the tolerance, the sphere or the topology, nor lets the worst angle fall below the
+    // repair's reach.
+    const SphereProjector sphere(Vec3d(0, 0, 0), 1.0);
+    const std::vector<Vec3d> points = sphere_points(300);
+    auto run = [&](double snap_min_angle_deg) {
+        SurfaceMesh mesh = icosahedron();
+        RemeshOptions options;
+        options.size = [](const Vec3d&) { return 1.0; };
+        options.iterations = 3;
+        options.tolerance = 0.04;
+        options.model_points = points;
+        // No split before the polish (a spent budget), any number after it: the far places
+        // are all left to the final refinement, where the snaps are.
+        options.refine_reference_size = 1.0;
+        options.refine_short_edge_budget = 0.0;
+        options.refine_final_short_edge_budget = 1.0;
+        options.refine_min_length_ratio = 0.1;
+        options.refine_rounds = 20;
+        options.snap_min_angle_deg = snap_min_angle_deg;
+        const RemeshReport report = remesh(mesh, options, sphere);
+        CHECK(euler(mesh) == 2);
+        check_manifold(mesh);
+        for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
+        const auto deviation = sphere_deviation(mesh, points);
+        CHECK(deviation[0] <= options.tolerance + 1e-12);
+        CHECK(deviation[1] <= options.tolerance + 1e-12);
+        double min_angle = 180.0;
+        for (auto f : mesh.faces())
+        {
+            const auto p = hdimesh::surface::detail::face_points(mesh, f);
+            min_angle = std::min(min_angle, triangle_min_angle_deg(p[0], p[1], p[2]));
+        }
+        return std::make_tuple(report, mesh.n_vertices(), min_angle);
+    };
+    const auto [plain, plain_vertices, plain_angle] = run(0.0);
+    const auto [snapped, snapped_vertices, snapped_angle] = run(25.0);
+    CHECK(plain.refinement_snaps == 0);
+    CHECK(snapped.refinement_snaps > 0);
+    CHECK(snapped_vertices <= plain_vertices);
+    CHECK(snapped_angle >= 20.0);
+    MESSAGE("vertices " << plain_vertices << " -> " << snapped_vertices << ", min angle " << plain_angle << " -> "
+                        << snapped_angle << ", snaps " << snapped.refinement_snaps);
 }
 
 TEST_CASE("the refinement's short-edge budget stops it: no split once the budget is spent")
