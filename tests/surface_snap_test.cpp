@@ -145,6 +145,39 @@ TEST_CASE("snap moves a vertex onto the crest the chords cut, and takes no model
     }
 }
 
+TEST_CASE("snap asks allow_move with the point it would commit, and a veto changes nothing")
+{
+    // The crest snap of the case above, vetoed by the caller (the coupling code's hook).
+    SurfaceMesh mesh = roof_grid();
+    RoofProjector model;
+    SurfaceHooks hooks;
+    int asked = 0, moves = 0;
+    const Vec3d target(2.2, 2, roof(2.2));
+    hooks.allow_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d& point) {
+        CHECK(point[2] == doctest::Approx(roof(point[0])));  // on the model, where it would go
+        ++asked;
+        return false;
+    };
+    hooks.on_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++moves; };
+    OperatorContext ctx(mesh, model, hooks);
+    const VertexHandle v = vertex_at(mesh, Vec3d(2, 2, roof(2)));
+    REQUIRE(v.is_valid());
+    SnapOptions options;
+    options.tolerance = 0.05;
+    options.min_angle_deg = 30.0;
+    options.min_length = 0.66;
+    options.max_length = 1.7;
+    options.witnesses = roof_samples();
+    std::vector<Vec3d> before;
+    for (auto w : mesh.vertices()) before.push_back(mesh.point(w));
+    CHECK(try_snap_vertex(ctx, v, target, options).status == OpStatus::Hook);
+    CHECK(asked == 1);
+    CHECK(moves == 0);
+    std::vector<Vec3d> after;
+    for (auto w : mesh.vertices()) after.push_back(mesh.point(w));
+    CHECK(after == before);
+}
+
 TEST_CASE("snap refuses a corner, a boundary vertex past its curve neighbour, a worse star, and changes nothing")
 {
     //   The same roof grid. (0,0) is a corner; the boundary vertex (2,0) may slide along y = 0
