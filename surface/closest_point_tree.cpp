@@ -97,7 +97,7 @@ void ClosestPointTree::build()
             scratch.hi[i] = hi;
             for (int axis = 0; axis < 3; ++axis) scratch.centroid[i][axis] = t[0][axis] + t[1][axis] + t[2][axis];
         }
-        nodes_.reserve(2 * primitives_.size() / 2 + 2);
+        nodes_.reserve(2 * primitives_.size() + 1);  // a binary tree over n primitives: < 2n nodes
         nodes_.push_back(Node{});
         build_node(0, 0, static_cast<int>(primitives_.size()), scratch);
         boxes_.resize(primitives_.size());
@@ -192,6 +192,7 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
         double d2;
     };
     Pending stack[128];
+    const double tie_slack = 1e-24 * p.sqrnorm();
     int top = 0;
     stack[top++] = {0, box_d2(nodes_[0].lo, nodes_[0].hi)};
     while (top > 0)
@@ -205,8 +206,10 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
             {
                 // A primitive whose box is clearly farther than the best cannot win: its closest
                 // point is not computed (measured: 3 in 5 of them on the remesher's queries).
-                // The margin keeps every near tie to the exact test, so the winner is unchanged.
-                if (box_d2(boxes_[i][0], boxes_[i][1]) > best_d2 * (1.0 + 1e-9)) continue;
+                // The margin keeps every near tie to the exact test, so the winner is unchanged:
+                // relative for distances away from zero, absolute (far above the rounding of a
+                // squared distance at p's magnitude) for points on the surface.
+                if (box_d2(boxes_[i][0], boxes_[i][1]) > best_d2 * (1.0 + 1e-9) + tie_slack) continue;
                 const Vec3d q = closest_on(i, p);
                 const double d2 = (q - p).sqrnorm();
                 if (d2 < best_d2)
