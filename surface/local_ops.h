@@ -69,8 +69,10 @@ struct OperatorContext
 {
     SurfaceMesh& mesh;
     SurfaceProperties props;
-    const Projector& model;
-    const SurfaceHooks& hooks;
+    const Projector& model;  // must outlive the context
+    /// A copy: a context built with `{}` (no hooks) would otherwise keep a reference to a
+    /// temporary (ASan: stack-use-after-scope in a test that did).
+    const SurfaceHooks hooks;
     OperatorLimits limits;
 
     OperatorContext(SurfaceMesh& m, const Projector& p, const SurfaceHooks& h, OperatorLimits l = {})
@@ -95,6 +97,26 @@ struct OperatorContext
         return on_model.ok ? (on_model.point - p).norm() : 0.0;
     }
 };
+
+/// The last layers of every vertex move, once its geometry and quality passed: the caller's
+/// allow_move, then the move (with `model_face` as v's new hint when ≥ 0) and on_move.
+/// Done with `vertex` = v, or Hook with nothing changed.
+inline OpResult commit_move(OperatorContext& ctx, VertexHandle v, const Vec3d& point, int model_face)
+{
+    OpResult result;
+    if (ctx.hooks.allow_move && !ctx.hooks.allow_move(ctx.mesh, v, point))
+    {
+        result.status = OpStatus::Hook;
+        return result;
+    }
+    const Vec3d old_point = ctx.mesh.point(v);
+    ctx.mesh.set_point(v, point);
+    if (model_face >= 0) ctx.mesh.property(ctx.props.vertex_model_face, v) = model_face;
+    if (ctx.hooks.on_move) ctx.hooks.on_move(ctx.mesh, v, old_point);
+    result.status = OpStatus::Done;
+    result.vertex = v;
+    return result;
+}
 
 /// Splits e at its midpoint projected onto the model (onto the edge's curve for a feature
 /// edge). The new vertex gets the edge's class, curve and the mean size of the ends.
