@@ -18,48 +18,6 @@ namespace
 // tolerance: not a move of rounding noise.
 constexpr double kMinGain = 0.01;
 
-// The faces around v and the faces around its neighbours (the output near the star), with the
-// index of v in each (-1: not one of its vertices).
-struct FitPatch
-{
-    std::vector<std::array<Vec3d, 3>> triangles;
-    std::vector<int> moved;
-
-    FitPatch(const SurfaceMesh& mesh, VertexHandle v)
-    {
-        std::vector<FaceHandle> faces;
-        for (auto w : mesh.vv_range(v))
-            for (auto f : mesh.vf_range(w)) faces.push_back(f);
-        std::sort(faces.begin(), faces.end());
-        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-        for (const FaceHandle f : faces)
-        {
-            const auto fv = detail::face_vertices(mesh, f);
-            triangles.push_back(detail::face_points(mesh, f));
-            moved.push_back(fv[0] == v ? 0 : fv[1] == v ? 1 : fv[2] == v ? 2 : -1);
-        }
-    }
-
-    double distance(const Vec3d& p, const Vec3d& v_at) const
-    {
-        double best2 = 1e300;
-        for (std::size_t i = 0; i < triangles.size(); ++i)
-        {
-            std::array<Vec3d, 3> t = triangles[i];
-            if (moved[i] >= 0) t[moved[i]] = v_at;
-            best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
-        }
-        return std::sqrt(best2);
-    }
-};
-
-double out_of_band(double length, double lo, double hi)
-{
-    if (lo > 0.0 && length < lo) return lo - length;
-    if (hi > 0.0 && length > hi) return length - hi;
-    return 0.0;
-}
-
 struct Excess
 {
     double worst = 0.0, sum = 0.0;
@@ -101,7 +59,7 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         return result;
     }
     const Vec3d p = mesh.point(v);
-    const FitPatch patch(mesh, v);
+    const detail::TwoRingPatch patch(mesh, v);
     std::vector<FaceHandle> star;
     for (auto f : mesh.vf_range(v)) star.push_back(f);
 
@@ -109,7 +67,7 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
     // the quarter points of its curve chords, which cut the zigs), centroids to the model.
     auto excess = [&](const Vec3d& q) {
         Excess e;
-        for (const Vec3d& w : options.witnesses) e.add(patch.distance(w, q), options.tolerance);
+        for (const Vec3d& w : options.witnesses) e.add(patch.distance(w, &q), options.tolerance);
         auto sample = [&](const Vec3d& s) {
             if (!ctx.near_model(s, v, options.tolerance)) e.add(ctx.distance_to_model(s, v), options.tolerance);
         };
@@ -201,17 +159,7 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         result.status = OpStatus::Quality;
         return result;
     }
-    if (ctx.hooks.allow_move && !ctx.hooks.allow_move(mesh, v, best_point.point))
-    {
-        result.status = OpStatus::Hook;
-        return result;
-    }
-    mesh.set_point(v, best_point.point);
-    if (best_point.face >= 0) mesh.property(ctx.props.vertex_model_face, v) = best_point.face;
-    if (ctx.hooks.on_move) ctx.hooks.on_move(mesh, v, p);
-    result.status = OpStatus::Done;
-    result.vertex = v;
-    return result;
+    return commit_move(ctx, v, best_point.point, best_point.face);
 }
 
 }  // namespace hdimesh::surface

@@ -3,10 +3,12 @@
 // a face's vertices and points, optionally with one vertex moved, the star of a vertex for
 // trials that move it, and the angle tests.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
 
+#include "surface/closest_point_tree.h"
 #include "surface/surface_mesh.h"
 #include "surface/surface_quality.h"
 
@@ -86,6 +88,51 @@ inline void collect_star(const SurfaceMesh& mesh, VertexHandle v, std::vector<St
         face.normal = normal(face.points);
         out.push_back(face);
     }
+}
+
+/// The triangles of the 2-ring of v (every face touching a neighbour of v, which includes every
+/// face of v), sorted by handle, with the index of v in each (-1: not one of its vertices): the
+/// output near a star, to measure distances before and after a move of v.
+struct TwoRingPatch
+{
+    std::vector<std::array<Vec3d, 3>> triangles;
+    std::vector<int> moved;
+
+    TwoRingPatch(const SurfaceMesh& mesh, VertexHandle v)
+    {
+        std::vector<FaceHandle> faces;
+        for (auto w : mesh.vv_range(v))
+            for (auto f : mesh.vf_range(w)) faces.push_back(f);
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+        for (const FaceHandle f : faces)
+        {
+            const auto fv = face_vertices(mesh, f);
+            triangles.push_back(face_points(mesh, f));
+            moved.push_back(fv[0] == v ? 0 : fv[1] == v ? 1 : fv[2] == v ? 2 : -1);
+        }
+    }
+
+    /// Distance from p to the patch with v at *v_at (nullptr: where it is).
+    double distance(const Vec3d& p, const Vec3d* v_at) const
+    {
+        double best2 = 1e300;
+        for (std::size_t i = 0; i < triangles.size(); ++i)
+        {
+            std::array<Vec3d, 3> t = triangles[i];
+            if (v_at && moved[i] >= 0) t[moved[i]] = *v_at;
+            best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+        }
+        return std::sqrt(best2);
+    }
+};
+
+/// How far a length is out of the band [lo, hi] (≤ 0 bounds: open), 0 inside.
+inline double out_of_band(double length, double lo, double hi)
+{
+    if (lo > 0.0 && length < lo) return lo - length;
+    if (hi > 0.0 && length > hi) return length - hi;
+    return 0.0;
 }
 
 }  // namespace hdimesh::surface::detail

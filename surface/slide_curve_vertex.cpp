@@ -145,17 +145,7 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
         result.status = refusal;
         return result;
     }
-    if (ctx.hooks.allow_move && !ctx.hooks.allow_move(mesh, v, best_point.point))
-    {
-        result.status = OpStatus::Hook;
-        return result;
-    }
-    mesh.set_point(v, best_point.point);
-    if (best_point.face >= 0) mesh.property(ctx.props.vertex_model_face, v) = best_point.face;
-    if (ctx.hooks.on_move) ctx.hooks.on_move(mesh, v, p);
-    result.status = OpStatus::Done;
-    result.vertex = v;
-    return result;
+    return commit_move(ctx, v, best_point.point, best_point.face);
 }
 
 }  // namespace hdimesh::surface

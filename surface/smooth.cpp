@@ -162,17 +162,7 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         if (new_quality < ctx.limits.min_new_quality && new_quality < old_quality) continue;
         if (new_quality < 0.0) continue;
         if (options.smart && new_quality < old_quality - 1e-12) continue;
-        if (ctx.hooks.allow_move && !ctx.hooks.allow_move(mesh, v, q))
-        {
-            result.status = OpStatus::Hook;
-            return result;
-        }
-        mesh.set_point(v, q);
-        if (projected.face >= 0) mesh.property(ctx.props.vertex_model_face, v) = projected.face;
-        if (ctx.hooks.on_move) ctx.hooks.on_move(mesh, v, p);
-        result.status = OpStatus::Done;
-        result.vertex = v;
-        return result;
+        return commit_move(ctx, v, q, projected.face);
     }
     result.status = OpStatus::Quality;
     return result;

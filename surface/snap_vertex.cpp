@@ -22,50 +22,6 @@ constexpr double kMinAngleGainDeg = 0.1;
 // The fractions of the way to the target tried, the whole way first.
 constexpr double kSnapSteps[] = {1.0, 0.75, 0.5, 0.35};
 
-// The triangles of the 2-ring of v (every face touching v or a neighbour of v), with the index
-// of v in each (-1: v is not one of its vertices): the output near the star, before and after.
-struct Patch
-{
-    std::vector<std::array<Vec3d, 3>> triangles;
-    std::vector<int> moved;
-
-    Patch(const SurfaceMesh& mesh, VertexHandle v)
-    {
-        std::vector<FaceHandle> faces;
-        for (auto w : mesh.vv_range(v))
-            for (auto f : mesh.vf_range(w)) faces.push_back(f);
-        for (auto f : mesh.vf_range(v)) faces.push_back(f);
-        std::sort(faces.begin(), faces.end());
-        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-        for (const FaceHandle f : faces)
-        {
-            const auto fv = detail::face_vertices(mesh, f);
-            triangles.push_back(detail::face_points(mesh, f));
-            moved.push_back(fv[0] == v ? 0 : fv[1] == v ? 1 : fv[2] == v ? 2 : -1);
-        }
-    }
-
-    double distance(const Vec3d& p, const Vec3d* v_at) const
-    {
-        double best2 = 1e300;
-        for (std::size_t i = 0; i < triangles.size(); ++i)
-        {
-            std::array<Vec3d, 3> t = triangles[i];
-            if (v_at && moved[i] >= 0) t[moved[i]] = *v_at;
-            best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
-        }
-        return std::sqrt(best2);
-    }
-};
-
-// How far a length is out of the band [lo, hi] (≤ 0 bounds: open), 0 inside.
-double out_of_band(double length, double lo, double hi)
-{
-    if (lo > 0.0 && length < lo) return lo - length;
-    if (hi > 0.0 && length > hi) return length - hi;
-    return 0.0;
-}
-
 }  // namespace
 
 OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& target, const SnapOptions& options)
@@ -112,7 +68,7 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
 
     // The star with v at q: geometry, quality, distance both ways (a status, Done when legal).
     // The 2-ring and the witnesses' distances before: computed once, when a position gets that far.
-    const Patch patch(mesh, v);
+    const TwoRingPatch patch(mesh, v);
     std::vector<double> witness_before;
     double star_before = -1.0;  // the worst sample of the star before, computed when needed
     const double bound = options.tolerance;
@@ -212,17 +168,7 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         return result;
     }
 
-    if (ctx.hooks.allow_move && !ctx.hooks.allow_move(mesh, v, q))
-    {
-        result.status = OpStatus::Hook;
-        return result;
-    }
-    mesh.set_point(v, q);
-    if (q_on_model.ok && q_on_model.face >= 0) mesh.property(ctx.props.vertex_model_face, v) = q_on_model.face;
-    if (ctx.hooks.on_move) ctx.hooks.on_move(mesh, v, p);
-    result.status = OpStatus::Done;
-    result.vertex = v;
-    return result;
+    return commit_move(ctx, v, q, q_on_model.ok ? q_on_model.face : -1);
 }
 
 }  // namespace hdimesh::surface
