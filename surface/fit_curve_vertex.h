@@ -12,22 +12,11 @@
 namespace hdimesh::surface
 {
 
-struct CurveFitOptions
+/// The tolerance: only the excess over it is minimized. The witnesses (the input's vertices and
+/// edge midpoints around the star) give the distances in->out; those on v's curve between its
+/// curve neighbours are also the candidate positions.
+struct CurveFitOptions : WitnessedMoveOptions
 {
-    /// Distance both ways that counts as near (the refinement's tolerance): only the excess over
-    /// it is minimized.
-    double tolerance = 0.0;
-    /// No triangle of the star gets an angle under this (a star that had one already: under its worst).
-    double min_angle_deg = 30.0;
-    /// The star's edges stay within [min_length, max_length] (≤ 0: no bound); an edge out of the
-    /// band before may not get farther out.
-    double min_length = 0.0, max_length = 0.0;
-    /// > 0: an edge already under min_length may get shorter, down to this, when no edge of the
-    /// star newly leaves the band (the size quality counts the edges out of it).
-    double floor_length = 0.0;
-    /// Model points around the star (the input's vertices and edge midpoints): the distances
-    /// in->out. Those on v's curve between its curve neighbours are also the candidate positions.
-    std::vector<Vec3d> witnesses;
     int samples = 8;  // besides the witnesses: trial points toward each curve neighbour
 };
 

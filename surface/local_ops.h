@@ -180,7 +180,9 @@ struct SlideOptions
 /// corner between two curves that open up away from it.
 OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOptions& options = {});
 
-struct SnapOptions
+/// The limits of a vertex move judged against the model points around it (the snap and the
+/// curve fit of the refinement).
+struct WitnessedMoveOptions
 {
     /// Distance to the model that counts as near, both ways (the refinement's tolerance).
     double tolerance = 0.0;
@@ -189,12 +191,16 @@ struct SnapOptions
     /// The star's edges stay within [min_length, max_length] (≤ 0: no bound); an edge out of the
     /// band before may not get farther out.
     double min_length = 0.0, max_length = 0.0;
-    /// > 0: an edge already under min_length may get shorter, down to this (the count of edges
-    /// out of the band, which the size quality counts, still may not grow).
+    /// > 0: an edge already under min_length may get shorter, down to this, when no edge of the
+    /// star newly leaves the band (the size quality counts the edges out of it).
     double floor_length = 0.0;
-    /// Model points around the star: none may end farther from the output near v than the
-    /// larger of the tolerance and its distance before (the move may not open a gap elsewhere).
+    /// Model points around the star: the snap lets none end farther from the output near v than
+    /// the larger of the tolerance and its distance before; the curve fit minimizes their excess.
     std::vector<Vec3d> witnesses;
+};
+
+struct SnapOptions : WitnessedMoveOptions
+{
     /// An angle repair instead: the target need not come near; the move must raise the star's
     /// smallest angle, with the same distance checks (it keeps what the refinement reached).
     bool raise_min_angle = false;

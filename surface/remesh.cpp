@@ -380,33 +380,45 @@ private:
         return *model_point_grid_;
     }
 
-    // try_snap_vertex with the star's edges kept in the Qt band of the reference size (or of
-    // v's size) and the model points around the star and the target as witnesses.
-    bool try_snap(VertexHandle v, const Vec3d& target, bool raise_min_angle)
+    // The limits of a witnessed move of v (a snap, a curve fit): the star's edges in the Qt band
+    // of the reference size (or of v's size), an edge already short allowed down to the
+    // refinement's own shortest (a staircase boundary needs a vertex on each stair corner;
+    // measured for the snap, uniform Hausdorff/diag: rocker-arm 1.813e-3 -> 1.745e-3,
+    // cheburashka 2.127e-3 -> 1.718e-3; a floor of 0.45 h: 1.930e-3, 1.802e-3), and as witnesses
+    // the model points within the star's reach (its longest edge plus `margin`) of v and of
+    // `target` if given, in index order.
+    void set_move_limits(VertexHandle v, const Vec3d* target, double margin, WitnessedMoveOptions& limits)
     {
         const PointGrid& grid = model_point_grid();
         const double size = options_.refine_reference_size > 0.0 ? options_.refine_reference_size
                                                                  : mesh_.property(ctx_.props.vertex_size, v);
-        SnapOptions snap;
-        snap.tolerance = options_.tolerance;
-        snap.min_angle_deg = options_.snap_min_angle_deg;
-        snap.min_length = 0.66 * size;
-        snap.max_length = size / 0.66;
-        // As the curve fit: an edge already short may get shorter, down to the refinement's own
-        // shortest (measured, uniform Hausdorff/diag: rocker-arm 1.813e-3 -> 1.745e-3,
-        // cheburashka 2.127e-3 -> 1.718e-3; a floor of 0.45 h: 1.930e-3, 1.802e-3).
-        snap.floor_length = options_.refine_min_length_ratio * size;
-        snap.raise_min_angle = raise_min_angle;
-        const Vec3d p = mesh_.point(v);
+        limits.tolerance = options_.tolerance;
+        limits.min_angle_deg = options_.snap_min_angle_deg;
+        limits.min_length = 0.66 * size;
+        limits.max_length = size / 0.66;
+        limits.floor_length = options_.refine_min_length_ratio * size;
         double reach = 0.0;
         for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
-        reach += options_.tolerance;
-        std::vector<std::size_t> around = grid.within(p, reach);
-        const std::vector<std::size_t> around_target = grid.within(target, reach);
-        around.insert(around.end(), around_target.begin(), around_target.end());
-        std::sort(around.begin(), around.end());
-        around.erase(std::unique(around.begin(), around.end()), around.end());
-        for (const std::size_t i : around) snap.witnesses.push_back(options_.model_points[i]);
+        reach += margin;
+        std::vector<std::size_t> around = grid.within(mesh_.point(v), reach);
+        if (target)
+        {
+            const std::vector<std::size_t> around_target = grid.within(*target, reach);
+            around.insert(around.end(), around_target.begin(), around_target.end());
+            std::sort(around.begin(), around.end());
+            around.erase(std::unique(around.begin(), around.end()), around.end());
+        }
+        limits.witnesses.clear();
+        for (const std::size_t i : around) limits.witnesses.push_back(options_.model_points[i]);
+    }
+
+    // try_snap_vertex within the limits of a witnessed move, with the witnesses around v and the
+    // target out to the tolerance beyond the star.
+    bool try_snap(VertexHandle v, const Vec3d& target, bool raise_min_angle)
+    {
+        SnapOptions snap;
+        set_move_limits(v, &target, options_.tolerance, snap);
+        snap.raise_min_angle = raise_min_angle;
         return try_snap_vertex(ctx_, v, target, snap).done();
     }
 
@@ -418,7 +430,6 @@ private:
     {
         std::size_t moved = 0;
         if (!(options_.tolerance > 0.0) || !(options_.snap_min_angle_deg > 0.0)) return moved;
-        const PointGrid& grid = model_point_grid();
         for (int sweep = 0; sweep < kCurveFitSweeps; ++sweep)
         {
             std::size_t done = 0;
@@ -426,19 +437,9 @@ private:
             {
                 const VertexClass cls = ctx_.vertex_class(v);
                 if (mesh_.status(v).deleted() || (cls != VertexClass::Ridge && cls != VertexClass::Boundary)) continue;
-                const double size = options_.refine_reference_size > 0.0 ? options_.refine_reference_size
-                                                                         : mesh_.property(ctx_.props.vertex_size, v);
+                // The witnesses within the star's own reach: the curve around v is what it fits.
                 CurveFitOptions fit;
-                fit.tolerance = options_.tolerance;
-                fit.min_angle_deg = options_.snap_min_angle_deg;
-                fit.min_length = 0.66 * size;
-                fit.max_length = size / 0.66;
-                // A staircase boundary (a scan's) needs a vertex on each stair corner: an edge
-                // already short may follow a tread, down to the refinement's own shortest edges.
-                fit.floor_length = options_.refine_min_length_ratio * size;
-                double reach = 0.0;
-                for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
-                for (const std::size_t i : grid.within(mesh_.point(v), reach)) fit.witnesses.push_back(options_.model_points[i]);
+                set_move_limits(v, nullptr, 0.0, fit);
                 if (!fit_curve_vertex(ctx_, v, fit).done()) continue;
                 set_size(v);
                 ++done;
