@@ -53,45 +53,30 @@ public:
 SurfaceMesh zig_grid()
 {
     SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(4, [](int, int) { return 0.0; });
+    hdimesh::surface::fixtures::mark_all_smooth(mesh);
+    // The rim: curve 0 along y = 0, curve 1 the rest, between the four corners.
     SurfaceProperties props(mesh);
     auto curve_of = [](const Vec3d& a, const Vec3d& b) { return a[1] == 0 && b[1] == 0 ? 0 : 1; };
     for (auto v : mesh.vertices())
     {
+        if (!mesh.is_boundary(v)) continue;
         const Vec3d p = mesh.point(v);
         const bool corner = (p[0] == 0 || p[0] == 4) && (p[1] == 0 || p[1] == 4);
-        mesh.property(props.vertex_class, v) =
-            corner ? VertexClass::Corner : mesh.is_boundary(v) ? VertexClass::Boundary : VertexClass::Smooth;
-        mesh.property(props.vertex_curve, v) = corner || !mesh.is_boundary(v) ? kNoCurve : curve_of(p, p);
+        mesh.property(props.vertex_class, v) = corner ? VertexClass::Corner : VertexClass::Boundary;
+        mesh.property(props.vertex_curve, v) = corner ? kNoCurve : curve_of(p, p);
     }
     for (auto e : mesh.edges())
     {
+        if (!mesh.is_boundary(e)) continue;
         const auto h = mesh.halfedge_handle(e, 0);
-        mesh.property(props.edge_curve, e) =
-            mesh.is_boundary(e) ? curve_of(mesh.point(mesh.from_vertex_handle(h)), mesh.point(mesh.to_vertex_handle(h)))
-                                : kNoCurve;
+        mesh.property(props.edge_curve, e) = curve_of(mesh.point(mesh.from_vertex_handle(h)), mesh.point(mesh.to_vertex_handle(h)));
     }
-    for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
     return mesh;
 }
 
-VertexHandle vertex_at(const SurfaceMesh& mesh, const Vec3d& p)
-{
-    for (auto v : mesh.vertices())
-        if ((mesh.point(v) - p).norm() < 1e-12) return v;
-    return VertexHandle();
-}
+using hdimesh::surface::fixtures::vertex_at;
 
-double distance_to_mesh(const SurfaceMesh& mesh, const Vec3d& p)
-{
-    double best = 1e300;
-    for (auto f : mesh.faces())
-    {
-        auto fv = mesh.cfv_iter(f);
-        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
-        best = std::min(best, (closest_point_on_triangle(p, a, b, c) - p).norm());
-    }
-    return best;
-}
+using hdimesh::surface::fixtures::distance_to_mesh;
 
 // The input's samples near the lower side: the polyline's vertices and edge midpoints.
 std::vector<Vec3d> zig_witnesses()
@@ -102,12 +87,7 @@ std::vector<Vec3d> zig_witnesses()
     return points;
 }
 
-std::vector<Vec3d> points_of(const SurfaceMesh& mesh)
-{
-    std::vector<Vec3d> points;
-    for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
-    return points;
-}
+using hdimesh::surface::fixtures::points_of;
 
 }  // namespace
 

@@ -1,9 +1,11 @@
 #pragma once
 // Models for the surface operator tests (header-only: only the surface tests need OpenMesh).
 
+#include <algorithm>
 #include <vector>
 
 #include "fixtures.h"
+#include "surface/closest_point_tree.h"
 #include "surface/projector.h"
 #include "surface/surface_mesh.h"
 
@@ -45,6 +47,27 @@ inline VertexHandle vertex_at(const SurfaceMesh& mesh, const Vec3d& p)
     for (auto v : mesh.vertices())
         if ((mesh.point(v) - p).norm() < 1e-12) return v;
     return VertexHandle();
+}
+
+/// Every vertex's point, in handle order (to assert that a refused operator moved nothing).
+inline std::vector<Vec3d> points_of(const SurfaceMesh& mesh)
+{
+    std::vector<Vec3d> points;
+    for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
+    return points;
+}
+
+/// Exact distance from p to the mesh's triangles (brute force: the tests' meshes are tiny).
+inline double distance_to_mesh(const SurfaceMesh& mesh, const Vec3d& p)
+{
+    double best = 1e300;
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.cfv_iter(f);
+        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
+        best = std::min(best, (closest_point_on_triangle(p, a, b, c) - p).norm());
+    }
+    return best;
 }
 
 /// An n×n grid of unit squares over the (x, y) plane at heights height(i, j), each square cut

@@ -85,12 +85,7 @@ struct NarrowCorner
         return true;
     }
 
-    std::vector<Vec3d> points() const
-    {
-        std::vector<Vec3d> out;
-        for (auto v : mesh.vertices()) out.push_back(mesh.point(v));
-        return out;
-    }
+    std::vector<Vec3d> points() const { return fixtures::points_of(mesh); }
 };
 
 // The plane z = 0, with the two curves as input polylines: curve 0 = C-A-A2, curve 1 =

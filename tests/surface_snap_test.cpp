@@ -60,24 +60,9 @@ SurfaceMesh roof_grid()
 
 using hdimesh::surface::fixtures::vertex_at;
 
-double distance_to_mesh(const SurfaceMesh& mesh, const Vec3d& p)
-{
-    double best = 1e300;
-    for (auto f : mesh.faces())
-    {
-        auto fv = mesh.cfv_iter(f);
-        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
-        best = std::min(best, (closest_point_on_triangle(p, a, b, c) - p).norm());
-    }
-    return best;
-}
+using hdimesh::surface::fixtures::distance_to_mesh;
 
-std::vector<Vec3d> points_of(const SurfaceMesh& mesh)
-{
-    std::vector<Vec3d> points;
-    for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
-    return points;
-}
+using hdimesh::surface::fixtures::points_of;
 
 // Model points: the roof sampled every half unit, and its crest.
 std::vector<Vec3d> roof_samples()
