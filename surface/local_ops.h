@@ -93,8 +93,7 @@ struct OperatorContext
     /// Distance from p (a point of a triangle at `near`) to the smooth model, searched from its face.
     double distance_to_model(const Vec3d& p, VertexHandle near) const
     {
-        const ProjectedPoint on_model = model.project_near(p, VertexClass::Smooth, kNoCurve, model_face(near));
-        return on_model.ok ? (on_model.point - p).norm() : 0.0;
+        return model.distance_to_surface(p, model_face(near));
     }
 };
 

@@ -17,7 +17,7 @@ struct ProjectedPoint
     bool ok = false;
     /// Where the model knows it: the index of the model face at (for a curve point: beside) the
     /// point, -1 otherwise. Opaque to the caller, who hands it back as the hint of a later query
-    /// near the point (project_near); it never changes a projection, only the time to find it.
+    /// near the point (project_near): the projection then stays on the hint's part of the model.
     int face = -1;
 };
 
@@ -28,21 +28,29 @@ public:
     /// Projects p onto the model: a smooth vertex onto the surface, a ridge or boundary vertex
     /// onto its feature curve `curve`, a corner stays where it is.
     virtual ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const = 0;
-    /// The same as project(), told a model face near p (the `face` of an earlier projection of a
-    /// neighbouring point, or -1): a model that searches for p may start there. The result must
-    /// be the one project() gives; models without a search ignore the hint.
+    /// project() for placing a vertex, told a model face near p (the `face` of an earlier
+    /// projection of a neighbouring point, or -1): a model that searches for p may search
+    /// locally from there and give the foot on the hint's own part of the model, which is
+    /// project()'s unless another part passes nearer to p (a vertex then had better stay on its
+    /// own sheet). Deterministic for a given hint; models without a search ignore the hint.
     virtual ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const
     {
         static_cast<void>(face_hint);
         return project(p, cls, curve);
     }
-    /// Whether p is within `distance` of the smooth surface (as measured by project_near onto
-    /// it; a failed projection counts as within). A model may answer without the full search
+    /// Distance from p (e.g. a centroid or an edge midpoint of the remeshed surface) to the
+    /// smooth surface, told a model face near p as in project_near; 0 when the projection fails.
+    /// Measured exactly by models with a search (project_near may stop at a local foot).
+    virtual double distance_to_surface(const Vec3d& p, int face_hint) const
+    {
+        const ProjectedPoint on_model = project_near(p, VertexClass::Smooth, kNoCurve, face_hint);
+        return on_model.ok ? (on_model.point - p).norm() : 0.0;
+    }
+    /// Whether distance_to_surface(p) <= distance. A model may answer without the full search
     /// when the hint face alone is near enough: the answer is the same.
     virtual bool near_model(const Vec3d& p, double distance, int face_hint) const
     {
-        const ProjectedPoint on_model = project_near(p, VertexClass::Smooth, kNoCurve, face_hint);
-        return !on_model.ok || (on_model.point - p).norm() <= distance;
+        return distance_to_surface(p, face_hint) <= distance;
     }
 };
 

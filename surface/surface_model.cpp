@@ -14,6 +14,13 @@ namespace hdimesh::surface
 namespace
 {
 
+// A vertex placed by project_near takes the foot its descent from the hint reached when that
+// foot is within this fraction of its face's shortest edge (a vertex moved in the tangent plane
+// is); farther, the search decides. Measured on the remesher's placements (cheburashka,
+// rocker-arm, stanford-bunny, uniform and adaptive: 0.97 million): below 1e-2 (95 % of them)
+// no local foot was farther than the global one; between 1e-2 and 1e-1, 6 of 52 thousand.
+constexpr double kPlacementFraction = 1e-2;
+
 Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
 
 // The buffers of quadric_curvature, kept from one vertex to the next: allocating them per
@@ -127,6 +134,16 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         }
         face_neighbours_.push_back(across);
     }
+    vertex_face_offsets_.assign(points_.size() + 1, 0);
+    for (const auto& fv : face_vertices_)
+        for (const int v : fv) ++vertex_face_offsets_[v + 1];
+    for (std::size_t v = 0; v < points_.size(); ++v) vertex_face_offsets_[v + 1] += vertex_face_offsets_[v];
+    vertex_faces_.resize(vertex_face_offsets_.back());
+    {
+        std::vector<int> next(vertex_face_offsets_.begin(), vertex_face_offsets_.end() - 1);
+        for (std::size_t f = 0; f < face_vertices_.size(); ++f)
+            for (const int v : face_vertices_[f]) vertex_faces_[next[v]++] = static_cast<int>(f);
+    }
 
     int curve_count = 0;
     for (auto e : input.edges()) curve_count = std::max(curve_count, curve_of(e) + 1);
@@ -165,10 +182,77 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     }
 }
 
-ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint) const
+int SurfaceModel::descend(const Vec3d& p, int face, Vec3d& foot, bool& converged) const
+{
+    // Most descents end in a step or two (a shifted vertex moves by a fraction of the output
+    // size, the input is finer or as fine); a longer one means a poor hint.
+    constexpr int kMaxDescentSteps = 32;
+    auto foot_on = [&](int f) {
+        const auto& fv = face_vertices_[f];
+        return closest_point_on_triangle(p, points_[fv[0]], points_[fv[1]], points_[fv[2]]);
+    };
+    converged = false;
+    foot = foot_on(face);
+    double d2 = (foot - p).sqrnorm();
+    for (int step = 0; step < kMaxDescentSteps; ++step)
+    {
+        // Across the edges (three faces, the usual way down); for a foot at a corner of the
+        // face, also the other faces around that corner (they may rise nearer to p).
+        int next = -1;
+        Vec3d next_foot;
+        double next_d2 = d2;
+        auto consider = [&](int g) {
+            const Vec3d q = foot_on(g);
+            const double g_d2 = (q - p).sqrnorm();
+            if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2;
+        };
+        for (const int g : face_neighbours_[face])
+            if (g >= 0) consider(g);
+        if (next < 0)
+            for (const int v : face_vertices_[face])
+            {
+                if (!(points_[v] == foot)) continue;  // (the corner region returns the corner itself)
+                for (int k = vertex_face_offsets_[v]; k < vertex_face_offsets_[v + 1]; ++k)
+                    if (vertex_faces_[k] != face) consider(vertex_faces_[k]);
+            }
+        if (next < 0)
+        {
+            converged = true;
+            return face;
+        }
+        face = next;
+        foot = next_foot;
+        d2 = next_d2;
+    }
+    return face;
+}
+
+bool SurfaceModel::within_fraction_of_face(int face, double d2, double fraction) const
+{
+    const auto& fv = face_vertices_[face];
+    const double shortest2 = std::min({(points_[fv[0]] - points_[fv[1]]).sqrnorm(), (points_[fv[1]] - points_[fv[2]]).sqrnorm(),
+                                       (points_[fv[2]] - points_[fv[0]]).sqrnorm()});
+    return d2 <= fraction * fraction * shortest2;
+}
+
+ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, double local_fraction) const
 {
     ProjectedPoint out;
-    // (A walk from the hint to a tighter bound was measured: no faster, the descent dominates.)
+    if (face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
+    {
+        Vec3d foot;
+        bool converged = false;
+        const int face = descend(p, face_hint, foot, converged);
+        if (converged && local_fraction > 0.0 && within_fraction_of_face(face, (foot - p).sqrnorm(), local_fraction))
+        {
+            out.point = foot;
+            out.normal = face_normals_[face];
+            out.face = face;
+            out.ok = true;
+            return out;
+        }
+        face_hint = face;  // where the descent stopped: a tight bound for the search
+    }
     const auto hit = triangles_.closest(p, face_hint);
     if (hit.primitive < 0) return out;
     out.point = hit.point;
@@ -194,9 +278,9 @@ double SurfaceModel::interpolate(const Vec3d& p, const std::vector<double>& valu
     }
     if (face < 0)
     {
-        const auto hit = triangles_.closest(p, face_hint);
-        if (hit.primitive < 0) return 0.0;
-        face = hit.primitive;
+        const ProjectedPoint hit = closest_on_input(p, face_hint, 0.0);
+        if (!hit.ok) return 0.0;
+        face = hit.face;
         q = hit.point;
     }
     const auto& fv = face_vertices_[face];
@@ -222,45 +306,27 @@ ProjectedPoint SurfaceModel::project(const Vec3d& p, VertexClass cls, int curve)
     return project_near(p, cls, curve, -1);
 }
 
-double SurfaceModel::face_distance2(const Vec3d& p, int face) const
+double SurfaceModel::distance_to_surface(const Vec3d& p, int face_hint) const
 {
-    const auto& fv = face_vertices_[face];
-    return (closest_point_on_triangle(p, points_[fv[0]], points_[fv[1]], points_[fv[2]]) - p).sqrnorm();
-}
-
-int SurfaceModel::walk_toward(const Vec3d& p, int face, double stop_d2, double& d2) const
-{
-    // The hint is the face under a vertex near p; on a fine input p's own foot is a few faces
-    // away: step to the nearest neighbour while it is nearer.
-    constexpr int kMaxSteps = 8;
-    d2 = face_distance2(p, face);
-    for (int step = 0; step < kMaxSteps && !(d2 <= stop_d2); ++step)
-    {
-        int next = -1;
-        double next_d2 = d2;
-        for (const int g : face_neighbours_[face])
-            if (g >= 0)
-            {
-                const double g_d2 = face_distance2(p, g);
-                if (g_d2 < next_d2) next = g, next_d2 = g_d2;
-            }
-        if (next < 0) break;
-        face = next;
-        d2 = next_d2;
-    }
-    return face;
+    if (smooth_) return Projector::distance_to_surface(p, face_hint);
+    const ProjectedPoint on_input = closest_on_input(p, face_hint, 0.0);
+    return on_input.ok ? (on_input.point - p).norm() : 0.0;
 }
 
 bool SurfaceModel::near_model(const Vec3d& p, double distance, int face_hint) const
 {
-    if (!smooth_ && face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
+    if (smooth_) return Projector::near_model(p, distance, face_hint);
+    if (face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
     {
-        double d2 = 0.0;
-        face_hint = walk_toward(p, face_hint, distance * distance, d2);
-        // The same arithmetic as the search's distance: a face found within is a proof.
-        if (std::sqrt(d2) <= distance) return true;
+        // A face within the distance found by the descent is a proof (the closest face can
+        // only be nearer; the same arithmetic as the search's distance).
+        Vec3d foot;
+        bool converged = false;
+        face_hint = descend(p, face_hint, foot, converged);
+        if ((foot - p).norm() <= distance) return true;
     }
-    return Projector::near_model(p, distance, face_hint);
+    const auto hit = triangles_.closest(p, face_hint);
+    return hit.primitive < 0 || hit.distance <= distance;
 }
 
 ProjectedPoint SurfaceModel::project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const
@@ -269,7 +335,7 @@ ProjectedPoint SurfaceModel::project_near(const Vec3d& p, VertexClass cls, int c
     {
     case VertexClass::Corner:
     {
-        ProjectedPoint out = closest_on_input(p, face_hint);
+        ProjectedPoint out = closest_on_input(p, face_hint, kPlacementFraction);
         out.point = p;
         return out;
     }
@@ -291,7 +357,7 @@ ProjectedPoint SurfaceModel::project_near(const Vec3d& p, VertexClass cls, int c
             ProjectedPoint out = smooth_(p);
             if (out.ok) return out;
         }
-        return closest_on_input(p, face_hint);
+        return closest_on_input(p, face_hint, kPlacementFraction);
     }
     return {};
 }

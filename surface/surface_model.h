@@ -28,17 +28,25 @@ public:
     void set_smooth_projection(SmoothProjection projection) { smooth_ = std::move(projection); }
 
     ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const override;
-    /// project() with the search over the input triangles started at `face_hint` (an input face
-    /// index, e.g. the `face` of the last projection of a neighbouring point): the same result.
+    /// project() near `face_hint` (an input face index, e.g. the `face` of the last projection of
+    /// a neighbouring point): for a smooth point, the closest point of the input sheet the hint
+    /// lies on (closest_on_input with the hint); without a hint, project().
     ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const override;
-    /// Without a smooth projection: true at once when a face within `distance` is found by a
-    /// short walk from the hint face over its neighbours (the closest face can only be nearer),
-    /// else the search decides.
+    /// Without a smooth projection: true at once when the descent from the hint face (see
+    /// closest_on_input) meets a face within `distance`, else the exact search decides.
     bool near_model(const Vec3d& p, double distance, int face_hint) const override;
+    /// Without a smooth projection: the exact distance to the input triangles, searched from
+    /// where the descent from the hint stopped (a tight bound).
+    double distance_to_surface(const Vec3d& p, int face_hint) const override;
 
-    /// Closest point on the input triangles, with that triangle's normal and index (`face`);
-    /// `face_hint` as in project_near.
-    ProjectedPoint closest_on_input(const Vec3d& p, int face_hint = -1) const;
+    /// Closest point on the input triangles, with that triangle's normal and index (`face`).
+    /// With a hint, first a descent over the input from the hint face, to a face none of its
+    /// neighbours beats (across its edges; around its corner for a foot at a corner). When p is
+    /// within `local_fraction` of that face's shortest edge, its foot there is the answer: the
+    /// foot on the hint's own sheet of the surface, which is the global one unless another
+    /// sheet passes that near. Otherwise (an off-surface point, fraction 0, or no hint) the
+    /// exact closest point, searched with the descent's face as the bound.
+    ProjectedPoint closest_on_input(const Vec3d& p, int face_hint = -1, double local_fraction = 0.0) const;
     /// Distance from p to the input feature curve `curve` (infinity if there is none).
     double distance_to_curve(const Vec3d& p, int curve) const;
 
@@ -55,16 +63,19 @@ public:
     std::size_t curve_count() const { return curves_.size(); }
 
 private:
-    // Squared distance from p to input face `face`.
-    double face_distance2(const Vec3d& p, int face) const;
-    // From `face` over edge neighbours to a face nearer to p, until one within sqrt(stop_d2),
-    // a local minimum or a few steps; d2: its squared distance. Only a hint: not a search.
-    int walk_toward(const Vec3d& p, int face, double stop_d2, double& d2) const;
+    // closest_on_input's descent from `face`: the face it stopped at, with p's foot on it;
+    // `converged`: at a local minimum (not out of steps).
+    int descend(const Vec3d& p, int face, Vec3d& foot, bool& converged) const;
+    // Whether a squared distance d2 is within `fraction` of the shortest edge of `face`.
+    bool within_fraction_of_face(int face, double d2, double fraction) const;
 
     std::vector<Vec3d> points_;
     std::vector<Vec3d> face_normals_;
     std::vector<std::array<int, 3>> face_vertices_;
     std::vector<std::array<int, 3>> face_neighbours_;  // across each edge (-1: open boundary)
+    // The faces around each input vertex: vertex_faces_[vertex_face_offsets_[v] ..
+    // vertex_face_offsets_[v + 1]).
+    std::vector<int> vertex_face_offsets_, vertex_faces_;
     std::vector<double> curvature_;
     ClosestPointTree triangles_;
     std::vector<ClosestPointTree> curves_;

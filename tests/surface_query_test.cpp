@@ -1,9 +1,11 @@
 // The hinted queries of the surface model: a closest-point search told a nearby primitive, a
 // projection told a nearby model face, a size looked up on the face just projected onto, a
-// "within this distance of the model?" decided by a walk from the hint face. The hint buys time
-// only: every answer must be the one of the search without it, whatever the hint (right, a
+// "within this distance of the model?" decided by a descent from the hint face. The hint buys
+// time: every distance must be the one of the search without it, whatever the hint (right, a
 // neighbour, far away, out of range, stale), including the ties of points on shared edges and
-// vertices. Checked on a bumpy grid built here against brute force.
+// vertices; a projection for placing a vertex may take the foot on the hint's own sheet (the
+// global one on a single sheet, up to the face it names at a tie). Checked on a bumpy grid
+// built here against brute force, and on two sheets close together.
 //
 //   z = 0.3·sin(0.9 x)·cos(0.7 y) over the n×n grid, each square cut by one diagonal:
 //
@@ -174,7 +176,7 @@ TEST_CASE("closest point tree: hinted segment queries equal the exact ones")
     CHECK(differs == 0);
 }
 
-TEST_CASE("surface model: projections and size look-ups with a face hint equal those without")
+TEST_CASE("surface model: hinted projections find the same foot, hinted distances and sizes are exact")
 {
     const int n = 8;
     const SurfaceMesh mesh = bumpy_grid(n);
@@ -186,18 +188,21 @@ TEST_CASE("surface model: projections and size look-ups with a face hint equal t
     const auto points = sample_points(mesh, n, 300);
     const int faces = static_cast<int>(mesh.n_faces());
 
-    int differs = 0, off_field = 0, shortcut_off = 0;
+    int elsewhere = 0, farther = 0, distance_differs = 0, off_field = 0, shortcut_off = 0, differs = 0;
     for (std::size_t k = 0; k < points.size(); ++k)
     {
         const Vec3d& p = points[k];
         const ProjectedPoint exact = model.project(p, VertexClass::Smooth, kNoCurve);
         REQUIRE(exact.ok);
         REQUIRE(exact.face >= 0);
+        const double d = (exact.point - p).norm();
         for (const int hint : {exact.face, static_cast<int>(k * 31 % faces), -1, faces + 3})
         {
+            // One sheet: the same foot (a point on a shared edge or vertex may name either face).
             const ProjectedPoint hinted = model.project_near(p, VertexClass::Smooth, kNoCurve, hint);
-            if (!hinted.ok || hinted.point != exact.point || hinted.normal != exact.normal || hinted.face != exact.face)
-                ++differs;
+            if (!hinted.ok || (hinted.point - exact.point).norm() > 1e-12) ++elsewhere;
+            if (hinted.ok && (hinted.point - p).norm() > d + 1e-15) ++farther;
+            if (model.distance_to_surface(p, hint) != d) ++distance_differs;
         }
         // A size looked up where a point was just projected: on the hint face without a search,
         // equal to the searched value up to rounding; any other hint: the search, exactly.
@@ -207,15 +212,63 @@ TEST_CASE("surface model: projections and size look-ups with a face hint equal t
         if (std::abs(model.interpolate(q, values, exact.face) - searched) > 1e-12 * std::abs(searched)) ++shortcut_off;
         if (model.interpolate(q, values, (exact.face + faces / 2) % faces) != searched) ++differs;
     }
+    CHECK(elsewhere == 0);
+    CHECK(farther == 0);
+    CHECK(distance_differs == 0);
     CHECK(differs == 0);
     CHECK(off_field == 0);
     CHECK(shortcut_off == 0);
 }
 
+TEST_CASE("surface model: a vertex placed near its own sheet stays on it, its distance is to the nearest")
+{
+    // Two flat unit grids 0.006 apart (a thin slab, edges of length 1):
+    //
+    //   z = 0.006  +---+---+---+   upper sheet
+    //              p (z = 0.004): 0.002 below the upper sheet, 0.004 above the lower one
+    //   z = 0      +---+---+---+   lower sheet (the hint's)
+    //
+    // Told a lower face, the placement keeps p on the lower sheet (p is within a hundredth of an
+    // edge of it: a vertex moved along its own sheet); the distance is to the upper one.
+    const int n = 4;
+    SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(n, [](double, double) { return 0.0; });
+    const SurfaceMesh upper = hdimesh::surface::fixtures::triangulated_grid(n, [](double, double) { return 0.006; });
+    std::vector<VertexHandle> added;
+    for (auto v : upper.vertices()) added.push_back(mesh.add_vertex(upper.point(v)));
+    const int lower_faces = static_cast<int>(mesh.n_faces());
+    for (auto f : upper.faces())
+    {
+        std::vector<VertexHandle> corners;
+        for (auto v : upper.fv_range(f)) corners.push_back(added[v.idx()]);
+        mesh.add_face(corners[0], corners[2], corners[1]);  // facing down, into the slab
+    }
+    hdimesh::surface::fixtures::mark_all_smooth(mesh);
+    const SurfaceModel model(mesh);
+
+    const Vec3d p(1.3, 2.6, 0.004);
+    const ProjectedPoint exact = model.project(p, VertexClass::Smooth, kNoCurve);
+    REQUIRE(exact.ok);
+    CHECK(exact.point[2] == doctest::Approx(0.006));
+    CHECK(exact.face >= lower_faces);
+    const int lower_hint = 0;  // the model numbers faces in the mesh's order: the lower sheet's first
+    const ProjectedPoint placed = model.project_near(p, VertexClass::Smooth, kNoCurve, lower_hint);
+    REQUIRE(placed.ok);
+    CHECK(placed.face < lower_faces);
+    CHECK(placed.point[2] == doctest::Approx(0.0));
+    CHECK(placed.point[0] == doctest::Approx(1.3));
+    CHECK(placed.point[1] == doctest::Approx(2.6));
+    CHECK(model.distance_to_surface(p, lower_hint) == doctest::Approx(0.002));
+    CHECK(model.near_model(p, 0.0025, lower_hint));
+    CHECK_FALSE(model.near_model(p, 0.0015, lower_hint));
+    // Farther than a hundredth of an edge from the hint's sheet: the search decides.
+    const Vec3d q(1.3, 2.6, 0.0045 + 0.0075);
+    CHECK(model.project_near(q, VertexClass::Smooth, kNoCurve, lower_hint).face >= lower_faces);
+}
+
 TEST_CASE("surface model: near_model decides as the exact distance does, from any hint")
 {
-    // The walk from the hint face may stop at a local minimum or run out of steps: then the search
-    // decides. Limits around the sampled distances make both answers frequent.
+    // The descent from the hint face may stop at a local minimum or run out of steps: then the
+    // search decides. Limits around the sampled distances make both answers frequent.
     const int n = 8;
     const SurfaceMesh mesh = bumpy_grid(n);
     const SurfaceModel model(mesh);
