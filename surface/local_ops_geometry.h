@@ -75,19 +75,35 @@ struct StarFace
 };
 
 /// The faces around v in the order of OpenMesh's circulation (vf_range), into `out` (cleared
-/// first: callers may keep its capacity from one vertex to the next).
+/// first: callers may keep its capacity from one vertex to the next). Each face's points in the
+/// order of face_vertices, read off the halfedges around v (the circulators were a quarter of
+/// a shift's time).
 inline void collect_star(const SurfaceMesh& mesh, VertexHandle v, std::vector<StarFace>& out)
 {
     out.clear();
-    for (auto f : mesh.vf_range(v))
+    const HalfedgeHandle start = mesh.halfedge_handle(v);
+    if (!start.is_valid()) return;
+    HalfedgeHandle h = start;  // v -> a, then a -> b, b -> v around its face
+    do
     {
-        const auto fv = face_vertices(mesh, f);
-        StarFace face;
-        face.points = {mesh.point(fv[0]), mesh.point(fv[1]), mesh.point(fv[2])};
-        face.moved = fv[0] == v ? 0 : (fv[1] == v ? 1 : 2);
-        face.normal = normal(face.points);
-        out.push_back(face);
-    }
+        const FaceHandle f = mesh.face_handle(h);
+        if (f.is_valid())
+        {
+            const HalfedgeHandle next = mesh.next_halfedge_handle(h);
+            const Vec3d& pv = mesh.point(v);
+            const Vec3d& pa = mesh.point(mesh.to_vertex_handle(h));
+            const Vec3d& pb = mesh.point(mesh.to_vertex_handle(next));
+            // face_vertices starts at the face's own halfedge.
+            const HalfedgeHandle first = mesh.halfedge_handle(f);
+            StarFace face;
+            if (first == h) face.points = {pv, pa, pb}, face.moved = 0;
+            else if (first == next) face.points = {pa, pb, pv}, face.moved = 2;
+            else face.points = {pb, pv, pa}, face.moved = 1;
+            face.normal = normal(face.points);
+            out.push_back(face);
+        }
+        h = mesh.cw_rotated_halfedge_handle(h);  // vf_range's direction
+    } while (h != start);
 }
 
 /// The triangles of the 2-ring of v (every face touching a neighbour of v, which includes every
