@@ -182,7 +182,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     }
 }
 
-int SurfaceModel::descend(const Vec3d& p, int face, Vec3d& foot, bool& converged) const
+int SurfaceModel::descend(const Vec3d& p, int face, Vec3d& foot, bool& converged, double stop_d2) const
 {
     // Most descents end in a step or two (a shifted vertex moves by a fraction of the output
     // size, the input is finer or as fine); a longer one means a poor hint.
@@ -194,7 +194,7 @@ int SurfaceModel::descend(const Vec3d& p, int face, Vec3d& foot, bool& converged
     converged = false;
     foot = foot_on(face);
     double d2 = (foot - p).sqrnorm();
-    for (int step = 0; step < kMaxDescentSteps; ++step)
+    for (int step = 0; step < kMaxDescentSteps && !(d2 <= stop_d2); ++step)
     {
         // Across the edges (three faces, the usual way down); for a foot at a corner of the
         // face, also the other faces around that corner (they may rise nearer to p).
@@ -322,7 +322,7 @@ bool SurfaceModel::near_model(const Vec3d& p, double distance, int face_hint) co
         // only be nearer; the same arithmetic as the search's distance).
         Vec3d foot;
         bool converged = false;
-        face_hint = descend(p, face_hint, foot, converged);
+        face_hint = descend(p, face_hint, foot, converged, distance * distance);
         if ((foot - p).norm() <= distance) return true;
     }
     const auto hit = triangles_.closest(p, face_hint);

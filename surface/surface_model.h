@@ -64,8 +64,9 @@ public:
 
 private:
     // closest_on_input's descent from `face`: the face it stopped at, with p's foot on it;
-    // `converged`: at a local minimum (not out of steps).
-    int descend(const Vec3d& p, int face, Vec3d& foot, bool& converged) const;
+    // `converged`: at a local minimum (not out of steps, nor stopped early at a face within
+    // sqrt(stop_d2) of p, as near_model wants).
+    int descend(const Vec3d& p, int face, Vec3d& foot, bool& converged, double stop_d2 = -1.0) const;
     // Whether a squared distance d2 is within `fraction` of the shortest edge of `face`.
     bool within_fraction_of_face(int face, double d2, double fraction) const;
 
