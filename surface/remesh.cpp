@@ -67,6 +67,7 @@ public:
             collapse_short_edges();
             flip_edges(FlipGoal::Valence);
             shift_vertices(false);
+            compact_if_mostly_deleted();
             ++report_.iterations;
             if (options_.verbosity > 0)
                 std::fprintf(stderr, "remesh: iteration %d: %zu vertices, %zu splits, %zu collapses, %zu flips, %zu shifts\n",
@@ -124,6 +125,19 @@ private:
         for (auto v : mesh_.vertices())
             if (!mesh_.status(v).deleted()) ++n;
         return n;
+    }
+
+    // A coarsening pass deletes most of a fine input's elements (stanford-bunny's first
+    // iteration: two thirds), and every later pass would still step over them. Compacting
+    // renumbers the handles: only when no hook keeps any (the coupled remesher's do), and only
+    // in the iterations (the refinement keeps handles across its calls).
+    void compact_if_mostly_deleted()
+    {
+        if (!ctx_.hooks.empty()) return;
+        std::size_t deleted = 0;
+        for (auto e : mesh_.edges())
+            if (mesh_.status(e).deleted()) ++deleted;
+        if (4 * deleted > mesh_.n_edges()) mesh_.garbage_collection();
     }
 
     // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
