@@ -30,18 +30,14 @@ struct QuadricFitScratch
 {
     std::vector<int> ring;
     std::vector<int> in_ring_of;  // per vertex: the vertex whose ring holds it (-1: none yet)
-    Eigen::MatrixXd a;
-    Eigen::VectorXd rhs, c;
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
 };
 
 // max(|k1|, |k2|) at v from z = a x² + b xy + c y² + d x + e y fitted to its 2-ring in the frame
 // of the vertex normal; 0 when the ring is too small to fit.
 double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& normal, QuadricFitScratch& scratch)
 {
-    // The 2-ring in increasing index order (the row order of the fit), without v. Duplicates are
-    // dropped as they come (a vertex is stamped with the index of the ring it was put in), so
-    // the sort sees each vertex once.
+    // The 2-ring without v, each vertex once (a vertex is stamped with the index of the ring it
+    // was put in).
     std::vector<int>& ring = scratch.ring;
     std::vector<int>& stamp = scratch.in_ring_of;
     if (stamp.size() != mesh.n_vertices()) stamp.assign(mesh.n_vertices(), -1);
@@ -57,34 +53,37 @@ double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& n
         add(w);
         for (auto u : mesh.vv_range(w)) add(u);
     }
-    std::sort(ring.begin(), ring.end());
     if (ring.size() < 6 || !(normal.norm() > 0.0)) return 0.0;
     const Eigen::Vector3d n = to_eigen(normal).normalized();
     const Eigen::Vector3d seed = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     const Eigen::Vector3d e1 = n.cross(seed).normalized();
     const Eigen::Vector3d e2 = n.cross(e1);
     const Eigen::Vector3d origin = to_eigen(mesh.point(v));
-    Eigen::MatrixXd& a = scratch.a;
-    Eigen::VectorXd& rhs = scratch.rhs;
-    a.resize(static_cast<Eigen::Index>(ring.size()), 5);
-    rhs.resize(static_cast<Eigen::Index>(ring.size()));
-    int row = 0;
-    for (int idx : ring)
+    // The least-squares fit by its 5×5 normal equations, in coordinates scaled by the ring's
+    // size (so the matrix is well scaled whatever the model's units); a rank-revealing solve of
+    // fixed size. (A QR of the whole ring matrix was a third of the model's build on the bunny.)
+    double scale = 0.0;
+    for (const int idx : ring) scale = std::max(scale, (to_eigen(mesh.point(VertexHandle(idx))) - origin).norm());
+    if (!(scale > 0.0)) return 0.0;
+    Eigen::Matrix<double, 5, 5> normal_matrix = Eigen::Matrix<double, 5, 5>::Zero();
+    Eigen::Matrix<double, 5, 1> rhs = Eigen::Matrix<double, 5, 1>::Zero();
+    for (const int idx : ring)
     {
-        const Eigen::Vector3d d = to_eigen(mesh.point(VertexHandle(idx))) - origin;
+        const Eigen::Vector3d d = (to_eigen(mesh.point(VertexHandle(idx))) - origin) / scale;
         const double x = d.dot(e1), y = d.dot(e2);
-        a.row(row) << x * x, x * y, y * y, x, y;
-        rhs(row) = d.dot(n);
-        ++row;
+        Eigen::Matrix<double, 5, 1> row;
+        row << x * x, x * y, y * y, x, y;
+        normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(row);
+        rhs += d.dot(n) * row;
     }
-    scratch.qr.compute(a);
-    scratch.c = scratch.qr.solve(rhs);
-    const Eigen::VectorXd& c = scratch.c;
+    normal_matrix.triangularView<Eigen::StrictlyUpper>() = normal_matrix.transpose();
+    const Eigen::Matrix<double, 5, 1> c = normal_matrix.colPivHouseholderQr().solve(rhs);
     if (!c.allFinite()) return 0.0;
     Eigen::Matrix2d shape;
     shape << 2 * c(0), c(1), c(1), 2 * c(2);
     const Eigen::Vector2d k = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(shape).eigenvalues();
-    return std::max(std::abs(k(0)), std::abs(k(1)));
+    // Scaled back: z/scale = f(x/scale, y/scale) has curvatures scale times the true ones.
+    return std::max(std::abs(k(0)), std::abs(k(1))) / scale;
 }
 
 }  // namespace
