@@ -636,6 +636,55 @@ private:
         return repaired;
     }
 
+    // Whether output face f passes within the tolerance of p (the arithmetic of the tree's search).
+    bool within_tolerance(const Vec3d& p, FaceHandle f) const
+    {
+        const auto t = detail::face_points(mesh_, f);
+        return (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm() <= options_.tolerance;
+    }
+
+    // Model point i proven within the tolerance of the output by its face of last time or a face
+    // around that face's vertices (which becomes its face).
+    bool near_by_face_of(std::size_t i)
+    {
+        const FaceHandle f = point_face_[i];
+        if (!f.is_valid() || mesh_.status(f).deleted()) return false;
+        const Vec3d& p = options_.model_points[i];
+        if (within_tolerance(p, f)) return true;
+        for (auto v : mesh_.fv_range(f))
+            for (auto g : mesh_.vf_range(v))
+                if (g != f && within_tolerance(p, g))
+                {
+                    point_face_[i] = g;
+                    return true;
+                }
+        return false;
+    }
+
+    // A tree over the live output faces (in handle order), and the face of each of its triangles.
+    ClosestPointTree output_tree(std::vector<FaceHandle>& face_of) const
+    {
+        std::vector<std::array<Vec3d, 3>> triangles;
+        triangles.reserve(mesh_.n_faces());
+        face_of.clear();
+        face_of.reserve(mesh_.n_faces());
+        for (auto f : mesh_.faces())
+        {
+            if (mesh_.status(f).deleted()) continue;
+            triangles.push_back(detail::face_points(mesh_, f));
+            face_of.push_back(f);
+        }
+        return ClosestPointTree::from_triangles(std::move(triangles));
+    }
+
+    std::size_t count_live_edges() const
+    {
+        std::size_t n = 0;
+        for (auto e : mesh_.edges())
+            if (!mesh_.status(e).deleted()) ++n;
+        return n;
+    }
+
     // The tolerance, both ways (the two halves of the Hausdorff distance): triangles whose
     // centroid or edge midpoints leave the model, and triangles closest to a model point they
     // pass far from, get their longest edge split, farthest first, then the new vertices settle
@@ -695,23 +744,18 @@ private:
             auto changed = [&](std::initializer_list<VertexHandle> vertices) {
                 return std::any_of(vertices.begin(), vertices.end(), [&](VertexHandle v) { return near_change[v.idx()] != 0; });
             };
-            std::vector<std::array<Vec3d, 3>> triangles;
-            std::vector<FaceHandle> face_of;
             for (auto f : mesh_.faces())
             {
                 if (mesh_.status(f).deleted()) continue;
-                const auto p = detail::face_points(mesh_, f);
                 const auto fv = detail::face_vertices(mesh_, f);
                 if (changed({fv[0], fv[1], fv[2]}))
                 {
                     // Near enough is decided by the hint face alone, mostly; the distance of a far
                     // one ranks it.
-                    const Vec3d centroid = (p[0] + p[1] + p[2]) / 3.0;
+                    const Vec3d centroid = (mesh_.point(fv[0]) + mesh_.point(fv[1]) + mesh_.point(fv[2])) / 3.0;
                     if (!ctx_.near_model(centroid, fv[0], options_.tolerance))
                         mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
                 }
-                triangles.push_back(p);
-                face_of.push_back(f);
             }
             for (auto e : live_edges())
             {
@@ -723,7 +767,6 @@ private:
                 edge_error[e.idx()] = std::max(edge_error[e.idx()], ctx_.distance_to_model(mid, a));
             }
             split_vertices.clear();
-            const ClosestPointTree output = ClosestPointTree::from_triangles(triangles);
             std::vector<std::size_t> still_far;
             struct FarHit
             {
@@ -740,21 +783,31 @@ private:
                     if (static_cast<std::size_t>(v.idx()) < snapped_now.size() && snapped_now[v.idx()]) return true;
                 return false;
             };
-            // Consecutive model points are mostly neighbours: the last hit is the hint of the
-            // next search, and a point within the tolerance of it is near without a search (the
-            // closest triangle can only be nearer; the same arithmetic as the search's).
-            int previous_hit = -1;
+            // A point within the tolerance of its face of last time (or of a face around it) is
+            // near without a search: the closest face can only be nearer. Most points stay near
+            // from one call to the next; the others are searched.
+            if (point_face_.size() != options_.model_points.size()) point_face_.assign(options_.model_points.size(), FaceHandle());
+            std::vector<std::size_t> unproven;
             for (const std::size_t i : far_points)
+                if (!near_by_face_of(i)) unproven.push_back(i);
+            // Consecutive model points are mostly neighbours: the last hit is the hint of the
+            // next search, and a point within the tolerance of it is near without a search.
+            std::vector<FaceHandle> face_of;  // per triangle of `output`
+            const ClosestPointTree output = unproven.empty() ? ClosestPointTree() : output_tree(face_of);
+            int previous_hit = -1;
+            for (const std::size_t i : unproven)
             {
                 const Vec3d& point = options_.model_points[i];
-                if (previous_hit >= 0)
+                if (previous_hit >= 0 && within_tolerance(point, face_of[previous_hit]))
                 {
-                    const auto& t = triangles[previous_hit];
-                    if ((closest_point_on_triangle(point, t[0], t[1], t[2]) - point).norm() <= options_.tolerance) continue;
+                    point_face_[i] = face_of[previous_hit];
+                    continue;
                 }
                 const auto hit = output.closest(point, previous_hit);
                 previous_hit = hit.primitive;
-                if (hit.primitive < 0 || !(hit.distance > options_.tolerance)) continue;
+                if (hit.primitive < 0) continue;
+                point_face_[i] = face_of[hit.primitive];
+                if (!(hit.distance > options_.tolerance)) continue;
                 far_hits.push_back({hit.distance, i, face_of[hit.primitive]});
             }
             // Farthest first: a vertex of the closest triangle snapped onto the point costs no
@@ -830,7 +883,7 @@ private:
                 split_vertices.push_back(snapped);
             }
             report_.refinement_snaps += snaps;
-            std::size_t short_edges = count_short_edges(), edges = live_edges().size();
+            std::size_t short_edges = count_short_edges(), edges = count_live_edges();
             std::size_t done = 0, splits = 0;  // changes of the round (splits and distance flips), splits
             // The budget goes to the worst places first: a round splits only near the worst
             // distance; the next round sees the result.
@@ -1145,6 +1198,9 @@ private:
     std::clock_t cpu_start_ = std::clock();
     RemeshReport report_;
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first snap
+    // Per model point: the output face that last proved it within the tolerance, or was its
+    // closest (invalid: none yet). Faces are only garbage-collected at the end of run().
+    std::vector<FaceHandle> point_face_;
 };
 
 }  // namespace
