@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdint>
 #include <ctime>
+#include <limits>
 #include <memory>
 
 #include "surface/closest_point_tree.h"
@@ -643,22 +645,25 @@ private:
         return (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm() <= options_.tolerance;
     }
 
+    // Output face f (if live), or else a face around its vertices, within the tolerance of p
+    // (invalid: none is).
+    FaceHandle near_face_around(const Vec3d& p, FaceHandle f) const
+    {
+        if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
+        if (within_tolerance(p, f)) return f;
+        for (auto v : mesh_.fv_range(f))
+            for (auto g : mesh_.vf_range(v))
+                if (g != f && within_tolerance(p, g)) return g;
+        return FaceHandle();
+    }
+
     // Model point i proven within the tolerance of the output by its face of last time or a face
     // around that face's vertices (which becomes its face).
     bool near_by_face_of(std::size_t i)
     {
-        const FaceHandle f = point_face_[i];
-        if (!f.is_valid() || mesh_.status(f).deleted()) return false;
-        const Vec3d& p = options_.model_points[i];
-        if (within_tolerance(p, f)) return true;
-        for (auto v : mesh_.fv_range(f))
-            for (auto g : mesh_.vf_range(v))
-                if (g != f && within_tolerance(p, g))
-                {
-                    point_face_[i] = g;
-                    return true;
-                }
-        return false;
+        const FaceHandle near = near_face_around(options_.model_points[i], point_face_[i]);
+        if (near.is_valid()) point_face_[i] = near;
+        return near.is_valid();
     }
 
     // A tree over the live output faces (in handle order), and the face of each of its triangles.
@@ -675,6 +680,46 @@ private:
             face_of.push_back(f);
         }
         return ClosestPointTree::from_triangles(std::move(triangles));
+    }
+
+    // The model points' indices along a Z-order curve over their box (computed once): in that
+    // order a point is mostly next to the one before, whose face then proves it near without a
+    // search (the input's own order jumps at every row of its vertices and edges).
+    const std::vector<std::size_t>& model_points_in_space_order()
+    {
+        if (space_order_.size() == options_.model_points.size()) return space_order_;
+        Vec3d lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+        for (const Vec3d& p : options_.model_points)
+        {
+            lo.minimize(p);
+            hi.maximize(p);
+        }
+        const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300});
+        constexpr int kBits = 21;  // per axis: 63 bits of key
+        auto spread = [](std::uint64_t x) {  // bit k of x to bit 3k
+            x &= 0x1fffff;
+            x = (x | x << 32) & 0x1f00000000ffffULL;
+            x = (x | x << 16) & 0x1f0000ff0000ffULL;
+            x = (x | x << 8) & 0x100f00f00f00f00fULL;
+            x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+            x = (x | x << 2) & 0x1249249249249249ULL;
+            return x;
+        };
+        std::vector<std::pair<std::uint64_t, std::size_t>> keyed(options_.model_points.size());
+        for (std::size_t i = 0; i < keyed.size(); ++i)
+        {
+            std::uint64_t key = 0;
+            for (int axis = 0; axis < 3; ++axis)
+            {
+                const double t = (options_.model_points[i][axis] - lo[axis]) / extent;
+                key |= spread(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * ((1 << kBits) - 1))) << axis;
+            }
+            keyed[i] = {key, i};
+        }
+        std::sort(keyed.begin(), keyed.end());
+        space_order_.resize(keyed.size());
+        for (std::size_t i = 0; i < keyed.size(); ++i) space_order_[i] = keyed[i].second;
+        return space_order_;
     }
 
     std::size_t count_live_edges() const
@@ -709,8 +754,7 @@ private:
         // does; after the last one, bench_surface's Hausdorff column is the check).
         std::vector<VertexHandle> split_vertices;  // of the last round (and ends of its distance flips)
         std::vector<VertexHandle> revisit;         // ends of the last round's candidates not tried
-        std::vector<std::size_t> far_points(options_.model_points.size());
-        for (std::size_t i = 0; i < far_points.size(); ++i) far_points[i] = i;
+        std::vector<std::size_t> far_points = model_points_in_space_order();
         for (int round = 0; round < options_.refine_rounds; ++round)
         {
             std::vector<double> edge_error(mesh_.n_edges(), 0.0);  // worst distance that asks for a split
@@ -794,19 +838,21 @@ private:
             // next search, and a point within the tolerance of it is near without a search.
             std::vector<FaceHandle> face_of;  // per triangle of `output`
             const ClosestPointTree output = unproven.empty() ? ClosestPointTree() : output_tree(face_of);
-            int previous_hit = -1;
+            std::vector<int> triangle_of(unproven.empty() ? 0 : mesh_.n_faces(), -1);
+            for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
+            FaceHandle previous;
             for (const std::size_t i : unproven)
             {
                 const Vec3d& point = options_.model_points[i];
-                if (previous_hit >= 0 && within_tolerance(point, face_of[previous_hit]))
+                const FaceHandle near = near_face_around(point, previous);
+                if (near.is_valid())
                 {
-                    point_face_[i] = face_of[previous_hit];
+                    point_face_[i] = previous = near;
                     continue;
                 }
-                const auto hit = output.closest(point, previous_hit);
-                previous_hit = hit.primitive;
+                const auto hit = output.closest(point, previous.is_valid() ? triangle_of[previous.idx()] : -1);
                 if (hit.primitive < 0) continue;
-                point_face_[i] = face_of[hit.primitive];
+                point_face_[i] = previous = face_of[hit.primitive];
                 if (!(hit.distance > options_.tolerance)) continue;
                 far_hits.push_back({hit.distance, i, face_of[hit.primitive]});
             }
@@ -1201,6 +1247,7 @@ private:
     // Per model point: the output face that last proved it within the tolerance, or was its
     // closest (invalid: none yet). Faces are only garbage-collected at the end of run().
     std::vector<FaceHandle> point_face_;
+    std::vector<std::size_t> space_order_;  // model_points_in_space_order()
 };
 
 }  // namespace
