@@ -760,12 +760,15 @@ private:
             std::vector<double> edge_error(mesh_.n_edges(), 0.0);  // worst distance that asks for a split
             // A model point far from the output: the new vertex goes onto it (index + 1; 0: none).
             std::vector<std::size_t> edge_target(mesh_.n_edges(), 0);
+            std::vector<EdgeHandle> marked;  // the edges given an error > 0, once each
+            auto raise_error = [&](EdgeHandle e, double distance) {
+                if (!(distance > edge_error[e.idx()])) return false;
+                if (!(edge_error[e.idx()] > 0.0)) marked.push_back(e);
+                edge_error[e.idx()] = distance;
+                return true;
+            };
             auto mark_edge = [&](EdgeHandle e, double distance, std::size_t target) {
-                if (distance > edge_error[e.idx()])
-                {
-                    edge_error[e.idx()] = distance;
-                    edge_target[e.idx()] = target;
-                }
+                if (raise_error(e, distance)) edge_target[e.idx()] = target;
             };
             auto mark_longest = [&](FaceHandle f, double distance, std::size_t target) {
                 EdgeHandle longest;
@@ -776,39 +779,53 @@ private:
             };
             // After the first round only the neighbourhood of the last splits changed (and the
             // places refused before stay refused): the projections there only.
+            std::vector<VertexHandle> changed;  // (after round 0)
             std::vector<char> near_change(mesh_.n_vertices(), round == 0 ? 1 : 0);
+            auto mark_changed = [&](VertexHandle v) {
+                if (near_change[v.idx()]) return;
+                near_change[v.idx()] = 1;
+                changed.push_back(v);
+            };
             for (const VertexHandle v : split_vertices)
             {
-                near_change[v.idx()] = 1;
-                for (auto w : mesh_.vv_range(v)) near_change[w.idx()] = 1;
+                mark_changed(v);
+                for (auto w : mesh_.vv_range(v)) mark_changed(w);
             }
             for (const VertexHandle v : revisit)
-                if (!mesh_.status(v).deleted()) near_change[v.idx()] = 1;
+                if (!mesh_.status(v).deleted()) mark_changed(v);
             revisit.clear();
-            auto changed = [&](std::initializer_list<VertexHandle> vertices) {
-                return std::any_of(vertices.begin(), vertices.end(), [&](VertexHandle v) { return near_change[v.idx()] != 0; });
-            };
-            for (auto f : mesh_.faces())
-            {
-                if (mesh_.status(f).deleted()) continue;
+            // Near enough is decided by the hint face alone, mostly; the distance of a far one
+            // ranks it. (A maximum per edge: the order of the faces and edges does not matter.)
+            auto check_face = [&](FaceHandle f) {
                 const auto fv = detail::face_vertices(mesh_, f);
-                if (changed({fv[0], fv[1], fv[2]}))
-                {
-                    // Near enough is decided by the hint face alone, mostly; the distance of a far
-                    // one ranks it.
-                    const Vec3d centroid = (mesh_.point(fv[0]) + mesh_.point(fv[1]) + mesh_.point(fv[2])) / 3.0;
-                    if (!ctx_.near_model(centroid, fv[0], options_.tolerance))
-                        mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
-                }
-            }
-            for (auto e : live_edges())
-            {
+                const Vec3d centroid = (mesh_.point(fv[0]) + mesh_.point(fv[1]) + mesh_.point(fv[2])) / 3.0;
+                if (!ctx_.near_model(centroid, fv[0], options_.tolerance))
+                    mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
+            };
+            auto check_edge = [&](EdgeHandle e) {
                 const auto h = mesh_.halfedge_handle(e, 0);
                 const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-                if (!changed({a, b})) continue;
                 const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
-                if (ctx_.near_model(mid, a, options_.tolerance)) continue;
-                edge_error[e.idx()] = std::max(edge_error[e.idx()], ctx_.distance_to_model(mid, a));
+                if (!ctx_.near_model(mid, a, options_.tolerance)) raise_error(e, ctx_.distance_to_model(mid, a));
+            };
+            if (round == 0)
+            {
+                for (auto f : mesh_.faces())
+                    if (!mesh_.status(f).deleted()) check_face(f);
+                for (auto e : mesh_.edges())
+                    if (!mesh_.status(e).deleted()) check_edge(e);
+            }
+            else
+            {
+                // The faces and edges at a changed vertex, each once.
+                std::vector<char> face_seen(mesh_.n_faces(), 0), edge_seen(mesh_.n_edges(), 0);
+                for (const VertexHandle v : changed)
+                {
+                    for (auto f : mesh_.vf_range(v))
+                        if (!face_seen[f.idx()]) face_seen[f.idx()] = 1, check_face(f);
+                    for (auto e : mesh_.ve_range(v))
+                        if (!edge_seen[e.idx()]) edge_seen[e.idx()] = 1, check_edge(e);
+                }
             }
             split_vertices.clear();
             std::vector<std::size_t> still_far;
@@ -895,9 +912,10 @@ private:
             }
             far_points = std::move(still_far);
             std::vector<std::pair<double, EdgeHandle>> candidates;
-            for (auto e : live_edges())
+            std::sort(marked.begin(), marked.end());  // (the verbose lines in index order)
+            for (const EdgeHandle e : marked)
             {
-                if (!(edge_error[e.idx()] > 0.0)) continue;
+                if (mesh_.status(e).deleted()) continue;
                 // Marked before a snap moved an end: the next round looks at it again.
                 if (snapped_end(e)) continue;
                 if (mesh_.calc_edge_length(e) >= 2.0 * options_.refine_min_length_ratio * edge_size(e))
