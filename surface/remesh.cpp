@@ -679,7 +679,7 @@ private:
             triangles.push_back(detail::face_points(mesh_, f));
             face_of.push_back(f);
         }
-        return ClosestPointTree::from_triangles(std::move(triangles));
+        return ClosestPointTree::lazy_from_triangles(std::move(triangles));
     }
 
     // The model points' indices along a Z-order curve over their box (computed once): in that
