@@ -50,6 +50,8 @@ constexpr double kSplitTowardSteps[] = {0.75, 0.5, 0.35};
 constexpr int kCurveFitSweeps = 4;
 // The curvature-adaptive size refines to this fraction of hausd, to end within hausd.
 constexpr double kAdaptiveToleranceMargin = 0.8;
+// A point equal to none (NaN coordinates): "not proven near" in the refinement's caches.
+const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
 
 class Remesher
 {
@@ -796,17 +798,24 @@ private:
             revisit.clear();
             // Near enough is decided by the hint face alone, mostly; the distance of a far one
             // ranks it. (A maximum per edge: the order of the faces and edges does not matter.)
+            // A point proven near before (the same point: whether it is near depends on it alone)
+            // is near again: after a cleanup most of the output is as the last call left it.
+            if (near_centroid_.size() < mesh_.n_faces()) near_centroid_.resize(mesh_.n_faces(), kNoPoint);
+            if (near_midpoint_.size() < mesh_.n_edges()) near_midpoint_.resize(mesh_.n_edges(), kNoPoint);
             auto check_face = [&](FaceHandle f) {
                 const auto fv = detail::face_vertices(mesh_, f);
                 const Vec3d centroid = (mesh_.point(fv[0]) + mesh_.point(fv[1]) + mesh_.point(fv[2])) / 3.0;
-                if (!ctx_.near_model(centroid, fv[0], options_.tolerance))
-                    mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
+                if (near_centroid_[f.idx()] == centroid) return;
+                if (ctx_.near_model(centroid, fv[0], options_.tolerance)) near_centroid_[f.idx()] = centroid;
+                else mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
             };
             auto check_edge = [&](EdgeHandle e) {
                 const auto h = mesh_.halfedge_handle(e, 0);
                 const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
                 const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
-                if (!ctx_.near_model(mid, a, options_.tolerance)) raise_error(e, ctx_.distance_to_model(mid, a));
+                if (near_midpoint_[e.idx()] == mid) return;
+                if (ctx_.near_model(mid, a, options_.tolerance)) near_midpoint_[e.idx()] = mid;
+                else raise_error(e, ctx_.distance_to_model(mid, a));
             };
             if (round == 0)
             {
@@ -1266,6 +1275,9 @@ private:
     // closest (invalid: none yet). Faces are only garbage-collected at the end of run().
     std::vector<FaceHandle> point_face_;
     std::vector<std::size_t> space_order_;  // model_points_in_space_order()
+    // Per output face / edge: the centroid / midpoint last proven within the tolerance of the
+    // model (kNoPoint: none).
+    std::vector<Vec3d> near_centroid_, near_midpoint_;
 };
 
 }  // namespace
