@@ -50,12 +50,26 @@ Vec3d closest_point_on_segment(const Vec3d& p, const Vec3d& a, const Vec3d& b)
     return a + t * ab;
 }
 
+namespace
+{
+constexpr int kLeafSize = 4;
+}
+
 ClosestPointTree ClosestPointTree::from_triangles(std::vector<std::array<Vec3d, 3>> triangles)
 {
     ClosestPointTree tree;
     tree.primitives_ = std::move(triangles);
     tree.segments_ = false;
-    tree.build();
+    tree.build(false);
+    return tree;
+}
+
+ClosestPointTree ClosestPointTree::lazy_from_triangles(std::vector<std::array<Vec3d, 3>> triangles)
+{
+    ClosestPointTree tree;
+    tree.primitives_ = std::move(triangles);
+    tree.segments_ = false;
+    tree.build(true);
     return tree;
 }
 
@@ -65,41 +79,56 @@ ClosestPointTree ClosestPointTree::from_segments(const std::vector<std::array<Ve
     tree.primitives_.reserve(segments.size());
     for (const auto& s : segments) tree.primitives_.push_back({s[0], s[1], s[1]});
     tree.segments_ = true;
-    tree.build();
+    tree.build(false);
     return tree;
 }
 
-void ClosestPointTree::build()
+void ClosestPointTree::build(bool lazy)
 {
+    lazy_ = lazy;
     order_.resize(primitives_.size());
     for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
     nodes_.clear();
+    // Per primitive, once: its box and its centroid sums (the split keys), so a node reads
+    // them from small arrays instead of the primitives (measured: the build was 7 % of the
+    // remesher's time on rocker-arm, which builds the output's tree every refinement round).
+    // The same sums and min/max as before: the same tree.
+    BuildScratch scratch;
+    scratch.lo.resize(primitives_.size());
+    scratch.hi.resize(primitives_.size());
+    scratch.centroid.resize(primitives_.size());
+    for (std::size_t i = 0; i < primitives_.size(); ++i)
+    {
+        const auto& t = primitives_[i];
+        Vec3d lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+        for (const Vec3d& q : t)
+        {
+            lo.minimize(q);
+            hi.maximize(q);
+        }
+        scratch.lo[i] = lo;
+        scratch.hi[i] = hi;
+        for (int axis = 0; axis < 3; ++axis) scratch.centroid[i][axis] = t[0][axis] + t[1][axis] + t[2][axis];
+    }
+    if (lazy)
+    {
+        // The leaf-order arrays are filled leaf by leaf as the searches split the nodes.
+        given_ = std::move(primitives_);
+        primitives_.resize(given_.size());
+        boxes_.resize(given_.size());
+        scratch_ = std::move(scratch);
+        if (given_.empty()) return;
+        nodes_.reserve(2 * given_.size() + 1);  // a binary tree over n primitives: < 2n nodes
+        nodes_.push_back(Node{});
+        set_node(0, 0, static_cast<int>(given_.size()), scratch_);
+        return;
+    }
     if (!primitives_.empty())
     {
-        // Per primitive, once: its box and its centroid sums (the split keys), so a node reads
-        // them from small arrays instead of the primitives (measured: the build was 7 % of the
-        // remesher's time on rocker-arm, which builds the output's tree every refinement round).
-        // The same sums and min/max as before: the same tree.
-        BuildScratch scratch;
-        scratch.lo.resize(primitives_.size());
-        scratch.hi.resize(primitives_.size());
-        scratch.centroid.resize(primitives_.size());
-        for (std::size_t i = 0; i < primitives_.size(); ++i)
-        {
-            const auto& t = primitives_[i];
-            Vec3d lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-            for (const Vec3d& q : t)
-            {
-                lo.minimize(q);
-                hi.maximize(q);
-            }
-            scratch.lo[i] = lo;
-            scratch.hi[i] = hi;
-            for (int axis = 0; axis < 3; ++axis) scratch.centroid[i][axis] = t[0][axis] + t[1][axis] + t[2][axis];
-        }
         nodes_.reserve(2 * primitives_.size() + 1);  // a binary tree over n primitives: < 2n nodes
         nodes_.push_back(Node{});
-        build_node(0, 0, static_cast<int>(primitives_.size()), scratch);
+        set_node(0, 0, static_cast<int>(primitives_.size()), scratch);
+        build_node(0, scratch);
         boxes_.resize(primitives_.size());
         for (std::size_t i = 0; i < order_.size(); ++i) boxes_[i] = {scratch.lo[order_[i]], scratch.hi[order_[i]]};
     }
@@ -114,7 +143,7 @@ void ClosestPointTree::build()
     primitives_ = std::move(in_leaf_order);
 }
 
-void ClosestPointTree::build_node(int index, int first, int count, const BuildScratch& scratch)
+void ClosestPointTree::set_node(int index, int first, int count, const BuildScratch& scratch) const
 {
     Vec3d lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (int i = first; i < first + count; ++i)
@@ -122,17 +151,24 @@ void ClosestPointTree::build_node(int index, int first, int count, const BuildSc
         lo.minimize(scratch.lo[order_[i]]);
         hi.maximize(scratch.hi[order_[i]]);
     }
-    nodes_[index].lo = lo;
-    nodes_[index].hi = hi;
-    constexpr int kLeafSize = 4;
-    if (count <= kLeafSize)
-    {
-        nodes_[index].first = first;
-        nodes_[index].count = count;
-        return;
-    }
+    Node& node = nodes_[index];
+    node.lo = lo;
+    node.hi = hi;
+    node.first = first;
+    node.count = count;
+    if (lazy_ && count <= kLeafSize)
+        for (int i = first; i < first + count; ++i)
+        {
+            primitives_[i] = given_[order_[i]];
+            boxes_[i] = {scratch.lo[order_[i]], scratch.hi[order_[i]]};
+        }
+}
+
+void ClosestPointTree::split_node(int index, const BuildScratch& scratch) const
+{
+    const int first = nodes_[index].first, count = nodes_[index].count;
     // Split at the median centroid along the widest axis.
-    const Vec3d extent = hi - lo;
+    const Vec3d extent = nodes_[index].hi - nodes_[index].lo;
     const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0 : (extent[1] >= extent[2] ? 1 : 2);
     const int half = count / 2;
     std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
@@ -143,8 +179,17 @@ void ClosestPointTree::build_node(int index, int first, int count, const BuildSc
     nodes_.push_back(Node{});
     nodes_[index].left = left;
     nodes_[index].right = left + 1;
-    build_node(left, first, half, scratch);
-    build_node(left + 1, first + half, count - half, scratch);
+    set_node(left, first, half, scratch);
+    set_node(left + 1, first + half, count - half, scratch);
+}
+
+void ClosestPointTree::build_node(int index, const BuildScratch& scratch) const
+{
+    if (nodes_[index].count <= kLeafSize) return;
+    split_node(index, scratch);
+    const int left = nodes_[index].left;
+    build_node(left, scratch);
+    build_node(left + 1, scratch);
 }
 
 Vec3d ClosestPointTree::closest_on(int position, const Vec3d& p) const
@@ -164,7 +209,9 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p, int hint) const
     // Just above the hint's squared distance: the primitives closest to p all pass the bound, and
     // the first of them in traversal order wins, as without a bound. The relative margin covers
     // the rounding of box distances against point distances.
-    const double hint_d2 = (closest_on(position_[hint], p) - p).sqrnorm();
+    const auto& t = lazy_ ? given_[hint] : primitives_[position_[hint]];
+    const Vec3d q = segments_ ? closest_point_on_segment(p, t[0], t[1]) : closest_point_on_triangle(p, t[0], t[1], t[2]);
+    const double hint_d2 = (q - p).sqrnorm();
     const Hit hit = search(p, hint_d2 * (1.0 + 1e-9) + std::numeric_limits<double>::min());
     return hit.primitive >= 0 ? hit : closest(p);
 }
@@ -199,6 +246,9 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
     {
         const Pending pending = stack[--top];
         if (pending.d2 >= best_d2) continue;
+        // Lazy: a node opened for the first time is split now (before n is taken: a copied tree
+        // has no spare capacity, its nodes may move).
+        if (nodes_[pending.node].left < 0 && nodes_[pending.node].count > kLeafSize) split_node(pending.node, scratch_);
         const Node& n = nodes_[pending.node];
         if (n.left < 0)
         {

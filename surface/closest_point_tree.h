@@ -31,6 +31,12 @@ public:
     static ClosestPointTree from_triangles(std::vector<std::array<Vec3d, 3>> triangles);
     /// Segments (two points each).
     static ClosestPointTree from_segments(const std::vector<std::array<Vec3d, 2>>& segments);
+    /// The tree of from_triangles, built lazily: a node is split when a search first opens it,
+    /// so a tree asked a few hundred queries costs a fraction of a full build (the top levels
+    /// still partition the whole set). The same answers as from_triangles, ties included (the
+    /// same splits, in the same order within each node). A search then modifies the tree: not
+    /// for concurrent queries.
+    static ClosestPointTree lazy_from_triangles(std::vector<std::array<Vec3d, 3>> triangles);
 
     Hit closest(const Vec3d& p) const;
     /// The same hit as closest(p), found faster when `hint` (a primitive index, e.g. the one a
@@ -53,18 +59,29 @@ private:
     {
         std::vector<Vec3d> lo, hi, centroid;  // per primitive (as given): box, sum of its points
     };
-    void build();
-    void build_node(int index, int first, int count, const BuildScratch& scratch);
+    void build(bool lazy);
+    // Node `index` gets its range of order_ and the box of its primitives (a lazy leaf: its
+    // primitives in leaf order too).
+    void set_node(int index, int first, int count, const BuildScratch& scratch) const;
+    // Node `index` (more than a leaf's primitives) split at the median centroid along the widest
+    // axis of its box into two new nodes; and, eagerly built, those too, recursively.
+    void split_node(int index, const BuildScratch& scratch) const;
+    void build_node(int index, const BuildScratch& scratch) const;
     Vec3d closest_on(int position, const Vec3d& p) const;  // position in leaf order
     // The nearest primitive among those closer than sqrt(bound_d2) (primitive -1 if none).
     Hit search(const Vec3d& p, double bound_d2) const;
 
-    std::vector<std::array<Vec3d, 3>> primitives_;  // in leaf order once built
-    std::vector<std::array<Vec3d, 2>> boxes_;       // per primitive in leaf order: lo, hi
+    // Mutable: a lazy tree's search splits the nodes it opens first (an eager tree's never
+    // changes after the build).
+    mutable std::vector<std::array<Vec3d, 3>> primitives_;  // in leaf order once built
+    mutable std::vector<std::array<Vec3d, 2>> boxes_;       // per primitive in leaf order: lo, hi
     bool segments_ = false;
-    std::vector<int> order_;     // leaf-order position -> index as given
-    std::vector<int> position_;  // index as given -> leaf-order position
-    std::vector<Node> nodes_;
+    mutable std::vector<int> order_;  // leaf-order position -> index as given
+    std::vector<int> position_;       // index as given -> leaf-order position (eager)
+    mutable std::vector<Node> nodes_;
+    bool lazy_ = false;
+    std::vector<std::array<Vec3d, 3>> given_;  // lazy: the primitives as given
+    BuildScratch scratch_;                     // lazy: kept for the splits to come
 };
 
 }  // namespace hdimesh::surface

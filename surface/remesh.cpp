@@ -1,10 +1,13 @@
 #include "surface/remesh.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdint>
 #include <ctime>
+#include <limits>
 #include <memory>
 
 #include "surface/closest_point_tree.h"
@@ -48,12 +51,14 @@ constexpr double kSplitTowardSteps[] = {0.75, 0.5, 0.35};
 constexpr int kCurveFitSweeps = 4;
 // The curvature-adaptive size refines to this fraction of hausd, to end within hausd.
 constexpr double kAdaptiveToleranceMargin = 0.8;
+// A point equal to none (NaN coordinates): "not proven near" in the refinement's caches.
+const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
 
 class Remesher
 {
 public:
     Remesher(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model, const SurfaceHooks& hooks)
-        : mesh_(mesh), options_(options), ctx_(mesh, model, hooks, options.limits)
+        : mesh_(mesh), options_(options), ctx_(mesh, model, noting_changes(hooks), options.limits)
     {
         ctx_.limits.max_model_distance = options.max_model_distance;
     }
@@ -650,6 +655,159 @@ private:
         return repaired;
     }
 
+    // Whether output face f passes within the tolerance of p (the arithmetic of the tree's search).
+    bool within_tolerance(const Vec3d& p, FaceHandle f) const
+    {
+        const auto t = detail::face_points(mesh_, f);
+        return (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm() <= options_.tolerance;
+    }
+
+    // Output face f (if live), or else a face around its vertices, within the tolerance of p
+    // (invalid: none is).
+    FaceHandle near_face_around(const Vec3d& p, FaceHandle f) const
+    {
+        if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
+        if (within_tolerance(p, f)) return f;
+        for (auto v : mesh_.fv_range(f))
+            for (auto g : mesh_.vf_range(v))
+                if (g != f && within_tolerance(p, g)) return g;
+        return FaceHandle();
+    }
+
+    // Model point i proven within the tolerance of the output by its face of last time or a face
+    // around that face's vertices (which becomes its face).
+    bool near_by_face_of(std::size_t i)
+    {
+        const FaceHandle near = near_face_around(options_.model_points[i], point_face_[i]);
+        if (near.is_valid()) point_face_[i] = near;
+        return near.is_valid();
+    }
+
+    // A tree over the live output faces (in handle order), and the face of each of its triangles.
+    ClosestPointTree output_tree(std::vector<FaceHandle>& face_of)
+    {
+        update_face_points();
+        std::vector<std::array<Vec3d, 3>> triangles;
+        triangles.reserve(mesh_.n_faces());
+        face_of.clear();
+        face_of.reserve(mesh_.n_faces());
+        for (auto f : mesh_.faces())
+        {
+            if (mesh_.status(f).deleted()) continue;
+            triangles.push_back(face_points_[f.idx()]);
+            face_of.push_back(f);
+        }
+        return ClosestPointTree::lazy_from_triangles(std::move(triangles));
+    }
+
+    // The hooks given, and besides, while the refinement keeps the output's triangles
+    // (face_points_), each operator's changed vertices noted: every face an operator creates or
+    // changes has one of them (a split's new vertex, a flip's new edge's ends, a moved vertex, a
+    // collapse's kept vertex, a removal's new faces' vertices).
+    SurfaceHooks noting_changes(SurfaceHooks hooks)
+    {
+        auto note = [this](VertexHandle v) {
+            if (noting_changes_) changed_vertices_.push_back(v);
+        };
+        hooks.on_split = [note, given = hooks.on_split](const SurfaceMesh& m, VertexHandle a, VertexHandle b, VertexHandle inserted) {
+            note(inserted);
+            if (given) given(m, a, b, inserted);
+        };
+        hooks.on_flip = [note, given = hooks.on_flip](const SurfaceMesh& m, VertexHandle a, VertexHandle b, VertexHandle c, VertexHandle d) {
+            note(c);
+            note(d);
+            if (given) given(m, a, b, c, d);
+        };
+        hooks.on_move = [note, given = hooks.on_move](const SurfaceMesh& m, VertexHandle v, const Vec3d& old_point) {
+            note(v);
+            if (given) given(m, v, old_point);
+        };
+        hooks.on_collapse = [note, given = hooks.on_collapse](const SurfaceMesh& m, VertexHandle removed, VertexHandle kept) {
+            note(kept);
+            if (given) given(m, removed, kept);
+        };
+        hooks.on_remove_vertex = [note, given = hooks.on_remove_vertex](const SurfaceMesh& m, VertexHandle removed,
+                                                                         const std::vector<FaceHandle>& new_faces) {
+            for (const FaceHandle f : new_faces)
+                for (auto v : m.fv_range(f)) note(v);
+            if (given) given(m, removed, new_faces);
+        };
+        return hooks;
+    }
+
+    // face_points_ brought up to the mesh: all faces at the first call of a refinement (its
+    // points gathered once: the mesh's connectivity is slow to walk, 13 rounds on rocker-arm
+    // gathered 2.2 % of its bench time), after that the faces at the vertices noted since.
+    void update_face_points()
+    {
+        if (face_points_.empty())
+        {
+            face_points_.resize(mesh_.n_faces());
+            for (auto f : mesh_.faces())
+                if (!mesh_.status(f).deleted()) face_points_[f.idx()] = detail::face_points(mesh_, f);
+        }
+        else
+        {
+            face_points_.resize(mesh_.n_faces());
+            for (const VertexHandle v : changed_vertices_)
+                if (!mesh_.status(v).deleted())
+                    for (auto f : mesh_.vf_range(v)) face_points_[f.idx()] = detail::face_points(mesh_, f);
+        }
+        changed_vertices_.clear();
+#ifndef NDEBUG
+        for (auto f : mesh_.faces())
+            assert(mesh_.status(f).deleted() || face_points_[f.idx()] == detail::face_points(mesh_, f));
+#endif
+    }
+
+    // The model points' indices along a Z-order curve over their box (computed once): in that
+    // order a point is mostly next to the one before, whose face then proves it near without a
+    // search (the input's own order jumps at every row of its vertices and edges).
+    const std::vector<std::size_t>& model_points_in_space_order()
+    {
+        if (space_order_.size() == options_.model_points.size()) return space_order_;
+        Vec3d lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+        for (const Vec3d& p : options_.model_points)
+        {
+            lo.minimize(p);
+            hi.maximize(p);
+        }
+        const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300});
+        constexpr int kBits = 21;  // per axis: 63 bits of key
+        auto spread = [](std::uint64_t x) {  // bit k of x to bit 3k
+            x &= 0x1fffff;
+            x = (x | x << 32) & 0x1f00000000ffffULL;
+            x = (x | x << 16) & 0x1f0000ff0000ffULL;
+            x = (x | x << 8) & 0x100f00f00f00f00fULL;
+            x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+            x = (x | x << 2) & 0x1249249249249249ULL;
+            return x;
+        };
+        std::vector<std::pair<std::uint64_t, std::size_t>> keyed(options_.model_points.size());
+        for (std::size_t i = 0; i < keyed.size(); ++i)
+        {
+            std::uint64_t key = 0;
+            for (int axis = 0; axis < 3; ++axis)
+            {
+                const double t = (options_.model_points[i][axis] - lo[axis]) / extent;
+                key |= spread(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * ((1 << kBits) - 1))) << axis;
+            }
+            keyed[i] = {key, i};
+        }
+        std::sort(keyed.begin(), keyed.end());
+        space_order_.resize(keyed.size());
+        for (std::size_t i = 0; i < keyed.size(); ++i) space_order_[i] = keyed[i].second;
+        return space_order_;
+    }
+
+    std::size_t count_live_edges() const
+    {
+        std::size_t n = 0;
+        for (auto e : mesh_.edges())
+            if (!mesh_.status(e).deleted()) ++n;
+        return n;
+    }
+
     // The tolerance, both ways (the two halves of the Hausdorff distance): triangles whose
     // centroid or edge midpoints leave the model, and triangles closest to a model point they
     // pass far from, get their longest edge split, farthest first, then the new vertices settle
@@ -668,25 +826,31 @@ private:
                                   : options_.refine_short_edge_budget;
         std::size_t total = 0;
         if (!(options_.tolerance > 0.0)) return total;
+        // The output's triangles are kept from round to round (output_tree), the changes noted.
+        face_points_.clear();
+        changed_vertices_.clear();
+        noting_changes_ = true;
         // After the first round only the points still far get another look. Splits bring the
         // output nearer to the model points; a flip can take it away from a point it passed near
         // and that point is not looked at again in this call (the full call after the cleanup
         // does; after the last one, bench_surface's Hausdorff column is the check).
         std::vector<VertexHandle> split_vertices;  // of the last round (and ends of its distance flips)
         std::vector<VertexHandle> revisit;         // ends of the last round's candidates not tried
-        std::vector<std::size_t> far_points(options_.model_points.size());
-        for (std::size_t i = 0; i < far_points.size(); ++i) far_points[i] = i;
+        std::vector<std::size_t> far_points = model_points_in_space_order();
         for (int round = 0; round < options_.refine_rounds; ++round)
         {
             std::vector<double> edge_error(mesh_.n_edges(), 0.0);  // worst distance that asks for a split
             // A model point far from the output: the new vertex goes onto it (index + 1; 0: none).
             std::vector<std::size_t> edge_target(mesh_.n_edges(), 0);
+            std::vector<EdgeHandle> marked;  // the edges given an error > 0, once each
+            auto raise_error = [&](EdgeHandle e, double distance) {
+                if (!(distance > edge_error[e.idx()])) return false;
+                if (!(edge_error[e.idx()] > 0.0)) marked.push_back(e);
+                edge_error[e.idx()] = distance;
+                return true;
+            };
             auto mark_edge = [&](EdgeHandle e, double distance, std::size_t target) {
-                if (distance > edge_error[e.idx()])
-                {
-                    edge_error[e.idx()] = distance;
-                    edge_target[e.idx()] = target;
-                }
+                if (raise_error(e, distance)) edge_target[e.idx()] = target;
             };
             auto mark_longest = [&](FaceHandle f, double distance, std::size_t target) {
                 EdgeHandle longest;
@@ -697,47 +861,62 @@ private:
             };
             // After the first round only the neighbourhood of the last splits changed (and the
             // places refused before stay refused): the projections there only.
+            std::vector<VertexHandle> changed;  // (after round 0)
             std::vector<char> near_change(mesh_.n_vertices(), round == 0 ? 1 : 0);
+            auto mark_changed = [&](VertexHandle v) {
+                if (near_change[v.idx()]) return;
+                near_change[v.idx()] = 1;
+                changed.push_back(v);
+            };
             for (const VertexHandle v : split_vertices)
             {
-                near_change[v.idx()] = 1;
-                for (auto w : mesh_.vv_range(v)) near_change[w.idx()] = 1;
+                mark_changed(v);
+                for (auto w : mesh_.vv_range(v)) mark_changed(w);
             }
             for (const VertexHandle v : revisit)
-                if (!mesh_.status(v).deleted()) near_change[v.idx()] = 1;
+                if (!mesh_.status(v).deleted()) mark_changed(v);
             revisit.clear();
-            auto changed = [&](std::initializer_list<VertexHandle> vertices) {
-                return std::any_of(vertices.begin(), vertices.end(), [&](VertexHandle v) { return near_change[v.idx()] != 0; });
-            };
-            std::vector<std::array<Vec3d, 3>> triangles;
-            std::vector<FaceHandle> face_of;
-            for (auto f : mesh_.faces())
-            {
-                if (mesh_.status(f).deleted()) continue;
-                const auto p = detail::face_points(mesh_, f);
+            // Near enough is decided by the hint face alone, mostly; the distance of a far one
+            // ranks it. (A maximum per edge: the order of the faces and edges does not matter.)
+            // A point proven near before (the same point: whether it is near depends on it alone)
+            // is near again: after a cleanup most of the output is as the last call left it.
+            if (near_centroid_.size() < mesh_.n_faces()) near_centroid_.resize(mesh_.n_faces(), kNoPoint);
+            if (near_midpoint_.size() < mesh_.n_edges()) near_midpoint_.resize(mesh_.n_edges(), kNoPoint);
+            auto check_face = [&](FaceHandle f) {
                 const auto fv = detail::face_vertices(mesh_, f);
-                if (changed({fv[0], fv[1], fv[2]}))
-                {
-                    // Near enough is decided by the hint face alone, mostly; the distance of a far
-                    // one ranks it.
-                    const Vec3d centroid = (p[0] + p[1] + p[2]) / 3.0;
-                    if (!ctx_.near_model(centroid, fv[0], options_.tolerance))
-                        mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
-                }
-                triangles.push_back(p);
-                face_of.push_back(f);
-            }
-            for (auto e : live_edges())
-            {
+                const Vec3d centroid = (mesh_.point(fv[0]) + mesh_.point(fv[1]) + mesh_.point(fv[2])) / 3.0;
+                if (near_centroid_[f.idx()] == centroid) return;
+                if (ctx_.near_model(centroid, fv[0], options_.tolerance)) near_centroid_[f.idx()] = centroid;
+                else mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
+            };
+            auto check_edge = [&](EdgeHandle e) {
                 const auto h = mesh_.halfedge_handle(e, 0);
                 const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-                if (!changed({a, b})) continue;
                 const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
-                if (ctx_.near_model(mid, a, options_.tolerance)) continue;
-                edge_error[e.idx()] = std::max(edge_error[e.idx()], ctx_.distance_to_model(mid, a));
+                if (near_midpoint_[e.idx()] == mid) return;
+                if (ctx_.near_model(mid, a, options_.tolerance)) near_midpoint_[e.idx()] = mid;
+                else raise_error(e, ctx_.distance_to_model(mid, a));
+            };
+            if (round == 0)
+            {
+                for (auto f : mesh_.faces())
+                    if (!mesh_.status(f).deleted()) check_face(f);
+                for (auto e : mesh_.edges())
+                    if (!mesh_.status(e).deleted()) check_edge(e);
+            }
+            else
+            {
+                // The faces and edges at a changed vertex, each once.
+                std::vector<char> face_seen(mesh_.n_faces(), 0), edge_seen(mesh_.n_edges(), 0);
+                for (const VertexHandle v : changed)
+                {
+                    for (auto f : mesh_.vf_range(v))
+                        if (!face_seen[f.idx()]) face_seen[f.idx()] = 1, check_face(f);
+                    for (auto e : mesh_.ve_range(v))
+                        if (!edge_seen[e.idx()]) edge_seen[e.idx()] = 1, check_edge(e);
+                }
             }
             split_vertices.clear();
-            const ClosestPointTree output = ClosestPointTree::from_triangles(triangles);
             std::vector<std::size_t> still_far;
             struct FarHit
             {
@@ -754,21 +933,33 @@ private:
                     if (static_cast<std::size_t>(v.idx()) < snapped_now.size() && snapped_now[v.idx()]) return true;
                 return false;
             };
-            // Consecutive model points are mostly neighbours: the last hit is the hint of the
-            // next search, and a point within the tolerance of it is near without a search (the
-            // closest triangle can only be nearer; the same arithmetic as the search's).
-            int previous_hit = -1;
+            // A point within the tolerance of its face of last time (or of a face around it) is
+            // near without a search: the closest face can only be nearer. Most points stay near
+            // from one call to the next; the others are searched.
+            if (point_face_.size() != options_.model_points.size()) point_face_.assign(options_.model_points.size(), FaceHandle());
+            std::vector<std::size_t> unproven;
             for (const std::size_t i : far_points)
+                if (!near_by_face_of(i)) unproven.push_back(i);
+            // Consecutive model points are mostly neighbours: the last hit is the hint of the
+            // next search, and a point within the tolerance of it is near without a search.
+            std::vector<FaceHandle> face_of;  // per triangle of `output`
+            const ClosestPointTree output = unproven.empty() ? ClosestPointTree() : output_tree(face_of);
+            std::vector<int> triangle_of(unproven.empty() ? 0 : mesh_.n_faces(), -1);
+            for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
+            FaceHandle previous;
+            for (const std::size_t i : unproven)
             {
                 const Vec3d& point = options_.model_points[i];
-                if (previous_hit >= 0)
+                const FaceHandle near = near_face_around(point, previous);
+                if (near.is_valid())
                 {
-                    const auto& t = triangles[previous_hit];
-                    if ((closest_point_on_triangle(point, t[0], t[1], t[2]) - point).norm() <= options_.tolerance) continue;
+                    point_face_[i] = previous = near;
+                    continue;
                 }
-                const auto hit = output.closest(point, previous_hit);
-                previous_hit = hit.primitive;
-                if (hit.primitive < 0 || !(hit.distance > options_.tolerance)) continue;
+                const auto hit = output.closest(point, previous.is_valid() ? triangle_of[previous.idx()] : -1);
+                if (hit.primitive < 0) continue;
+                point_face_[i] = previous = face_of[hit.primitive];
+                if (!(hit.distance > options_.tolerance)) continue;
                 far_hits.push_back({hit.distance, i, face_of[hit.primitive]});
             }
             // Farthest first: a vertex of the closest triangle snapped onto the point costs no
@@ -810,9 +1001,10 @@ private:
             }
             far_points = std::move(still_far);
             std::vector<std::pair<double, EdgeHandle>> candidates;
-            for (auto e : live_edges())
+            std::sort(marked.begin(), marked.end());  // (the verbose lines in index order)
+            for (const EdgeHandle e : marked)
             {
-                if (!(edge_error[e.idx()] > 0.0)) continue;
+                if (mesh_.status(e).deleted()) continue;
                 // Marked before a snap moved an end: the next round looks at it again.
                 if (snapped_end(e)) continue;
                 if (mesh_.calc_edge_length(e) >= 2.0 * options_.refine_min_length_ratio * edge_size(e))
@@ -844,7 +1036,7 @@ private:
                 split_vertices.push_back(snapped);
             }
             report_.refinement_snaps += snaps;
-            std::size_t short_edges = count_short_edges(), edges = live_edges().size();
+            std::size_t short_edges = count_short_edges(), edges = count_live_edges();
             std::size_t done = 0, splits = 0;  // changes of the round (splits and distance flips), splits
             // The budget goes to the worst places first: a round splits only near the worst
             // distance; the next round sees the result.
@@ -935,6 +1127,7 @@ private:
                 }
             }
         }
+        noting_changes_ = false;
         return total;
     }
 
@@ -1159,6 +1352,18 @@ private:
     std::clock_t cpu_start_ = std::clock();
     RemeshReport report_;
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first snap
+    // Per model point: the output face that last proved it within the tolerance, or was its
+    // closest (invalid: none yet). Faces are only garbage-collected at the end of run().
+    std::vector<FaceHandle> point_face_;
+    std::vector<std::size_t> space_order_;  // model_points_in_space_order()
+    // Per output face / edge: the centroid / midpoint last proven within the tolerance of the
+    // model (kNoPoint: none).
+    std::vector<Vec3d> near_centroid_, near_midpoint_;
+    // While a refinement runs: the points of each output face (by handle index; stale for a
+    // deleted one), and the vertices whose faces changed since they were last brought up.
+    std::vector<std::array<Vec3d, 3>> face_points_;
+    std::vector<VertexHandle> changed_vertices_;
+    bool noting_changes_ = false;
 };
 
 }  // namespace

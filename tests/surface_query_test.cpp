@@ -152,6 +152,45 @@ TEST_CASE("closest point tree: off-surface ties (points over shared vertices) re
     CHECK(differs == 0);
 }
 
+TEST_CASE("closest point tree: a lazily built tree answers as the eager one, ties included")
+{
+    // The lazy tree splits a node when a search first opens it: after a few queries most of it
+    // is unsplit, after many most is. Every answer (primitive, point, distance) must be the
+    // eager tree's, hinted or not, at any stage: the points over the grid vertices (exact ties
+    // between the faces around a vertex) and points sampled around the surface, in an order
+    // that jumps across the grid.
+    const int n = 8;
+    const SurfaceMesh mesh = bumpy_grid(n);
+    const auto triangles = triangles_of(mesh);
+    const ClosestPointTree eager = ClosestPointTree::from_triangles(triangles);
+    const int count = static_cast<int>(triangles.size());
+    std::vector<Vec3d> points = sample_points(mesh, n, 200);
+    for (auto v : mesh.vertices())
+    {
+        Vec3d normal(0, 0, 0);
+        for (auto f : mesh.vf_range(v)) normal += mesh.calc_face_normal(f);
+        if (normal.norm() > 0.0) points.push_back(mesh.point(v) + 0.01 * normal.normalized());
+    }
+    int differs = 0, queries = 0;
+    for (const std::size_t per_tree : {std::size_t{1}, std::size_t{7}, points.size()})
+    {
+        ClosestPointTree lazy;
+        for (std::size_t k = 0; k < points.size(); ++k)
+        {
+            if (k % per_tree == 0) lazy = ClosestPointTree::lazy_from_triangles(triangles);
+            const Vec3d& p = points[(k * 37) % points.size()];
+            const auto exact = eager.closest(p);
+            const int hint = k % 3 == 0 ? -1 : (k % 3 == 1 ? exact.primitive : static_cast<int>(k * 7919 % count));
+            const auto hit = hint < 0 ? lazy.closest(p) : lazy.closest(p, hint);
+            ++queries;
+            if (hit.primitive != exact.primitive || hit.point != exact.point || hit.distance != exact.distance) ++differs;
+        }
+    }
+    CHECK(queries == 3 * static_cast<int>(points.size()));
+    CHECK(differs == 0);
+    CHECK(ClosestPointTree::lazy_from_triangles({}).closest(Vec3d(0, 0, 0)).primitive == -1);
+}
+
 TEST_CASE("closest point tree: hinted segment queries equal the exact ones")
 {
     // A helix of 60 segments, queried from around it and at its own vertices (two segments each).
