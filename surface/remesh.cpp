@@ -58,7 +58,8 @@ class Remesher
 {
 public:
     Remesher(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model, const SurfaceHooks& hooks)
-        : mesh_(mesh), options_(options), ctx_(mesh, model, noting_changes(hooks), options.limits)
+        : mesh_(mesh), options_(options), ctx_(mesh, model, noting_changes(hooks), options.limits),
+          caller_keeps_handles_(!hooks.empty())
     {
         ctx_.limits.max_model_distance = options.max_model_distance;
     }
@@ -138,7 +139,7 @@ private:
     // in the iterations (the refinement keeps handles across its calls).
     void compact_if_mostly_deleted()
     {
-        if (!ctx_.hooks.empty()) return;
+        if (caller_keeps_handles_) return;
         std::size_t deleted = 0;
         for (auto e : mesh_.edges())
             if (mesh_.status(e).deleted()) ++deleted;
@@ -1364,6 +1365,8 @@ private:
     std::vector<std::array<Vec3d, 3>> face_points_;
     std::vector<VertexHandle> changed_vertices_;
     bool noting_changes_ = false;
+    // The caller's hooks (not the remesher's own wrappers): their owner may keep handles.
+    const bool caller_keeps_handles_;
 };
 
 }  // namespace
