@@ -143,6 +143,23 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         for (std::size_t f = 0; f < face_vertices_.size(); ++f)
             for (const int v : face_vertices_[f]) vertex_faces_[next[v]++] = static_cast<int>(f);
     }
+    // Angle-weighted vertex normals: the normal of a foot at a vertex, whichever face the search
+    // names there (the faces around a sharp tip disagree by up to their dihedral angle).
+    vertex_normals_.assign(points_.size(), Vec3d(0, 0, 0));
+    for (std::size_t f = 0; f < face_vertices_.size(); ++f)
+    {
+        const auto& fv = face_vertices_[f];
+        for (int k = 0; k < 3; ++k)
+        {
+            const Vec3d u = points_[fv[(k + 1) % 3]] - points_[fv[k]], w = points_[fv[(k + 2) % 3]] - points_[fv[k]];
+            const double lu = u.norm(), lw = w.norm();
+            if (!(lu > 0.0 && lw > 0.0)) continue;
+            const double angle = std::acos(std::clamp(OpenMesh::dot(u, w) / (lu * lw), -1.0, 1.0));
+            vertex_normals_[fv[k]] += angle * face_normals_[f];
+        }
+    }
+    for (Vec3d& n : vertex_normals_)
+        if (n.norm() > 0.0) n.normalize();
 
     int curve_count = 0;
     for (auto e : input.edges()) curve_count = std::max(curve_count, curve_of(e) + 1);
@@ -234,6 +251,29 @@ bool SurfaceModel::within_fraction_of_face(int face, double d2, double fraction)
     return d2 <= fraction * fraction * shortest2;
 }
 
+Vec3d SurfaceModel::foot_normal(int face, const Vec3d& foot) const
+{
+    // At a corner of the face: the vertex normal. On an edge (the foot's distance to its line a
+    // rounding of its length): the mean of the two faces'. Inside: the face's own.
+    const auto& fv = face_vertices_[face];
+    for (const int v : fv)
+        if (points_[v] == foot) return vertex_normals_[v];
+    for (int k = 0; k < 3; ++k)
+    {
+        const Vec3d& a = points_[fv[k]];
+        const Vec3d edge = points_[fv[(k + 1) % 3]] - a;
+        if (OpenMesh::cross(edge, foot - a).sqrnorm() > 1e-24 * edge.sqrnorm() * edge.sqrnorm()) continue;
+        // fv is the face's vertex circulation (the to-vertices of its halfedges from its first);
+        // face_neighbours_ is across its halfedges in the same order, so across the edge from
+        // fv[k] to fv[k + 1] is entry k + 1.
+        const int across = face_neighbours_[face][(k + 1) % 3];
+        if (across < 0) return face_normals_[face];
+        Vec3d n = face_normals_[face] + face_normals_[across];
+        return n.norm() > 0.0 ? n.normalized() : face_normals_[face];
+    }
+    return face_normals_[face];
+}
+
 ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, double local_fraction) const
 {
     ProjectedPoint out;
@@ -245,7 +285,7 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
         if (converged && local_fraction > 0.0 && within_fraction_of_face(face, (foot - p).sqrnorm(), local_fraction))
         {
             out.point = foot;
-            out.normal = face_normals_[face];
+            out.normal = foot_normal(face, foot);
             out.face = face;
             out.ok = true;
             return out;
@@ -255,7 +295,7 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
     const auto hit = triangles_.closest(p, face_hint);
     if (hit.primitive < 0) return out;
     out.point = hit.point;
-    out.normal = face_normals_[hit.primitive];
+    out.normal = foot_normal(hit.primitive, hit.point);
     out.face = hit.primitive;
     out.ok = true;
     return out;

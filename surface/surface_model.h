@@ -67,11 +67,15 @@ private:
     // `converged`: at a local minimum (not out of steps, nor stopped early at a face within
     // sqrt(stop_d2) of p, as near_model wants).
     int descend(const Vec3d& p, int face, Vec3d& foot, bool& converged, double stop_d2 = -1.0) const;
+    // The model's normal at `foot`, a point of `face`: the face's, or the vertex's or the edge's
+    // when the foot is at a corner or on an edge (not the normal of whichever face a tie named).
+    Vec3d foot_normal(int face, const Vec3d& foot) const;
     // Whether a squared distance d2 is within `fraction` of the shortest edge of `face`.
     bool within_fraction_of_face(int face, double d2, double fraction) const;
 
     std::vector<Vec3d> points_;
     std::vector<Vec3d> face_normals_;
+    std::vector<Vec3d> vertex_normals_;  // angle-weighted
     std::vector<std::array<int, 3>> face_vertices_;
     std::vector<std::array<int, 3>> face_neighbours_;  // across each edge (-1: open boundary)
     // The faces around each input vertex: vertex_faces_[vertex_face_offsets_[v] ..

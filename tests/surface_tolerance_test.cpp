@@ -184,9 +184,13 @@ TEST_CASE("a spike whose creases are dropped as noise stays an isolated corner, 
         check_manifold(mesh);
         return triangles_of(mesh).closest(tip).distance;
     };
-    // Kept exactly with the cone test; cut off by chords without it.
+    // Kept exactly with the cone test (a corner). Without it the tip is an ordinary vertex of the
+    // input, and the tolerance refinement still reaches it: its split onto the tip is judged
+    // against the model's normal there, the tip's own (vertex) normal, not the normal of one of
+    // its faces (whichever the search named, up to 120° off the others here).
     CHECK(remeshed_tip_distance(60.0) < 1e-12);
-    CHECK(remeshed_tip_distance(400.0) > 0.05);
+    SurfaceRemeshSettings defaults;
+    CHECK(remeshed_tip_distance(400.0) <= defaults.uniform_hausd_fraction * bounding_box_diagonal(input));
 }
 
 TEST_CASE("a flat grid has no cone tip: no corner inside it")
