@@ -117,6 +117,15 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         return out_after <= out_before;
     };
 
+    // Nothing to fit where the star is within the tolerance already (most curve vertices): no
+    // candidates are projected then.
+    const Excess before = excess(p);
+    if (!(before.worst > 0.0))
+    {
+        result.status = OpStatus::Quality;
+        return result;
+    }
+
     // Candidates: on the curve strictly between the curve neighbours (no fold along it).
     const double span = (curve_neighbours[1] - curve_neighbours[0]).norm();
     auto between = [&](const Vec3d& q) {
@@ -137,12 +146,6 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
             if (on.ok && between(on.point)) candidates.push_back(on);
         }
 
-    const Excess before = excess(p);
-    if (!(before.worst > 0.0))
-    {
-        result.status = OpStatus::Quality;
-        return result;
-    }
     Excess best = before;
     ProjectedPoint best_point;
     const double gain = kMinGain * options.tolerance;
