@@ -1178,7 +1178,6 @@ private:
             const double samples_after = worst_sample();
             if (samples_after > bound && samples_after > samples_before) worse = true;
         }
-        if (!worse)
         for (std::size_t k = 0; k < around.size() && !worse; ++k)
         {
             const Vec3d& w = options_.model_points[around[k]];
@@ -1186,6 +1185,7 @@ private:
             if (d_after > bound && d_after > patch.distance(w, nullptr) + 1e-12 * reach) worse = true;
         }
         if (!worse) return true;
+        // Moved back: a move like any other for the hooks (the coupling mirrors both).
         commit_move(ctx_, v, before, face_before);
         set_size(v);
         return false;
