@@ -69,6 +69,9 @@ struct OperatorLimits
     double max_normal_turn_deg = 35.0;  // a changed triangle may turn at most this much
     double max_model_distance = 0.0;    // > 0: new edge midpoints / centroids must stay this close
     double min_new_quality = 0.05;      // no operator creates a triangle with a lower Qe
+    /// A split whose new vertex, on the model, turns its triangles past the turn limit (a chord
+    /// across a crease the features dropped) leaves no triangle with a smaller angle than this.
+    double min_angle_across_crease_deg = 10.0;
 };
 
 /// Everything an operator needs; the remesher builds one per call.

@@ -8,9 +8,9 @@ namespace hdimesh::surface
 {
 namespace
 {
-// A split that turns its triangles past the limit (across a dropped crease) keeps no worse angle,
-// and its triangles may not fold against the model (its normal is one side's of the crease).
-constexpr double kMinAngleAcrossCreaseDeg = 10.0;
+// A split that turns its triangles past the limit (across a dropped crease) keeps no angle under
+// OperatorLimits::min_angle_across_crease_deg, and its triangles may not fold against the model
+// (its normal is one side's of the crease).
 constexpr double kMaxTurnAcrossCreaseDeg = 85.0;
 }  // namespace
 
@@ -61,8 +61,8 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
             !turn_from_old && projected.ok && cls == VertexClass::Smooth &&
             turn_ok(projected.normal, triangle_normal(from, p, opposite), kMaxTurnAcrossCreaseDeg) &&
             turn_ok(projected.normal, triangle_normal(p, to, opposite), kMaxTurnAcrossCreaseDeg) &&
-            triangle_min_angle_deg(from, p, opposite) >= kMinAngleAcrossCreaseDeg &&
-            triangle_min_angle_deg(p, to, opposite) >= kMinAngleAcrossCreaseDeg;
+            triangle_min_angle_deg(from, p, opposite) >= ctx.limits.min_angle_across_crease_deg &&
+            triangle_min_angle_deg(p, to, opposite) >= ctx.limits.min_angle_across_crease_deg;
         if (!turn_from_old && !follows_model)
         {
             result.status = OpStatus::Geometry;

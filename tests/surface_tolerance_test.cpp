@@ -171,26 +171,29 @@ TEST_CASE("a spike whose creases are dropped as noise stays an isolated corner, 
     REQUIRE(tip_vertex.is_valid());
     CHECK(classified.property(props.vertex_class, tip_vertex) == VertexClass::Corner);
 
-    auto remeshed_tip_distance = [&](double cone_defect_deg) {
+    auto remeshed_tip_distance = [&](double cone_defect_deg, bool refine_to_tolerance) {
         SurfaceMesh mesh = input;
         SurfaceRemeshSettings settings;
         settings.features = noise_only;
         settings.features.cone_defect_deg = cone_defect_deg;
         settings.sizing.hsiz = 1.3;
         settings.iterations = 6;
+        settings.refine_to_tolerance = refine_to_tolerance;
         remesh_surface(mesh, settings);
         CHECK(euler(mesh) == euler(input));
         CHECK(boundary_loops(mesh) == 1);
         check_manifold(mesh);
         return triangles_of(mesh).closest(tip).distance;
     };
-    // Kept exactly with the cone test (a corner). Without it the tip is an ordinary vertex of the
-    // input, and the tolerance refinement still reaches it: its split onto the tip is judged
-    // against the model's normal there, the tip's own (vertex) normal, not the normal of one of
-    // its faces (whichever the search named, up to 120° off the others here).
-    CHECK(remeshed_tip_distance(60.0) < 1e-12);
-    SurfaceRemeshSettings defaults;
-    CHECK(remeshed_tip_distance(400.0) <= defaults.uniform_hausd_fraction * bounding_box_diagonal(input));
+    // Kept exactly with the cone test; cut off by chords without it and without the tolerance
+    // refinement. With the refinement the tip is reached exactly even without the cone test: a
+    // move or split onto the input vertex at the tip is judged against the model where it is (a
+    // triangle down the spike's side against the model under it; a split's new vertex against
+    // the tip's own vertex normal), not against one face's normal, up to 120° off the others.
+    CHECK(remeshed_tip_distance(60.0, true) < 1e-12);
+    CHECK(remeshed_tip_distance(60.0, false) < 1e-12);
+    CHECK(remeshed_tip_distance(400.0, false) > 0.05);
+    CHECK(remeshed_tip_distance(400.0, true) < 1e-12);
 }
 
 TEST_CASE("a flat grid has no cone tip: no corner inside it")
