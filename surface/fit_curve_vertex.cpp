@@ -67,7 +67,9 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
     // the quarter points of its curve chords, which cut the zigs), centroids to the model.
     auto excess = [&](const Vec3d& q) {
         Excess e;
-        for (const Vec3d& w : options.witnesses) e.add(patch.distance(w, &q), options.tolerance);
+        // (Only an excess counts: a witness within the tolerance of some triangle adds nothing.)
+        for (const Vec3d& w : options.witnesses)
+            if (!patch.within(w, &q, options.tolerance)) e.add(patch.distance(w, &q), options.tolerance);
         auto sample = [&](const Vec3d& s) {
             if (!ctx.near_model(s, v, options.tolerance)) e.add(ctx.distance_to_model(s, v), options.tolerance);
         };

@@ -130,6 +130,18 @@ struct TwoRingPatch
     }
 
     /// Distance from p to the patch with v at *v_at (nullptr: where it is).
+    /// Whether distance(p, v_at) <= limit, decided at the first triangle within it.
+    bool within(const Vec3d& p, const Vec3d* v_at, double limit) const
+    {
+        for (std::size_t i = 0; i < triangles.size(); ++i)
+        {
+            std::array<Vec3d, 3> t = triangles[i];
+            if (v_at && moved[i] >= 0) t[moved[i]] = *v_at;
+            if (std::sqrt((closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm()) <= limit) return true;
+        }
+        return false;
+    }
+
     double distance(const Vec3d& p, const Vec3d* v_at) const
     {
         double best2 = 1e300;
