@@ -526,8 +526,12 @@ private:
         for (const std::size_t i : model_point_grid().within(centre, reach + options_.tolerance))
         {
             const Vec3d& w = options_.model_points[i];
-            const double d_after = distance(w, new0, new1);
-            if (d_after > bound && d_after > distance(w, old0, old1) + 1e-12 * reach) return false;
+            // Decided at the first triangle within the bound, for most witnesses.
+            auto near = [&](const std::array<Vec3d, 3>& t) {
+                return std::sqrt((closest_point_on_triangle(w, t[0], t[1], t[2]) - w).sqrnorm()) <= bound;
+            };
+            if (near(new0) || near(new1) || std::any_of(rest.begin(), rest.end(), near)) continue;
+            if (distance(w, new0, new1) > distance(w, old0, old1) + 1e-12 * reach) return false;
         }
         return try_flip(ctx_, e, FlipGoal::Quality).done();
     }
@@ -583,11 +587,17 @@ private:
         };
         double reach = 0.0;
         for (auto w : mesh_.vv_range(a)) reach = std::max(reach, (mesh_.point(w) - pb).norm());
+        auto within = [](const Vec3d& w, const std::vector<std::array<Vec3d, 3>>& patch, double limit) {
+            for (const auto& t : patch)
+                if (std::sqrt((closest_point_on_triangle(w, t[0], t[1], t[2]) - w).sqrnorm()) <= limit) return true;
+            return false;
+        };
         for (const std::size_t i : model_point_grid().within(pb, reach + bound))
         {
             const Vec3d& w = options_.model_points[i];
+            if (within(w, after, bound)) continue;  // decided at the first triangle within the bound
             const double d_after = distance(w, after);
-            if (d_after > bound && d_after > distance(w, before) + 1e-12 * reach) return false;
+            if (d_after > distance(w, before) + 1e-12 * reach) return false;
         }
         const double size = options_.refine_reference_size > 0.0 ? options_.refine_reference_size : edge_size(mesh_.edge_handle(h));
         if (for_budget) return try_collapse(ctx_, h, kReferenceCollapseLength * size, false, kReferenceCollapseMinAngle).done();
@@ -1389,8 +1399,8 @@ private:
         for (std::size_t k = 0; k < around.size() && !worse; ++k)
         {
             const Vec3d& w = options_.model_points[around[k]];
-            const double d_after = patch.distance(w, &after);
-            if (d_after > bound && d_after > patch.distance(w, nullptr) + 1e-12 * reach) worse = true;
+            if (patch.within(w, &after, bound)) continue;  // decided at the first triangle within
+            if (patch.distance(w, &after) > patch.distance(w, nullptr) + 1e-12 * reach) worse = true;
         }
         if (!worse) return true;
         // Moved back: a move like any other for the hooks (the coupling mirrors both).
