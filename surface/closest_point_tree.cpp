@@ -114,6 +114,7 @@ void ClosestPointTree::build(bool lazy)
     {
         // The leaf-order arrays are filled leaf by leaf as the searches split the nodes.
         given_ = std::move(primitives_);
+        primitives_.clear();  // (a moved-from vector's content is unspecified)
         primitives_.resize(given_.size());
         boxes_.resize(given_.size());
         scratch_ = std::move(scratch);

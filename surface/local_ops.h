@@ -38,6 +38,7 @@ struct SurfaceHooks
         on_remove_vertex;
 
     /// No hook set: nobody outside the remesher keeps handles of the mesh (it may compact it).
+    /// A hook added to this struct must be added here too, or compaction would break its owner.
     bool empty() const
     {
         return !allow_split && !on_split && !allow_collapse && !on_collapse && !allow_flip && !on_flip && !allow_move &&

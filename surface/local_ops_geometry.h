@@ -129,7 +129,6 @@ struct TwoRingPatch
         }
     }
 
-    /// Distance from p to the patch with v at *v_at (nullptr: where it is).
     /// Whether distance(p, v_at) <= limit, decided at the first triangle within it.
     bool within(const Vec3d& p, const Vec3d* v_at, double limit) const
     {
@@ -142,6 +141,7 @@ struct TwoRingPatch
         return false;
     }
 
+    /// Distance from p to the patch with v at *v_at (nullptr: where it is).
     double distance(const Vec3d& p, const Vec3d* v_at) const
     {
         double best2 = 1e300;

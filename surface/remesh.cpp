@@ -40,12 +40,6 @@ constexpr double kSlideMinLength = 0.3;
 // Slide rounds: measured, spot's nose corners slide in every one of 8 rounds (2-12 vertices,
 // 16.9° -> 20.2°); fandisk, cheburashka and the bunny stop after one, rocker-arm has none.
 constexpr int kSlideRounds = 8;
-// The smallest angle a split across a crease may leave (try_split): a cap (the new vertex beside
-// the edge to an opposite vertex) is resolved by the flips that settle each split, the polish and
-// the repair of small angles; refused, the chord stays far to the end (stanford-bunny, rocker-arm:
-// caps of 8.6° and 5.4° refused at the operator's default 10°, chords left at 1.3-1.4 times the
-// tolerance; failed issue-6 runs of 30 over bench_surface --iterations 5 7 13 14 15 16: 6 -> 0).
-constexpr double kMinAngleAcrossCreaseDeg = 4.0;
 // A refinement round splits only where the distance is at least this fraction of its worst.
 constexpr double kRefineFocus = 0.75;
 // A refinement snap moves a vertex at most this fraction of the size (farther: a split's job).
@@ -63,12 +57,16 @@ const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
 class Remesher
 {
 public:
+    // Not copyable: the hooks in ctx_ capture this remesher.
+    Remesher(const Remesher&) = delete;
+    Remesher& operator=(const Remesher&) = delete;
+
     Remesher(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model, const SurfaceHooks& hooks)
         : mesh_(mesh), options_(options), ctx_(mesh, model, noting_changes(hooks), options.limits),
           caller_keeps_handles_(!hooks.empty())
     {
         ctx_.limits.max_model_distance = options.max_model_distance;
-        ctx_.limits.min_angle_across_crease_deg = kMinAngleAcrossCreaseDeg;
+        ctx_.limits.min_angle_across_crease_deg = options.min_angle_across_crease_deg;
     }
 
     RemeshReport run()
@@ -152,7 +150,14 @@ private:
         std::size_t deleted = 0;
         for (auto e : mesh_.edges())
             if (mesh_.status(e).deleted()) ++deleted;
-        if (4 * deleted > mesh_.n_edges()) mesh_.garbage_collection();
+        if (!(4 * deleted > mesh_.n_edges())) return;
+        mesh_.garbage_collection();
+        // The refinement's caches are by handle: renumbered, they would name other elements
+        // (compaction runs before the first refinement, when they are still empty).
+        point_face_.clear();
+        near_centroid_.clear();
+        near_midpoint_.clear();
+        face_points_.clear();
     }
 
     // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
@@ -1314,10 +1319,12 @@ private:
 
     // The worst triangles: try, in order, a quality flip of each edge, a collapse of the
     // shortest edge that raises the worst Qe around, removal of a vertex, a smart shift of each
-    // vertex; repeat while something changes. `keep_tolerance`: between refinements, every
-    // change keeps what the refinement reached (no model point around ends farther than
+    // vertex; repeat while something changes. `keep_tolerance`: between refinements, a change
+    // keeps what the refinement reached (no model point around ends farther than
     // max(tolerance, before), see the *_keeping_tolerance operators; no vertex removal, which
-    // has no such check).
+    // has no such check), except on a triangle under the snap's angle bound, which gets the
+    // plain cure when the tolerance-keeping one fails (the refinement after the cleanup looks
+    // at the tolerance again; without it cheburashka's min angle fell to 17.5°).
     void cleanup_worst_triangles(bool keep_tolerance = false)
     {
         ShiftOptions smart;
@@ -1403,10 +1410,11 @@ private:
             if (patch.distance(w, &after) > patch.distance(w, nullptr) + 1e-12 * reach) worse = true;
         }
         if (!worse) return true;
-        // Moved back: a move like any other for the hooks (the coupling mirrors both).
-        commit_move(ctx_, v, before, face_before);
+        // Moved back: a move like any other for the hooks (the coupling mirrors both). A hook may
+        // refuse it; the shift then stands and is reported as one.
+        const bool moved_back = commit_move(ctx_, v, before, face_before).done();
         set_size(v);
-        return false;
+        return !moved_back;
     }
 
     // The last word for needles with a curve vertex: that vertex slides along its curve
@@ -1495,7 +1503,8 @@ private:
     RemeshReport report_;
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first snap
     // Per model point: the output face that last proved it within the tolerance, or was its
-    // closest (invalid: none yet). Faces are only garbage-collected at the end of run().
+    // closest (invalid: none yet). Cleared by a compaction (only in the iterations, before any
+    // refinement); otherwise faces are garbage-collected at the end of run() only.
     std::vector<FaceHandle> point_face_;
     std::vector<std::size_t> space_order_;  // model_points_in_space_order()
     // Per output face / edge: the centroid / midpoint last proven within the tolerance of the

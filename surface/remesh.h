@@ -37,6 +37,12 @@ struct RemeshOptions
     int polish_passes = 3;  // after the iterations: quality flips + smart shifts over everything
     /// Operators refuse a change whose new triangles stray farther from the model (≤ 0: none).
     double max_model_distance = 0.0;
+    /// The smallest angle a split across a crease may leave (replaces limits' own, 10°, which is
+    /// the single operator's): in the remesher the flips after each split, the polish and the
+    /// angle repair resolve such caps (measured: stanford-bunny's and rocker-arm's caps of 8.6° and
+    /// 5.4° refused at 10° left chords at 1.3-1.4 times the tolerance; 6 -> 0 failed issue-6 runs
+    /// of 30 over bench_surface --iterations 5 7 13 14 15 16).
+    double min_angle_across_crease_deg = 4.0;
     /// The worst-triangle cleanup works on triangles with a smaller angle than this.
     double cleanup_angle_deg = 27.0;
     int cleanup_rounds = 8;
@@ -83,8 +89,9 @@ struct RemeshReport
 };
 
 /// Remeshes `mesh` (classified by detect_features, or carrying the properties of
-/// surface_mesh.h) on `model`. Hooks see every change; handles stay valid until the final
-/// garbage collection at the end of the call.
+/// surface_mesh.h) on `model`. Hooks see every change. With any hook set, handles stay valid
+/// until the final garbage collection at the end of the call; without hooks the mesh may also
+/// be compacted between the first iterations (nobody keeps its handles then).
 RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model,
                     const SurfaceHooks& hooks = {});
 

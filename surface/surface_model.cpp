@@ -215,7 +215,7 @@ int SurfaceModel::descend(const Vec3d& p, int face, Vec3d& foot, bool& converged
         // Across the edges (three faces, the usual way down); for a foot at a corner of the
         // face, also the other faces around that corner (they may rise nearer to p).
         int next = -1;
-        Vec3d next_foot;
+        Vec3d next_foot(0, 0, 0);
         double next_d2 = d2;
         auto consider = [&](int g) {
             const Vec3d q = foot_on(g);
@@ -254,7 +254,7 @@ bool SurfaceModel::within_fraction_of_face(int face, double d2, double fraction)
 Vec3d SurfaceModel::foot_normal(int face, const Vec3d& foot) const
 {
     // At a corner of the face: the vertex normal. On an edge (the foot's distance to its line a
-    // rounding of its length): the mean of the two faces'. Inside: the face's own.
+    // rounding of its coordinates): the mean of the two faces'. Inside: the face's own.
     const auto& fv = face_vertices_[face];
     for (const int v : fv)
         if (points_[v] == foot) return vertex_normals_[v];
@@ -262,7 +262,9 @@ Vec3d SurfaceModel::foot_normal(int face, const Vec3d& foot) const
     {
         const Vec3d& a = points_[fv[k]];
         const Vec3d edge = points_[fv[(k + 1) % 3]] - a;
-        if (OpenMesh::cross(edge, foot - a).sqrnorm() > 1e-24 * edge.sqrnorm() * edge.sqrnorm()) continue;
+        // (The foot's rounding scales with its coordinates, not with the edge's length alone.)
+        const double rounding = 1e-12 * edge.norm() * (edge.norm() + a.norm());
+        if (OpenMesh::cross(edge, foot - a).sqrnorm() > rounding * rounding) continue;
         // fv is the face's vertex circulation (the to-vertices of its halfedges from its first);
         // face_neighbours_ is across its halfedges in the same order, so across the edge from
         // fv[k] to fv[k + 1] is entry k + 1.

@@ -28,18 +28,23 @@ public:
     void set_smooth_projection(SmoothProjection projection) { smooth_ = std::move(projection); }
 
     ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const override;
-    /// project() near `face_hint` (an input face index, e.g. the `face` of the last projection of
-    /// a neighbouring point): for a smooth point, the closest point of the input sheet the hint
-    /// lies on (closest_on_input with the hint); without a hint, project().
+    /// project() for placing a vertex near `face_hint` (an input face index, e.g. the `face` of
+    /// the last projection of a neighbouring point). A smooth point goes onto the smooth
+    /// projection when one is plugged in and succeeds; else onto the input triangles by
+    /// closest_on_input with the hint and a local fraction of 1e-2: the foot where the descent
+    /// from the hint stops (a local minimum of the distance over the input) when p is that
+    /// near it, else the exact closest point. Without a hint, project().
     ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const override;
     /// Without a smooth projection: true at once when the descent from the hint face (see
     /// closest_on_input) meets a face within `distance`, else the exact search decides.
     bool near_model(const Vec3d& p, double distance, int face_hint) const override;
     /// Without a smooth projection: the exact distance to the input triangles, searched from
-    /// where the descent from the hint stopped (a tight bound).
+    /// where the descent from the hint stopped (a tight bound). With one: Projector's (through
+    /// project_near, so a failed smooth projection measures to the placement's foot).
     double distance_to_surface(const Vec3d& p, int face_hint) const override;
 
-    /// Closest point on the input triangles, with that triangle's normal and index (`face`).
+    /// Closest point on the input triangles, with the model's normal there (foot_normal: the
+    /// face's, or the vertex's or edge's when the foot is on one) and the face's index (`face`).
     /// With a hint, first a descent over the input from the hint face, to a face none of its
     /// neighbours beats (across its edges; around its corner for a foot at a corner). When p is
     /// within `local_fraction` of that face's shortest edge, its foot there is the answer: the
@@ -55,9 +60,10 @@ public:
     const std::vector<double>& input_curvature() const { return curvature_; }
     const std::vector<Vec3d>& input_points() const { return points_; }
     /// A per-input-vertex value at p: barycentric interpolation on the closest input triangle.
-    /// `face_hint` as in project_near; besides, a p within 1e-12·diagonal of the hint face is
-    /// taken on it without a search (a size looked up right after a projection onto that face):
-    /// the value then differs from the search's by rounding only.
+    /// `face_hint` only speeds up the exact search (the result does not depend on it); besides,
+    /// a p within 1e-12·diagonal of the hint face is taken on it without a search (a size looked
+    /// up right after a projection onto that face): the value then differs from the search's by
+    /// rounding only.
     double interpolate(const Vec3d& p, const std::vector<double>& per_input_vertex, int face_hint = -1) const;
     double diagonal() const { return diagonal_; }
     std::size_t curve_count() const { return curves_.size(); }
