@@ -391,3 +391,55 @@ TEST_CASE("shift_vertex: a stale or missing model-face hint moves every vertex e
     // The smoothing kept every triangle facing up (no fold).
     CHECK(folded_faces(no_hints) == 0);
 }
+
+TEST_CASE("surface model: the normal of a foot on an edge or at a vertex is the model's there, not one face's")
+{
+    // A roof of four triangles over the square [-1, 1]², ridge along y at x = 0, height 1:
+    //
+    //   (-1, 1, 0) +-----+-----+ (1, 1, 0)      each side slopes at 45°; the ridge (0, y, 1)
+    //              |   / | \   |                 from (0, -1, 1) to (0, 1, 1)
+    //              |  /  |  \  |
+    //   (-1,-1, 0) +-----+-----+ (1, -1, 0)
+    //
+    // Above the ridge the foot is on the ridge edge: the normal is the mean of the two sides'
+    // (straight up), whichever face the search names. Far out beyond a ridge end the foot is
+    // the ridge's end vertex: its angle-weighted normal.
+    SurfaceMesh mesh;
+    const VertexHandle a = mesh.add_vertex(Vec3d(-1, -1, 0)), b = mesh.add_vertex(Vec3d(0, -1, 1)),
+                       c = mesh.add_vertex(Vec3d(1, -1, 0)), d = mesh.add_vertex(Vec3d(1, 1, 0)),
+                       e = mesh.add_vertex(Vec3d(0, 1, 1)), f = mesh.add_vertex(Vec3d(-1, 1, 0));
+    mesh.add_face(a, b, e);
+    mesh.add_face(a, e, f);
+    mesh.add_face(b, c, d);
+    mesh.add_face(b, d, e);
+    hdimesh::surface::fixtures::mark_all_smooth(mesh);
+    const SurfaceModel model(mesh);
+    const double side = 1.0 / std::sqrt(2.0);
+
+    for (const int hint : {-1, 0, 1, 2, 3})
+    {
+        const ProjectedPoint above_ridge = model.project_near(Vec3d(0.0, 0.3, 2.0), VertexClass::Smooth, kNoCurve, hint);
+        REQUIRE(above_ridge.ok);
+        CHECK(above_ridge.point[0] == doctest::Approx(0.0));
+        CHECK(above_ridge.point[2] == doctest::Approx(1.0));
+        CHECK(above_ridge.normal[0] == doctest::Approx(0.0));
+        CHECK(above_ridge.normal[2] == doctest::Approx(1.0));
+        // Inside a face: that face's normal.
+        const ProjectedPoint on_side = model.project_near(Vec3d(0.5, 0.0, 0.6), VertexClass::Smooth, kNoCurve, hint);
+        REQUIRE(on_side.ok);
+        CHECK(on_side.normal[0] == doctest::Approx(side));
+        CHECK(on_side.normal[2] == doctest::Approx(side));
+    }
+    // Beyond the ridge's end (0, 1, 1), up and out along y: the foot is that vertex. Its faces
+    // there span 90° on each side (two on the left, one on the right), so the angle-weighted
+    // normal is straight up (a face's own would lean 45° to one side).
+    for (const int hint : {-1, 0, 1, 2, 3})
+    {
+        const ProjectedPoint beyond = model.project_near(Vec3d(0.0, 3.0, 3.0), VertexClass::Smooth, kNoCurve, hint);
+        REQUIRE(beyond.ok);
+        CHECK(beyond.point == mesh.point(e));
+        CHECK(beyond.normal[0] == doctest::Approx(0.0));
+        CHECK(beyond.normal[1] == doctest::Approx(0.0));
+        CHECK(beyond.normal[2] == doctest::Approx(1.0));
+    }
+}
