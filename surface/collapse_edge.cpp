@@ -30,34 +30,24 @@ bool class_allows_collapse(const OperatorContext& ctx, HalfedgeHandle h)
 
 }  // namespace
 
-OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain,
-                      double min_new_angle_deg)
+OpStatus collapse_shape_status(const OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
+                               bool require_quality_gain, double min_new_angle_deg)
 {
     using namespace detail;
-    SurfaceMesh& mesh = ctx.mesh;
-    OpResult result;
+    SurfaceMesh& mesh = ctx.mesh;  // (OpenMesh's topology test is not const; it changes nothing)
     const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
     // The layers from the cheapest rejection up (every layer must pass, so the order only decides
     // the time and the reported layer): the class and the length bound are a few lookups and
     // refuse most attempts of the remesh loop (a collapse that would make a neighbour too long);
-    // OpenMesh's topology test walks both rings; the distance to the model is a search.
-    if (!class_allows_collapse(ctx, h))
-    {
-        result.status = OpStatus::Class;
-        return result;
-    }
+    // OpenMesh's topology test walks both rings.
+    if (!class_allows_collapse(ctx, h)) return OpStatus::Class;
     const Vec3d p1 = mesh.point(v1);
     if (max_new_length > 0.0)
     {
         for (auto w : mesh.vv_range(v0))
-            if (w != v1 && (mesh.point(w) - p1).norm() > max_new_length)
-            {
-                result.status = OpStatus::Quality;
-                return result;
-            }
+            if (w != v1 && (mesh.point(w) - p1).norm() > max_new_length) return OpStatus::Quality;
     }
-    if (!mesh.is_collapse_ok(h))
-        return result;  // Topology
+    if (!mesh.is_collapse_ok(h)) return OpStatus::Topology;
 
     // Geometry and quality layers: the faces of v0 that survive, with v0 moved onto v1.
     auto survives = [&](FaceHandle f) {
@@ -71,18 +61,11 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
         if (!survives(f)) continue;
         const auto before = face_points(mesh, f);
         const auto after = face_points_with(mesh, f, v0, p1);
-        if (!turn_ok_cos(normal(before), normal(after), min_cos))
-        {
-            result.status = OpStatus::Geometry;
-            return result;
-        }
+        if (!turn_ok_cos(normal(before), normal(after), min_cos)) return OpStatus::Geometry;
         const double q = qe(after);
         if (q < ctx.limits.min_new_quality ||
             (min_new_angle_deg > 0.0 && triangle_min_angle_deg(after[0], after[1], after[2]) < min_new_angle_deg))
-        {
-            result.status = OpStatus::Quality;
-            return result;
-        }
+            return OpStatus::Quality;
         new_min = std::min(new_min, q);
     }
     if (require_quality_gain)
@@ -90,12 +73,25 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
         double old_min = 1.0;
         for (const VertexHandle v : {v0, v1})
             for (auto f : mesh.vf_range(v)) old_min = std::min(old_min, qe(face_points(mesh, f)));
-        if (!(new_min > old_min + 1e-9))
-        {
-            result.status = OpStatus::Quality;
-            return result;
-        }
+        if (!(new_min > old_min + 1e-9)) return OpStatus::Quality;
     }
+    return OpStatus::Done;
+}
+
+OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain,
+                      double min_new_angle_deg)
+{
+    using namespace detail;
+    SurfaceMesh& mesh = ctx.mesh;
+    OpResult result;
+    const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
+    result.status = collapse_shape_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
+    if (result.status != OpStatus::Done) return result;
+    const Vec3d p1 = mesh.point(v1);
+    auto survives = [&](FaceHandle f) {
+        const auto fv = face_vertices(mesh, f);
+        return std::find(fv.begin(), fv.end(), v1) == fv.end();
+    };
     // The centroids of the changed faces against the model, last: the expensive test.
     if (ctx.limits.max_model_distance > 0.0)
         for (auto f : mesh.vf_range(v0))
