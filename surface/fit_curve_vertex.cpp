@@ -71,7 +71,7 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         for (const Vec3d& w : options.witnesses)
             if (!patch.within(w, &q, options.tolerance)) e.add(patch.distance(w, &q), options.tolerance);
         auto sample = [&](const Vec3d& s) {
-            if (!ctx.near_model(s, v, options.tolerance)) e.add(ctx.distance_to_model(s, v), options.tolerance);
+            e.add(ctx.distance_beyond(s, v, options.tolerance), options.tolerance);
         };
         for (std::size_t i = 0; i < neighbours.size(); ++i)
         {

@@ -106,6 +106,12 @@ struct OperatorContext
     {
         return model.distance_to_surface(p, model_face(near));
     }
+    /// distance_to_model when beyond `tolerance`, else 0: most points of a tolerance check are
+    /// proven near by near_model's short descent; only the others are measured.
+    double distance_beyond(const Vec3d& p, VertexHandle near, double tolerance) const
+    {
+        return near_model(p, near, tolerance) ? 0.0 : distance_to_model(p, near);
+    }
 };
 
 /// The last layers of every vertex move, once its geometry and quality passed: the caller's

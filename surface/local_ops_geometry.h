@@ -74,6 +74,29 @@ struct StarFace
     }
 };
 
+/// Distance from p to triangle t.
+inline double distance_to_triangle(const Vec3d& p, const std::array<Vec3d, 3>& t)
+{
+    return std::sqrt((closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+}
+
+/// Distance from p to the nearest of `triangles` (a large value when there are none).
+inline double distance_to_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles)
+{
+    double best2 = 1e300;
+    for (const auto& t : triangles) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+    return std::sqrt(best2);
+}
+
+/// Whether distance_to_triangles(p, triangles) <= limit, decided at the first triangle within
+/// it (most witnesses of a tolerance check are, and need no other).
+inline bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles, double limit)
+{
+    for (const auto& t : triangles)
+        if (distance_to_triangle(p, t) <= limit) return true;
+    return false;
+}
+
 /// The faces around v in the order of OpenMesh's circulation (vf_range), into `out` (cleared
 /// first: callers may keep its capacity from one vertex to the next). Each face's points in the
 /// order of face_vertices, read off the halfedges around v (the circulators were a quarter of
@@ -136,7 +159,7 @@ struct TwoRingPatch
         {
             std::array<Vec3d, 3> t = triangles[i];
             if (v_at && moved[i] >= 0) t[moved[i]] = *v_at;
-            if (std::sqrt((closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm()) <= limit) return true;
+            if (distance_to_triangle(p, t) <= limit) return true;
         }
         return false;
     }

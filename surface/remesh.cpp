@@ -506,20 +506,19 @@ private:
             for (auto f : mesh_.vf_range(v)) around.push_back(f);
         std::sort(around.begin(), around.end());
         around.erase(std::unique(around.begin(), around.end()), around.end());
-        std::vector<std::array<Vec3d, 3>> rest;
+        // The output nearby before and after: the pair, and the rest of the faces around.
+        std::vector<std::array<Vec3d, 3>> output_before{old0, old1}, output_after{new0, new1};
         for (const FaceHandle f : around)
-            if (f != mesh_.face_handle(h0) && f != mesh_.face_handle(h1)) rest.push_back(detail::face_points(mesh_, f));
-        auto distance = [&](const Vec3d& w, const std::array<Vec3d, 3>& t0, const std::array<Vec3d, 3>& t1) {
-            double best2 = std::min((closest_point_on_triangle(w, t0[0], t0[1], t0[2]) - w).sqrnorm(),
-                                    (closest_point_on_triangle(w, t1[0], t1[1], t1[2]) - w).sqrnorm());
-            for (const auto& t : rest) best2 = std::min(best2, (closest_point_on_triangle(w, t[0], t[1], t[2]) - w).sqrnorm());
-            return std::sqrt(best2);
-        };
+            if (f != mesh_.face_handle(h0) && f != mesh_.face_handle(h1))
+            {
+                output_before.push_back(detail::face_points(mesh_, f));
+                output_after.push_back(output_before.back());
+            }
         auto worst_sample = [&](const Vec3d& mid, VertexHandle near, const std::array<Vec3d, 3>& t0,
                                 const std::array<Vec3d, 3>& t1) {
             double worst = 0.0;
             for (const Vec3d& q : {mid, (t0[0] + t0[1] + t0[2]) / 3.0, (t1[0] + t1[1] + t1[2]) / 3.0})
-                if (!ctx_.near_model(q, near, options_.tolerance)) worst = std::max(worst, ctx_.distance_to_model(q, near));
+                worst = std::max(worst, ctx_.distance_beyond(q, near, options_.tolerance));
             return worst;
         };
         const double bound = options_.tolerance;
@@ -531,12 +530,9 @@ private:
         for (const std::size_t i : model_point_grid().within(centre, reach + options_.tolerance))
         {
             const Vec3d& w = options_.model_points[i];
-            // Decided at the first triangle within the bound, for most witnesses.
-            auto near = [&](const std::array<Vec3d, 3>& t) {
-                return std::sqrt((closest_point_on_triangle(w, t[0], t[1], t[2]) - w).sqrnorm()) <= bound;
-            };
-            if (near(new0) || near(new1) || std::any_of(rest.begin(), rest.end(), near)) continue;
-            if (distance(w, new0, new1) > distance(w, old0, old1) + 1e-12 * reach) return false;
+            if (detail::within_triangles(w, output_after, bound)) continue;
+            if (detail::distance_to_triangles(w, output_after) > detail::distance_to_triangles(w, output_before) + 1e-12 * reach)
+                return false;
         }
         return try_flip(ctx_, e, FlipGoal::Quality).done();
     }
@@ -567,9 +563,7 @@ private:
         std::sort(faces.begin(), faces.end());
         faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
         double worst_before = 0.0, worst_after = 0.0;
-        auto sample = [&](const Vec3d& q, VertexHandle near) {
-            return ctx_.near_model(q, near, options_.tolerance) ? 0.0 : ctx_.distance_to_model(q, near);
-        };
+        auto sample = [&](const Vec3d& q, VertexHandle near) { return ctx_.distance_beyond(q, near, options_.tolerance); };
         for (const FaceHandle f : faces)
         {
             const auto fv = detail::face_vertices(mesh_, f);
@@ -593,24 +587,13 @@ private:
             if (w != b) worst_after = std::max(worst_after, sample(0.5 * (pb + mesh_.point(w)), b));
         }
         if (worst_after > bound && worst_after > worst_before) return false;
-        auto distance = [](const Vec3d& w, const std::vector<std::array<Vec3d, 3>>& patch) {
-            double best2 = 1e300;
-            for (const auto& t : patch) best2 = std::min(best2, (closest_point_on_triangle(w, t[0], t[1], t[2]) - w).sqrnorm());
-            return std::sqrt(best2);
-        };
         double reach = 0.0;
         for (auto w : mesh_.vv_range(a)) reach = std::max(reach, (mesh_.point(w) - pb).norm());
-        auto within = [](const Vec3d& w, const std::vector<std::array<Vec3d, 3>>& patch, double limit) {
-            for (const auto& t : patch)
-                if (std::sqrt((closest_point_on_triangle(w, t[0], t[1], t[2]) - w).sqrnorm()) <= limit) return true;
-            return false;
-        };
         for (const std::size_t i : model_point_grid().within(pb, reach + bound))
         {
             const Vec3d& w = options_.model_points[i];
-            if (within(w, after, bound)) continue;  // decided at the first triangle within the bound
-            const double d_after = distance(w, after);
-            if (d_after > distance(w, before) + 1e-12 * reach) return false;
+            if (detail::within_triangles(w, after, bound)) continue;
+            if (detail::distance_to_triangles(w, after) > detail::distance_to_triangles(w, before) + 1e-12 * reach) return false;
         }
         if (for_budget) return try_collapse(ctx_, h, max_length, false, kReferenceCollapseMinAngle).done();
         return try_collapse(ctx_, h, max_length, true).done();
@@ -693,8 +676,7 @@ private:
     // Whether output face f passes within the tolerance of p (the arithmetic of the tree's search).
     bool within_tolerance(const Vec3d& p, FaceHandle f) const
     {
-        const auto t = detail::face_points(mesh_, f);
-        return (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm() <= options_.tolerance;
+        return detail::distance_to_triangle(p, detail::face_points(mesh_, f)) <= options_.tolerance;
     }
 
     // Output face f (if live), or else a face around its vertices, within the tolerance of p
@@ -1385,12 +1367,12 @@ private:
             {
                 const auto t = detail::face_points(mesh_, f);
                 const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
-                if (!ctx_.near_model(centroid, v, bound)) worst = std::max(worst, ctx_.distance_to_model(centroid, v));
+                worst = std::max(worst, ctx_.distance_beyond(centroid, v, bound));
             }
             for (auto w : mesh_.vv_range(v))
             {
                 const Vec3d mid = 0.5 * (mesh_.point(w) + mesh_.point(v));
-                if (!ctx_.near_model(mid, v, bound)) worst = std::max(worst, ctx_.distance_to_model(mid, v));
+                worst = std::max(worst, ctx_.distance_beyond(mid, v, bound));
             }
             return worst;
         };

@@ -83,12 +83,12 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         {
             const auto t = face_points_with(mesh, f, v, at);
             const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
-            if (!ctx.near_model(centroid, v, options.tolerance)) worst = std::max(worst, ctx.distance_to_model(centroid, v));
+            worst = std::max(worst, ctx.distance_beyond(centroid, v, options.tolerance));
         }
         for (auto w : mesh.vv_range(v))
         {
             const Vec3d mid = 0.5 * (mesh.point(w) + at);
-            if (!ctx.near_model(mid, v, options.tolerance)) worst = std::max(worst, ctx.distance_to_model(mid, v));
+            worst = std::max(worst, ctx.distance_beyond(mid, v, options.tolerance));
         }
         return worst;
     };
