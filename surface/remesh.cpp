@@ -54,6 +54,23 @@ constexpr double kAdaptiveToleranceMargin = 0.8;
 // A point equal to none (NaN coordinates): "not proven near" in the refinement's caches.
 const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
 
+// What a change in the repair stages after the polish must keep.
+enum class Keep
+{
+    Nothing,              // the plain operator
+    Tolerance,            // no model point around ends farther than max(tolerance, before), and
+                          // the changed triangles' samples stray no farther than before beyond it
+    ToleranceAndLengths,  // the same, and no new edge short for the reference size
+};
+
+// What a tolerance-keeping collapse is for (its limits on the new triangles).
+enum class CollapseFor
+{
+    Repair,  // of a needle: the worst Qe around must rise, new edges within the Qt band
+    Budget,  // of a short edge: new edges up to kReferenceCollapseLength of the reference size,
+             // no angle under kReferenceCollapseMinAngle, no quality gain asked
+};
+
 class Remesher
 {
 public:
@@ -111,7 +128,7 @@ public:
         // the new splits may move some once more; a last refinement has the final word.
         if (refine_where_far(true) > 0)
         {
-            cleanup_worst_triangles(true);
+            cleanup_worst_triangles(Keep::Tolerance);
             refine_where_far(true);
         }
         // A needle with a curve vertex (at a narrow corner between two curves, the only cure)
@@ -537,12 +554,10 @@ private:
         return try_flip(ctx_, e, FlipGoal::Quality).done();
     }
 
-    // A collapse of h (try_collapse, raising the worst Qe around, new edges within the Qt band)
-    // that keeps the tolerance: simulated first, refused when a model point around ends farther
-    // from the output than max(tolerance, before) or the new triangles' samples stray farther.
-    // (A budget collapse instead, `for_budget`: new edges up to kReferenceCollapseLength of the
-    // reference size and no angle under kReferenceCollapseMinAngle, no quality gain asked.)
-    bool collapse_keeping_tolerance(HalfedgeHandle h, bool for_budget = false)
+    // A collapse of h (try_collapse with the limits of `purpose`) that keeps the tolerance:
+    // simulated first, refused when a model point around ends farther from the output than
+    // max(tolerance, before) or the new triangles' samples stray farther.
+    bool collapse_keeping_tolerance(HalfedgeHandle h, CollapseFor purpose = CollapseFor::Repair)
     {
         const double bound = options_.tolerance;
         const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
@@ -551,6 +566,7 @@ private:
         // (measured, rocker-arm's budget collapses: of 954 candidates, 411 kept the tolerance
         // and 86 of those passed the collapse's layers).
         const double size = options_.refine_reference_size > 0.0 ? options_.refine_reference_size : edge_size(mesh_.edge_handle(h));
+        const bool for_budget = purpose == CollapseFor::Budget;
         const double max_length = for_budget ? kReferenceCollapseLength * size : size / 0.66;
         const OpStatus shape = for_budget ? collapse_shape_status(ctx_, h, max_length, false, kReferenceCollapseMinAngle)
                                           : collapse_shape_status(ctx_, h, max_length, true);
@@ -1201,7 +1217,7 @@ private:
                 {
                     const HalfedgeHandle h = mesh_.halfedge_handle(e, i);
                     const VertexHandle kept = mesh_.to_vertex_handle(h);
-                    if (!collapse_keeping_tolerance(h, true)) continue;
+                    if (!collapse_keeping_tolerance(h, CollapseFor::Budget)) continue;
                     collapsed_onto.push_back(kept);
                     ++done;
                     break;
@@ -1227,7 +1243,7 @@ private:
                 std::vector<VertexHandle> ring{v};
                 for (auto w : mesh_.vv_range(v)) ring.push_back(w);
                 for (const VertexHandle w : ring)
-                    if (!mesh_.status(w).deleted() && shift(w, smart, true, true)) ++report_.shifts;
+                    if (!mesh_.status(w).deleted() && shift(w, smart, Keep::ToleranceAndLengths)) ++report_.shifts;
             }
         report_.collapses += total;
         return total;
@@ -1308,13 +1324,13 @@ private:
 
     // The worst triangles: try, in order, a quality flip of each edge, a collapse of the
     // shortest edge that raises the worst Qe around, removal of a vertex, a smart shift of each
-    // vertex; repeat while something changes. `keep_tolerance`: between refinements, a change
+    // vertex; repeat while something changes. Keep::Tolerance: between refinements, a change
     // keeps what the refinement reached (no model point around ends farther than
     // max(tolerance, before), see the *_keeping_tolerance operators; no vertex removal, which
     // has no such check), except on a triangle under the snap's angle bound, which gets the
     // plain cure when the tolerance-keeping one fails (the refinement after the cleanup looks
     // at the tolerance again; without it cheburashka's min angle fell to 17.5°).
-    void cleanup_worst_triangles(bool keep_tolerance = false)
+    void cleanup_worst_triangles(Keep keep = Keep::Nothing)
     {
         ShiftOptions smart;
         smart.smart = true;
@@ -1328,10 +1344,11 @@ private:
             for (const FaceHandle f : bad)
             {
                 if (mesh_.status(f).deleted() || !face_angle_below(f, options_.cleanup_angle_deg)) continue;
-                if (improve_face(f, smart, keep_tolerance)) ++changed;
+                if (improve_face(f, smart, keep)) ++changed;
                 // Under the refinement moves' own angle bound, the angle comes first (the
                 // refinement after the cleanup looks at the tolerance again).
-                else if (keep_tolerance && face_angle_below(f, options_.snap_min_angle_deg) && improve_face(f, smart, false))
+                else if (keep != Keep::Nothing && face_angle_below(f, options_.snap_min_angle_deg) &&
+                         improve_face(f, smart, Keep::Nothing))
                     ++changed;
             }
             if (options_.verbosity > 0)
@@ -1342,18 +1359,19 @@ private:
             {
                 if (mesh_.status(f).deleted()) continue;
                 for (auto v : mesh_.fv_range(f))
-                    if (shift(v, smart, keep_tolerance)) ++report_.shifts;
+                    if (shift(v, smart, keep)) ++report_.shifts;
             }
         }
     }
 
-    // A shift of v (shift_vertex); with `keep_tolerance`, moved back when a model point around
-    // the star ends farther from it than max(tolerance, before) or the star's samples (edge
-    // midpoints, centroids) stray farther from the model than before, beyond the tolerance.
-    // `keep_lengths`: moved back too when an edge of the star gets short for the reference size.
-    bool shift(VertexHandle v, const ShiftOptions& options, bool keep_tolerance, bool keep_lengths = false)
+    // A shift of v (shift_vertex), moved back when it breaks what `keep` asks: a model point
+    // around the star ending farther from it than max(tolerance, before), the star's samples
+    // (edge midpoints, centroids) straying farther from the model than before beyond the
+    // tolerance, and (ToleranceAndLengths) an edge of the star getting short for the reference size.
+    bool shift(VertexHandle v, const ShiftOptions& options, Keep keep)
     {
-        if (!keep_tolerance || !(options_.tolerance > 0.0)) return shift_vertex(ctx_, v, options).done();
+        if (keep == Keep::Nothing || !(options_.tolerance > 0.0)) return shift_vertex(ctx_, v, options).done();
+        const bool keep_lengths = keep == Keep::ToleranceAndLengths;
         const double bound = options_.tolerance;
         const Vec3d before = mesh_.point(v);
         const int face_before = ctx_.model_face(v);
@@ -1442,8 +1460,9 @@ private:
         return true;
     }
 
-    bool improve_face(FaceHandle f, const ShiftOptions& smart, bool keep_tolerance)
+    bool improve_face(FaceHandle f, const ShiftOptions& smart, Keep keep)
     {
+        const bool keep_tolerance = keep != Keep::Nothing;
         std::vector<EdgeHandle> edges;
         for (auto e : mesh_.fe_range(f)) edges.push_back(e);
         std::sort(edges.begin(), edges.end(), [&](EdgeHandle a, EdgeHandle b) {
@@ -1476,7 +1495,7 @@ private:
             }
         bool moved = false;
         for (const VertexHandle v : vertices)
-            if (!mesh_.status(v).deleted() && shift(v, smart, keep_tolerance))
+            if (!mesh_.status(v).deleted() && shift(v, smart, keep))
             {
                 ++report_.shifts;
                 moved = true;
