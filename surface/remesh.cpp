@@ -79,7 +79,7 @@ public:
     Remesher& operator=(const Remesher&) = delete;
 
     Remesher(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model, const SurfaceHooks& hooks)
-        : mesh_(mesh), options_(options), ctx_(mesh, model, noting_changes(hooks), options.limits),
+        : mesh_(mesh), options_(options), ctx_(mesh, model, with_change_notes(hooks), options.limits),
           caller_keeps_handles_(!hooks.empty())
     {
         ctx_.limits.max_model_distance = options.max_model_distance;
@@ -737,7 +737,7 @@ private:
     // (face_points_), each operator's changed vertices noted: every face an operator creates or
     // changes has one of them (a split's new vertex, a flip's new edge's ends, a moved vertex, a
     // collapse's kept vertex, a removal's new faces' vertices).
-    SurfaceHooks noting_changes(SurfaceHooks hooks)
+    SurfaceHooks with_change_notes(SurfaceHooks hooks)
     {
         auto note = [this](VertexHandle v) {
             if (noting_changes_) changed_vertices_.push_back(v);

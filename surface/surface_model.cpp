@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "surface/surface_errors.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -90,6 +92,19 @@ double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& n
 
 SurfaceModel::SurfaceModel(const SurfaceMesh& input)
 {
+    // The model numbers input vertices and faces by handle index: a mesh with deleted elements
+    // (an operator's result before its garbage collection) would leave holes in every table.
+    if (input.has_vertex_status() && input.has_face_status())
+    {
+        for (auto v : input.all_vertices())
+            if (input.status(v).deleted())
+                throw SurfaceInputError("SurfaceModel: the input mesh has deleted vertices (e.g. vertex " +
+                                        std::to_string(v.idx()) + "): garbage-collect it first");
+        for (auto f : input.all_faces())
+            if (input.status(f).deleted())
+                throw SurfaceInputError("SurfaceModel: the input mesh has deleted faces (e.g. face " +
+                                        std::to_string(f.idx()) + "): garbage-collect it first");
+    }
     // Read-only look-up: an unclassified input is all smooth, without curves.
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
     OpenMesh::EPropHandleT<int> edge_curve;
@@ -198,7 +213,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     }
 }
 
-int SurfaceModel::descend(const Vec3d& p, int face, Vec3d& foot, bool& converged, double stop_d2) const
+SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double stop_d2) const
 {
     // Most descents end in a step or two (a shifted vertex moves by a fraction of the output
     // size, the input is finer or as fine); a longer one means a poor hint.
@@ -207,9 +222,10 @@ int SurfaceModel::descend(const Vec3d& p, int face, Vec3d& foot, bool& converged
         const auto& fv = face_vertices_[f];
         return closest_point_on_triangle(p, points_[fv[0]], points_[fv[1]], points_[fv[2]]);
     };
-    converged = false;
-    foot = foot_on(face);
-    double d2 = (foot - p).sqrnorm();
+    Descent out;
+    out.face = face;
+    out.foot = foot_on(face);
+    double d2 = (out.foot - p).sqrnorm();
     for (int step = 0; step < kMaxDescentSteps && !(d2 <= stop_d2); ++step)
     {
         // Across the edges (three faces, the usual way down); for a foot at a corner of the
@@ -222,25 +238,25 @@ int SurfaceModel::descend(const Vec3d& p, int face, Vec3d& foot, bool& converged
             const double g_d2 = (q - p).sqrnorm();
             if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2;
         };
-        for (const int g : face_neighbours_[face])
+        for (const int g : face_neighbours_[out.face])
             if (g >= 0) consider(g);
         if (next < 0)
-            for (const int v : face_vertices_[face])
+            for (const int v : face_vertices_[out.face])
             {
-                if (!(points_[v] == foot)) continue;  // (the corner region returns the corner itself)
+                if (!(points_[v] == out.foot)) continue;  // (the corner region returns the corner itself)
                 for (int k = vertex_face_offsets_[v]; k < vertex_face_offsets_[v + 1]; ++k)
-                    if (vertex_faces_[k] != face) consider(vertex_faces_[k]);
+                    if (vertex_faces_[k] != out.face) consider(vertex_faces_[k]);
             }
         if (next < 0)
         {
-            converged = true;
-            return face;
+            out.converged = true;
+            return out;
         }
-        face = next;
-        foot = next_foot;
+        out.face = next;
+        out.foot = next_foot;
         d2 = next_d2;
     }
-    return face;
+    return out;
 }
 
 bool SurfaceModel::within_fraction_of_face(int face, double d2, double fraction) const
@@ -281,18 +297,17 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
     ProjectedPoint out;
     if (face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
     {
-        Vec3d foot;
-        bool converged = false;
-        const int face = descend(p, face_hint, foot, converged);
-        if (converged && local_fraction > 0.0 && within_fraction_of_face(face, (foot - p).sqrnorm(), local_fraction))
+        const Descent descent = descend(p, face_hint);
+        if (descent.converged && local_fraction > 0.0 &&
+            within_fraction_of_face(descent.face, (descent.foot - p).sqrnorm(), local_fraction))
         {
-            out.point = foot;
-            out.normal = foot_normal(face, foot);
-            out.face = face;
+            out.point = descent.foot;
+            out.normal = foot_normal(descent.face, descent.foot);
+            out.face = descent.face;
             out.ok = true;
             return out;
         }
-        face_hint = face;  // where the descent stopped: a tight bound for the search
+        face_hint = descent.face;  // where the descent stopped: a tight bound for the search
     }
     const auto hit = triangles_.closest(p, face_hint);
     if (hit.primitive < 0) return out;
@@ -361,10 +376,9 @@ bool SurfaceModel::near_model(const Vec3d& p, double distance, int face_hint) co
     {
         // A face within the distance found by the descent is a proof (the closest face can
         // only be nearer; the same arithmetic as the search's distance).
-        Vec3d foot;
-        bool converged = false;
-        face_hint = descend(p, face_hint, foot, converged, distance * distance);
-        if ((foot - p).norm() <= distance) return true;
+        const Descent descent = descend(p, face_hint, distance * distance);
+        if ((descent.foot - p).norm() <= distance) return true;
+        face_hint = descent.face;
     }
     const auto hit = triangles_.closest(p, face_hint);
     return hit.primitive < 0 || hit.distance <= distance;

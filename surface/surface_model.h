@@ -18,8 +18,9 @@ namespace hdimesh::surface
 class SurfaceModel final : public Projector
 {
 public:
-    /// `input` must carry the feature classification (detect_features). The model copies the
-    /// geometry it needs; `input` may be modified or destroyed afterwards.
+    /// `input` must carry the feature classification (detect_features) and no deleted elements
+    /// (SurfaceInputError otherwise). The model copies the geometry it needs; `input` may be
+    /// modified or destroyed afterwards.
     explicit SurfaceModel(const SurfaceMesh& input);
 
     /// A smooth-surface projection (e.g. the HDI model) used for smooth vertices instead of the
@@ -69,10 +70,15 @@ public:
     std::size_t curve_count() const { return curves_.size(); }
 
 private:
-    // closest_on_input's descent from `face`: the face it stopped at, with p's foot on it;
-    // `converged`: at a local minimum (not out of steps, nor stopped early at a face within
-    // sqrt(stop_d2) of p, as near_model wants).
-    int descend(const Vec3d& p, int face, Vec3d& foot, bool& converged, double stop_d2 = -1.0) const;
+    // closest_on_input's descent from a face over the input toward p.
+    struct Descent
+    {
+        int face = -1;           // where it stopped
+        Vec3d foot{0, 0, 0};     // p's closest point on that face
+        bool converged = false;  // at a local minimum (not out of steps, nor stopped early at a
+                                 // face within sqrt(stop_d2) of p, as near_model wants)
+    };
+    Descent descend(const Vec3d& p, int face, double stop_d2 = -1.0) const;
     // The model's normal at `foot`, a point of `face`: the face's, or the vertex's or the edge's
     // when the foot is at a corner or on an edge (not the normal of whichever face a tie named).
     Vec3d foot_normal(int face, const Vec3d& foot) const;
