@@ -173,6 +173,9 @@ struct ShiftOptions
 {
     double step = 0.5;  // α: fraction of the way to the optimal point
     bool smart = true;  // reject a move that lowers the worst Qe of the ball
+    /// The caller's last layer (empty: none): asked with the point a trial would commit, after
+    /// every layer of the shift passed; false refuses the shift (no smaller step is tried).
+    std::function<bool(const Vec3d& point)> accept;
 };
 /// George's nodal shifting: the ideal point of each outer edge (apex of the equilateral
 /// triangle on it, in the tangent plane), weights 1/Qe², P += α(P_opt − P), then projection

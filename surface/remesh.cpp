@@ -1364,64 +1364,60 @@ private:
         }
     }
 
-    // A shift of v (shift_vertex), moved back when it breaks what `keep` asks: a model point
-    // around the star ending farther from it than max(tolerance, before), the star's samples
-    // (edge midpoints, centroids) straying farther from the model than before beyond the
-    // tolerance, and (ToleranceAndLengths) an edge of the star getting short for the reference size.
+    // A shift of v (shift_vertex), refused before it is committed when it would break what
+    // `keep` asks: a model point around the star ending farther from it than max(tolerance,
+    // before), the star's samples (edge midpoints, centroids) straying farther from the model
+    // than before beyond the tolerance, and (ToleranceAndLengths) an edge of the star getting
+    // short for the reference size.
     bool shift(VertexHandle v, const ShiftOptions& options, Keep keep)
     {
         if (keep == Keep::Nothing || !(options_.tolerance > 0.0)) return shift_vertex(ctx_, v, options).done();
         const bool keep_lengths = keep == Keep::ToleranceAndLengths;
         const double bound = options_.tolerance;
         const Vec3d before = mesh_.point(v);
-        const int face_before = ctx_.model_face(v);
         const detail::TwoRingPatch patch(mesh_, v);
         double reach = 0.0;
         for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
         const std::vector<std::size_t> around = model_point_grid().within(before, reach + bound);
-        auto worst_sample = [&]() {
+        // The star's samples and short edges with v at `at`.
+        auto worst_sample = [&](const Vec3d& at) {
             double worst = 0.0;
             for (auto f : mesh_.vf_range(v))
             {
-                const auto t = detail::face_points(mesh_, f);
+                const auto t = detail::face_points_with(mesh_, f, v, at);
                 const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
                 worst = std::max(worst, ctx_.distance_beyond(centroid, v, bound));
             }
             for (auto w : mesh_.vv_range(v))
             {
-                const Vec3d mid = 0.5 * (mesh_.point(w) + mesh_.point(v));
+                const Vec3d mid = 0.5 * (mesh_.point(w) + at);
                 worst = std::max(worst, ctx_.distance_beyond(mid, v, bound));
             }
             return worst;
         };
-        const double samples_before = worst_sample();
-        auto short_star_edges = [&]() {
+        auto short_star_edges = [&](const Vec3d& at) {
             int n = 0;
             for (auto h : mesh_.voh_range(v))
-                if (size_quality(mesh_.calc_edge_length(h), reference_size(mesh_.edge_handle(h))) < 0.66) ++n;
+                if (size_quality((mesh_.point(mesh_.to_vertex_handle(h)) - at).norm(), reference_size(mesh_.edge_handle(h))) < 0.66)
+                    ++n;
             return n;
         };
-        const int short_before = keep_lengths ? short_star_edges() : 0;
-        if (!shift_vertex(ctx_, v, options).done()) return false;
-        const Vec3d after = mesh_.point(v);
-        bool worse = keep_lengths && short_star_edges() > short_before;
-        if (!worse)
-        {
-            const double samples_after = worst_sample();
-            if (samples_after > bound && samples_after > samples_before) worse = true;
-        }
-        for (std::size_t k = 0; k < around.size() && !worse; ++k)
-        {
-            const Vec3d& w = options_.model_points[around[k]];
-            if (patch.within(w, &after, bound)) continue;  // decided at the first triangle within
-            if (patch.distance(w, &after) > patch.distance(w, nullptr) + 1e-12 * reach) worse = true;
-        }
-        if (!worse) return true;
-        // Moved back: a move like any other for the hooks (the coupling mirrors both). A hook may
-        // refuse it; the shift then stands and is reported as one.
-        const bool moved_back = commit_move(ctx_, v, before, face_before).done();
-        set_size(v);
-        return !moved_back;
+        const double samples_before = worst_sample(before);
+        const int short_before = keep_lengths ? short_star_edges(before) : 0;
+        ShiftOptions keeping = options;
+        keeping.accept = [&](const Vec3d& after) {
+            if (keep_lengths && short_star_edges(after) > short_before) return false;
+            const double samples_after = worst_sample(after);
+            if (samples_after > bound && samples_after > samples_before) return false;
+            for (const std::size_t k : around)
+            {
+                const Vec3d& w = options_.model_points[k];
+                if (patch.within(w, &after, bound)) continue;  // decided at the first triangle within
+                if (patch.distance(w, &after) > patch.distance(w, nullptr) + 1e-12 * reach) return false;
+            }
+            return !options.accept || options.accept(after);
+        };
+        return shift_vertex(ctx_, v, keeping).done();
     }
 
     // The last word for needles with a curve vertex: that vertex slides along its curve

@@ -162,6 +162,11 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         if (new_quality < ctx.limits.min_new_quality && new_quality < old_quality) continue;
         if (new_quality < 0.0) continue;
         if (options.smart && new_quality < old_quality - 1e-12) continue;
+        if (options.accept && !options.accept(q))
+        {
+            result.status = OpStatus::Geometry;
+            return result;
+        }
         return commit_move(ctx, v, q, projected.face);
     }
     result.status = OpStatus::Quality;
