@@ -316,6 +316,46 @@ TEST_CASE("nodal shifting moves a displaced vertex back toward the balanced poin
     CHECK(mesh.point(corner) == Vec3d(0, 0, 0));
 }
 
+TEST_CASE("nodal shifting asks the caller's accept layer with the point it would commit, before committing")
+{
+    //   The displaced vertex of the test above: a refusing layer leaves the mesh, the hint and
+    //   the hooks untouched; an accepting one is asked with exactly the point then committed.
+    SurfaceMesh mesh = grid(3);
+    PlaneProjector plane;
+    SurfaceHooks hooks;
+    int moves = 0;
+    hooks.on_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++moves; };
+    OperatorContext ctx(mesh, plane, hooks);
+    const VertexHandle v = vertex_at(mesh, Vec3d(1, 1, 0));
+    const Vec3d displaced(1.6, 1.55, 0);
+    mesh.set_point(v, displaced);
+    const int hint = ctx.model_face(v);
+
+    std::vector<Vec3d> asked;
+    ShiftOptions refusing;
+    refusing.accept = [&](const Vec3d& p) {
+        asked.push_back(p);
+        return false;
+    };
+    CHECK(shift_vertex(ctx, v, refusing).status == OpStatus::Geometry);
+    CHECK(asked.size() == 1);  // refused: no smaller step is tried
+    CHECK(mesh.point(v) == displaced);
+    CHECK(ctx.model_face(v) == hint);
+    CHECK(moves == 0);
+
+    asked.clear();
+    ShiftOptions accepting;
+    accepting.accept = [&](const Vec3d& p) {
+        asked.push_back(p);
+        return true;
+    };
+    REQUIRE(shift_vertex(ctx, v, accepting).done());
+    REQUIRE(asked.size() == 1);
+    CHECK(mesh.point(v) == asked.front());
+    CHECK(asked.front() != displaced);
+    CHECK(moves == 1);
+}
+
 TEST_CASE("quality measures: Qe of an equilateral triangle is 1, angles, Hausdorff of two parallel squares")
 {
     const Vec3d a(0, 0, 0), b(1, 0, 0), c(0.5, std::sqrt(3.0) / 2.0, 0);
