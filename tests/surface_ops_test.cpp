@@ -285,18 +285,42 @@ TEST_CASE("vertex removal retriangulates the hole better, conserving the area")
     CHECK(try_remove_vertex(ctx, vertex_at(mesh, Vec3d(2, 0, 0))).status == OpStatus::Class);
 }
 
+// The 3x3 grid with its interior vertex (1,1) displaced to (1.6, 1.55), on the plane z = 0; the
+// hooks count the moves. (Built in place: the hooks point back at it.)
+struct DisplacedCentre
+{
+    SurfaceMesh mesh = grid(3);
+    PlaneProjector plane;
+    int moves = 0;
+    OperatorContext ctx;
+    VertexHandle v;
+    const Vec3d displaced{1.6, 1.55, 0};
+
+    DisplacedCentre() : ctx(mesh, plane, counting_moves(moves))
+    {
+        v = vertex_at(mesh, Vec3d(1, 1, 0));
+        mesh.set_point(v, displaced);
+    }
+    DisplacedCentre(const DisplacedCentre&) = delete;
+    DisplacedCentre& operator=(const DisplacedCentre&) = delete;
+
+    static SurfaceHooks counting_moves(int& moves)
+    {
+        SurfaceHooks hooks;
+        hooks.on_move = [&moves](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++moves; };
+        return hooks;
+    }
+};
+
 TEST_CASE("nodal shifting moves a displaced vertex back toward the balanced point, on the model")
 {
     //   3x3 grid; the interior vertex (1,1) is displaced to (1.6, 1.55): shifting raises the
     //   worst Qe of its ball and keeps z = 0. Corners and curve ends do not move.
-    SurfaceMesh mesh = grid(3);
-    PlaneProjector plane;
-    SurfaceHooks hooks;
-    int moves = 0;
-    hooks.on_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++moves; };
-    OperatorContext ctx(mesh, plane, hooks);
-    const VertexHandle v = vertex_at(mesh, Vec3d(1, 1, 0));
-    mesh.set_point(v, Vec3d(1.6, 1.55, 0));
+    DisplacedCentre grid_case;
+    SurfaceMesh& mesh = grid_case.mesh;
+    OperatorContext& ctx = grid_case.ctx;
+    const int& moves = grid_case.moves;
+    const VertexHandle v = grid_case.v;
     auto ball = [&]() {
         double q = 1.0;
         for (auto f : mesh.vf_range(v)) q = std::min(q, face_qe(mesh, f));
@@ -320,15 +344,12 @@ TEST_CASE("nodal shifting asks the caller's accept layer with the point it would
 {
     //   The displaced vertex of the test above: a refusing layer leaves the mesh, the hint and
     //   the hooks untouched; an accepting one is asked with exactly the point then committed.
-    SurfaceMesh mesh = grid(3);
-    PlaneProjector plane;
-    SurfaceHooks hooks;
-    int moves = 0;
-    hooks.on_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++moves; };
-    OperatorContext ctx(mesh, plane, hooks);
-    const VertexHandle v = vertex_at(mesh, Vec3d(1, 1, 0));
-    const Vec3d displaced(1.6, 1.55, 0);
-    mesh.set_point(v, displaced);
+    DisplacedCentre grid_case;
+    SurfaceMesh& mesh = grid_case.mesh;
+    OperatorContext& ctx = grid_case.ctx;
+    const int& moves = grid_case.moves;
+    const VertexHandle v = grid_case.v;
+    const Vec3d displaced = grid_case.displaced;
     const int hint = ctx.model_face(v);
 
     std::vector<Vec3d> asked;
