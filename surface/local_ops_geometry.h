@@ -1,7 +1,7 @@
 #pragma once
 // Small geometric helpers shared by the operator files (split, collapse, flip, removal, shift):
 // a face's vertices and points, optionally with one vertex moved, the star of a vertex for
-// trials that move it, and the angle tests.
+// trials that move it, distances to a patch of triangles, and the angle tests.
 
 #include <algorithm>
 #include <array>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "surface/closest_point_tree.h"
+#include "surface/local_ops.h"
 #include "surface/surface_mesh.h"
 #include "surface/surface_quality.h"
 
@@ -53,9 +54,7 @@ inline bool turn_ok_cos(const Vec3d& old_normal, const Vec3d& new_normal, double
 /// The new normal turned by at most the allowed angle from the old one (and is not degenerate).
 inline bool turn_ok(const Vec3d& old_normal, const Vec3d& new_normal, double max_turn_deg)
 {
-    if (!(new_normal.sqrnorm() > 0.5)) return false;
-    if (!(old_normal.sqrnorm() > 0.5)) return true;
-    return OpenMesh::dot(old_normal, new_normal) >= cos_deg(max_turn_deg);
+    return turn_ok_cos(old_normal, new_normal, cos_deg(max_turn_deg));
 }
 
 /// A face around a vertex v, collected once for trial positions that move v only: its points in
@@ -95,6 +94,16 @@ inline bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d,
     for (const auto& t : triangles)
         if (distance_to_triangle(p, t) <= limit) return true;
     return false;
+}
+
+/// Whether model point w, against the output near a change (its triangles before and after),
+/// ends within the larger of `bound` and its distance before (plus `slack`): the change opens
+/// no gap at w.
+inline bool keeps_witness(const Vec3d& w, const std::vector<std::array<Vec3d, 3>>& before,
+                          const std::vector<std::array<Vec3d, 3>>& after, double bound, double slack)
+{
+    if (within_triangles(w, after, bound)) return true;
+    return !(distance_to_triangles(w, after) > distance_to_triangles(w, before) + slack);
 }
 
 /// The faces around v in the order of OpenMesh's circulation (vf_range), into `out` (cleared
@@ -152,15 +161,19 @@ struct TwoRingPatch
         }
     }
 
+    /// Triangle i with v at *v_at (nullptr: where it is).
+    std::array<Vec3d, 3> triangle(std::size_t i, const Vec3d* v_at) const
+    {
+        std::array<Vec3d, 3> t = triangles[i];
+        if (v_at && moved[i] >= 0) t[moved[i]] = *v_at;
+        return t;
+    }
+
     /// Whether distance(p, v_at) <= limit, decided at the first triangle within it.
     bool within(const Vec3d& p, const Vec3d* v_at, double limit) const
     {
         for (std::size_t i = 0; i < triangles.size(); ++i)
-        {
-            std::array<Vec3d, 3> t = triangles[i];
-            if (v_at && moved[i] >= 0) t[moved[i]] = *v_at;
-            if (distance_to_triangle(p, t) <= limit) return true;
-        }
+            if (distance_to_triangle(p, triangle(i, v_at)) <= limit) return true;
         return false;
     }
 
@@ -170,13 +183,35 @@ struct TwoRingPatch
         double best2 = 1e300;
         for (std::size_t i = 0; i < triangles.size(); ++i)
         {
-            std::array<Vec3d, 3> t = triangles[i];
-            if (v_at && moved[i] >= 0) t[moved[i]] = *v_at;
+            const std::array<Vec3d, 3> t = triangle(i, v_at);
             best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
         }
         return std::sqrt(best2);
     }
+
+    /// keeps_witness for a move of v to `at`.
+    bool keeps_witness(const Vec3d& w, const Vec3d& at, double bound, double slack) const
+    {
+        if (within(w, &at, bound)) return true;
+        return !(distance(w, &at) > distance(w, nullptr) + slack);
+    }
 };
+
+/// The farthest from the model beyond `tolerance` (OperatorContext::distance_beyond) of the
+/// samples of v's star (its faces' centroids, its edges' midpoints) with v at `at`: what a
+/// move of v may not make worse beyond the tolerance.
+inline double star_samples_beyond(const OperatorContext& ctx, VertexHandle v, const Vec3d& at, double tolerance)
+{
+    const SurfaceMesh& mesh = ctx.mesh;
+    double worst = 0.0;
+    for (auto f : mesh.vf_range(v))
+    {
+        const auto t = face_points_with(mesh, f, v, at);
+        worst = std::max(worst, ctx.distance_beyond((t[0] + t[1] + t[2]) / 3.0, v, tolerance));
+    }
+    for (auto w : mesh.vv_range(v)) worst = std::max(worst, ctx.distance_beyond(0.5 * (mesh.point(w) + at), v, tolerance));
+    return worst;
+}
 
 /// How far a length is out of the band [lo, hi] (≤ 0 bounds: open), 0 inside.
 inline double out_of_band(double length, double lo, double hi)

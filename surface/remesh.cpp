@@ -157,6 +157,17 @@ private:
         return n;
     }
 
+    // The edges of v's faces, in circulation order (shared ones twice): the flips that settle a
+    // vertex after a change are tried on them, and a flip changes the faces, so the list is
+    // taken before.
+    std::vector<EdgeHandle> edges_of_faces_at(VertexHandle v) const
+    {
+        std::vector<EdgeHandle> edges;
+        for (auto f : mesh_.vf_range(v))
+            for (auto e : mesh_.fe_range(f)) edges.push_back(e);
+        return edges;
+    }
+
     // A coarsening pass deletes most of a fine input's elements (stanford-bunny's first
     // iteration: two thirds), and every later pass would still step over them. Compacting
     // renumbers the handles: only when no hook keeps any (the coupled remesher's do), and only
@@ -545,12 +556,7 @@ private:
         double reach = 0.0;
         for (const Vec3d& q : {pa, pb, pc, pd}) reach = std::max(reach, (q - centre).norm());
         for (const std::size_t i : model_point_grid().within(centre, reach + options_.tolerance))
-        {
-            const Vec3d& w = options_.model_points[i];
-            if (detail::within_triangles(w, output_after, bound)) continue;
-            if (detail::distance_to_triangles(w, output_after) > detail::distance_to_triangles(w, output_before) + 1e-12 * reach)
-                return false;
-        }
+            if (!detail::keeps_witness(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
         return try_flip(ctx_, e, FlipGoal::Quality).done();
     }
 
@@ -568,9 +574,9 @@ private:
         const double size = options_.refine_reference_size > 0.0 ? options_.refine_reference_size : edge_size(mesh_.edge_handle(h));
         const bool for_budget = purpose == CollapseFor::Budget;
         const double max_length = for_budget ? kReferenceCollapseLength * size : size / 0.66;
-        const OpStatus shape = for_budget ? collapse_shape_status(ctx_, h, max_length, false, kReferenceCollapseMinAngle)
-                                          : collapse_shape_status(ctx_, h, max_length, true);
-        if (shape != OpStatus::Done) return false;
+        const bool require_gain = !for_budget;
+        const double min_angle = for_budget ? kReferenceCollapseMinAngle : 0.0;
+        if (collapse_shape_status(ctx_, h, max_length, require_gain, min_angle) != OpStatus::Done) return false;
         const Vec3d pa = mesh_.point(a), pb = mesh_.point(b);
         std::vector<std::array<Vec3d, 3>> before, after;
         std::vector<FaceHandle> faces;
@@ -606,13 +612,8 @@ private:
         double reach = 0.0;
         for (auto w : mesh_.vv_range(a)) reach = std::max(reach, (mesh_.point(w) - pb).norm());
         for (const std::size_t i : model_point_grid().within(pb, reach + bound))
-        {
-            const Vec3d& w = options_.model_points[i];
-            if (detail::within_triangles(w, after, bound)) continue;
-            if (detail::distance_to_triangles(w, after) > detail::distance_to_triangles(w, before) + 1e-12 * reach) return false;
-        }
-        if (for_budget) return try_collapse(ctx_, h, max_length, false, kReferenceCollapseMinAngle).done();
-        return try_collapse(ctx_, h, max_length, true).done();
+            if (!detail::keeps_witness(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
+        return try_collapse(ctx_, h, max_length, require_gain, min_angle).done();
     }
 
     // The triangles the last refinement left under the cleanup's angle: their vertices moved
@@ -1149,9 +1150,7 @@ private:
             // After the polish nothing checks the tolerance again: the settle flips keep it.
             for (const VertexHandle v : split_vertices)
             {
-                std::vector<EdgeHandle> around;
-                for (auto f : mesh_.vf_range(v))
-                    for (auto e : mesh_.fe_range(f)) around.push_back(e);
+                const std::vector<EdgeHandle> around = edges_of_faces_at(v);
                 for (const EdgeHandle e : around)
                 {
                     if (mesh_.status(e).deleted()) continue;
@@ -1235,9 +1234,7 @@ private:
             for (const VertexHandle v : collapsed_onto)
             {
                 if (mesh_.status(v).deleted()) continue;
-                std::vector<EdgeHandle> around;
-                for (auto f : mesh_.vf_range(v))
-                    for (auto e : mesh_.fe_range(f)) around.push_back(e);
+                const std::vector<EdgeHandle> around = edges_of_faces_at(v);
                 for (const EdgeHandle e : around)
                     if (!mesh_.status(e).deleted() && flip_keeping_tolerance(e)) ++report_.flips;
                 std::vector<VertexHandle> ring{v};
@@ -1379,22 +1376,8 @@ private:
         double reach = 0.0;
         for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
         const std::vector<std::size_t> around = model_point_grid().within(before, reach + bound);
-        // The star's samples and short edges with v at `at`.
-        auto worst_sample = [&](const Vec3d& at) {
-            double worst = 0.0;
-            for (auto f : mesh_.vf_range(v))
-            {
-                const auto t = detail::face_points_with(mesh_, f, v, at);
-                const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
-                worst = std::max(worst, ctx_.distance_beyond(centroid, v, bound));
-            }
-            for (auto w : mesh_.vv_range(v))
-            {
-                const Vec3d mid = 0.5 * (mesh_.point(w) + at);
-                worst = std::max(worst, ctx_.distance_beyond(mid, v, bound));
-            }
-            return worst;
-        };
+        auto worst_sample = [&](const Vec3d& at) { return detail::star_samples_beyond(ctx_, v, at, bound); };
+        // The star's edges short for the reference size with v at `at`.
         auto short_star_edges = [&](const Vec3d& at) {
             int n = 0;
             for (auto h : mesh_.voh_range(v))
@@ -1410,11 +1393,7 @@ private:
             const double samples_after = worst_sample(after);
             if (samples_after > bound && samples_after > samples_before) return false;
             for (const std::size_t k : around)
-            {
-                const Vec3d& w = options_.model_points[k];
-                if (patch.within(w, &after, bound)) continue;  // decided at the first triangle within
-                if (patch.distance(w, &after) > patch.distance(w, nullptr) + 1e-12 * reach) return false;
-            }
+                if (!patch.keeps_witness(options_.model_points[k], after, bound, 1e-12 * reach)) return false;
             return !options.accept || options.accept(after);
         };
         return shift_vertex(ctx_, v, keeping).done();

@@ -77,21 +77,7 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
     std::vector<double> witness_before;
     double star_before = -1.0;  // the worst sample of the star before, computed when needed
     const double bound = options.tolerance;
-    auto worst_sample = [&](const Vec3d& at) {
-        double worst = 0.0;
-        for (auto f : mesh.vf_range(v))
-        {
-            const auto t = face_points_with(mesh, f, v, at);
-            const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
-            worst = std::max(worst, ctx.distance_beyond(centroid, v, options.tolerance));
-        }
-        for (auto w : mesh.vv_range(v))
-        {
-            const Vec3d mid = 0.5 * (mesh.point(w) + at);
-            worst = std::max(worst, ctx.distance_beyond(mid, v, options.tolerance));
-        }
-        return worst;
-    };
+    auto worst_sample = [&](const Vec3d& at) { return star_samples_beyond(ctx, v, at, options.tolerance); };
     auto check = [&](const Vec3d& q, const ProjectedPoint& q_on_model) {
         // The target must come within the tolerance: the point of the move (not of a repair).
         if (!options.raise_min_angle && patch.distance(target, &q) > options.tolerance) return OpStatus::Geometry;

@@ -25,9 +25,8 @@ constexpr double kPlacementFraction = 1e-2;
 
 Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
 
-// The buffers of quadric_curvature, kept from one vertex to the next: allocating them per
-// vertex was a third of the model's build on stanford-bunny. (Stack matrices of a bounded size
-// were measured too: Eigen then takes other code paths and the curvatures differ in the last bits.)
+// The 2-ring buffers of quadric_curvature, kept from one vertex to the next (the fit itself
+// works on fixed-size matrices).
 struct QuadricFitScratch
 {
     std::vector<int> ring;
