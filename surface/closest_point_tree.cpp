@@ -193,9 +193,9 @@ void ClosestPointTree::build_node(int index, const BuildScratch& scratch) const
     build_node(left + 1, scratch);
 }
 
-Vec3d ClosestPointTree::closest_on(int position, const Vec3d& p) const
+Vec3d ClosestPointTree::closest_on(const std::array<Vec3d, 3>& primitive, const Vec3d& p) const
 {
-    const auto& t = primitives_[position];
+    const auto& t = primitive;
     return segments_ ? closest_point_on_segment(p, t[0], t[1]) : closest_point_on_triangle(p, t[0], t[1], t[2]);
 }
 
@@ -210,9 +210,8 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p, int hint) const
     // Just above the hint's squared distance: the primitives closest to p all pass the bound, and
     // the first of them in traversal order wins, as without a bound. The relative margin covers
     // the rounding of box distances against point distances.
-    const auto& t = lazy_ ? given_[hint] : primitives_[position_[hint]];
-    const Vec3d q = segments_ ? closest_point_on_segment(p, t[0], t[1]) : closest_point_on_triangle(p, t[0], t[1], t[2]);
-    const double hint_d2 = (q - p).sqrnorm();
+    // (A lazy tree may not have put the hint in leaf order yet: read it as given.)
+    const double hint_d2 = (closest_on(lazy_ ? given_[hint] : primitives_[position_[hint]], p) - p).sqrnorm();
     const Hit hit = search(p, hint_d2 * (1.0 + 1e-9) + std::numeric_limits<double>::min());
     return hit.primitive >= 0 ? hit : closest(p);
 }
@@ -261,7 +260,7 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
                 // relative for distances away from zero, absolute (far above the rounding of a
                 // squared distance at p's magnitude) for points on the surface.
                 if (box_d2(boxes_[i][0], boxes_[i][1]) > best_d2 * (1.0 + 1e-9) + tie_slack) continue;
-                const Vec3d q = closest_on(i, p);
+                const Vec3d q = closest_on(primitives_[i], p);
                 const double d2 = (q - p).sqrnorm();
                 if (d2 < best_d2)
                 {

@@ -67,7 +67,7 @@ private:
     // axis of its box into two new nodes; and, eagerly built, those too, recursively.
     void split_node(int index, const BuildScratch& scratch) const;
     void build_node(int index, const BuildScratch& scratch) const;
-    Vec3d closest_on(int position, const Vec3d& p) const;  // position in leaf order
+    Vec3d closest_on(const std::array<Vec3d, 3>& primitive, const Vec3d& p) const;  // a segment: points 0, 1
     // The nearest primitive among those closer than sqrt(bound_d2) (primitive -1 if none).
     Hit search(const Vec3d& p, double bound_d2) const;
 

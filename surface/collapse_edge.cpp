@@ -28,6 +28,13 @@ bool class_allows_collapse(const OperatorContext& ctx, HalfedgeHandle h)
     return false;
 }
 
+// Whether a face of the collapsing vertex survives a collapse onto v1 (a face of v1 too is removed).
+bool survives_collapse(const SurfaceMesh& mesh, FaceHandle f, VertexHandle v1)
+{
+    const auto fv = detail::face_vertices(mesh, f);
+    return std::find(fv.begin(), fv.end(), v1) == fv.end();
+}
+
 }  // namespace
 
 OpStatus collapse_shape_status(const OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
@@ -50,10 +57,7 @@ OpStatus collapse_shape_status(const OperatorContext& ctx, HalfedgeHandle h, dou
     if (!mesh.is_collapse_ok(h)) return OpStatus::Topology;
 
     // Geometry and quality layers: the faces of v0 that survive, with v0 moved onto v1.
-    auto survives = [&](FaceHandle f) {
-        const auto fv = face_vertices(mesh, f);
-        return std::find(fv.begin(), fv.end(), v1) == fv.end();  // else removed by the collapse
-    };
+    auto survives = [&](FaceHandle f) { return survives_collapse(mesh, f, v1); };
     double new_min = 1.0;
     const double min_cos = cos_deg(ctx.limits.max_normal_turn_deg);
     for (auto f : mesh.vf_range(v0))
@@ -88,10 +92,7 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
     result.status = collapse_shape_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
     if (result.status != OpStatus::Done) return result;
     const Vec3d p1 = mesh.point(v1);
-    auto survives = [&](FaceHandle f) {
-        const auto fv = face_vertices(mesh, f);
-        return std::find(fv.begin(), fv.end(), v1) == fv.end();
-    };
+    auto survives = [&](FaceHandle f) { return survives_collapse(mesh, f, v1); };
     // The centroids of the changed faces against the model, last: the expensive test.
     if (ctx.limits.max_model_distance > 0.0)
         for (auto f : mesh.vf_range(v0))

@@ -88,6 +88,8 @@ std::vector<Vec3d> zig_witnesses()
 }
 
 using hdimesh::surface::fixtures::points_of;
+using hdimesh::surface::fixtures::moved_star_defects;
+using hdimesh::surface::fixtures::MovedStarDefects;
 
 }  // namespace
 
@@ -125,19 +127,10 @@ TEST_CASE("fit_curve_vertex slides a boundary vertex onto the zig its chords cut
     const Vec3d p = mesh.point(v);
     CHECK((closest_on_zig(p) - p).norm() < 1e-12);  // on its curve
     for (const Vec3d& w : options.witnesses) CHECK(distance_to_mesh(mesh, w) <= options.tolerance);
-    for (auto f : mesh.faces())
-    {
-        auto fv = mesh.cfv_iter(f);
-        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
-        CHECK(triangle_normal(a, b, c)[2] > 0.0);  // nothing folded
-        CHECK(triangle_min_angle_deg(a, b, c) >= options.min_angle_deg - 1e-9);
-    }
-    for (auto w : mesh.vv_range(v))
-    {
-        const double length = (mesh.point(w) - p).norm();
-        CHECK(length >= options.min_length);
-        CHECK(length <= options.max_length);
-    }
+    const MovedStarDefects defects = moved_star_defects(mesh, v, options.min_angle_deg, options.min_length, options.max_length);
+    CHECK(defects.folded == 0);
+    CHECK(defects.small_angles == 0);
+    CHECK(defects.edges_out_of_band == 0);
 }
 
 TEST_CASE("fit_curve_vertex refuses a smooth vertex, a corner and a vertex already near, and changes nothing")

@@ -8,6 +8,7 @@
 #include "surface/closest_point_tree.h"
 #include "surface/projector.h"
 #include "surface/surface_mesh.h"
+#include "surface/surface_quality.h"
 
 namespace hdimesh::surface::fixtures
 {
@@ -100,6 +101,32 @@ inline SurfaceMesh icosahedron()
     for (const auto& t : ico.triangles) mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
     mark_all_smooth(mesh);  // after the elements: their properties get initialised
     return mesh;
+}
+
+/// What a move of v may not leave on a height-field mesh (every normal up): faces folded (normal
+/// not up) or with an angle under min_angle_deg (up to rounding), and edges of v out of
+/// [min_length, max_length].
+struct MovedStarDefects
+{
+    int folded = 0, small_angles = 0, edges_out_of_band = 0;
+};
+inline MovedStarDefects moved_star_defects(const SurfaceMesh& mesh, VertexHandle v, double min_angle_deg, double min_length,
+                                           double max_length)
+{
+    MovedStarDefects defects;
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.cfv_iter(f);
+        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
+        if (!(triangle_normal(a, b, c)[2] > 0.0)) ++defects.folded;
+        if (!(triangle_min_angle_deg(a, b, c) >= min_angle_deg - 1e-9)) ++defects.small_angles;
+    }
+    for (auto w : mesh.vv_range(v))
+    {
+        const double length = (mesh.point(w) - mesh.point(v)).norm();
+        if (!(length >= min_length) || !(length <= max_length)) ++defects.edges_out_of_band;
+    }
+    return defects;
 }
 
 }  // namespace hdimesh::surface::fixtures

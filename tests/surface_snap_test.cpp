@@ -63,6 +63,8 @@ using hdimesh::surface::fixtures::vertex_at;
 using hdimesh::surface::fixtures::distance_to_mesh;
 
 using hdimesh::surface::fixtures::points_of;
+using hdimesh::surface::fixtures::moved_star_defects;
+using hdimesh::surface::fixtures::MovedStarDefects;
 
 // Model points: the roof sampled every half unit, and its crest.
 std::vector<Vec3d> roof_samples()
@@ -72,6 +74,19 @@ std::vector<Vec3d> roof_samples()
         for (int j = 0; j <= 8; ++j) samples.emplace_back(0.5 * i, 0.5 * j, roof(0.5 * i));
     for (int j = 0; j <= 8; ++j) samples.emplace_back(2.2, 0.5 * j, roof(2.2));
     return samples;
+}
+
+// The crest snaps' limits: tolerance 0.05, angles of at least 30°, the star's edges in
+// [min_length, max_length], the roof samples as witnesses.
+SnapOptions crest_snap_options(double min_length, double max_length)
+{
+    SnapOptions options;
+    options.tolerance = 0.05;
+    options.min_angle_deg = 30.0;
+    options.min_length = min_length;
+    options.max_length = max_length;
+    options.witnesses = roof_samples();
+    return options;
 }
 
 }  // namespace
@@ -94,12 +109,8 @@ TEST_CASE("snap moves a vertex onto the crest the chords cut, and takes no model
     const VertexHandle v = vertex_at(mesh, Vec3d(2, 2, roof(2)));
     REQUIRE(v.is_valid());
     const Vec3d target(2.2, 2, roof(2.2));
-    SnapOptions options;
-    options.tolerance = 0.05;
-    options.min_angle_deg = 30.0;
-    options.min_length = 0.66;
-    options.max_length = 1.7;  // the grid's diagonals are 1.45 long; the snap stretches one to 1.6
-    options.witnesses = roof_samples();
+    // (The grid's diagonals are 1.45 long; the snap stretches one to 1.6.)
+    const SnapOptions options = crest_snap_options(0.66, 1.7);
     REQUIRE(distance_to_mesh(mesh, target) > 0.08);
     std::vector<double> before;
     for (const Vec3d& w : options.witnesses) before.push_back(distance_to_mesh(mesh, w));
@@ -115,19 +126,10 @@ TEST_CASE("snap moves a vertex onto the crest the chords cut, and takes no model
     CHECK(distance_to_mesh(mesh, target) <= options.tolerance);
     for (std::size_t i = 0; i < options.witnesses.size(); ++i)
         CHECK(distance_to_mesh(mesh, options.witnesses[i]) <= std::max(options.tolerance, before[i]) + 1e-12);
-    for (auto f : mesh.faces())
-    {
-        auto fv = mesh.cfv_iter(f);
-        const Vec3d a = mesh.point(*fv), b = mesh.point(*++fv), c = mesh.point(*++fv);
-        CHECK(triangle_normal(a, b, c)[2] > 0.0);  // nothing folded
-        CHECK(triangle_min_angle_deg(a, b, c) >= options.min_angle_deg - 1e-9);
-    }
-    for (auto w : mesh.vv_range(v))
-    {
-        const double length = (mesh.point(w) - p).norm();
-        CHECK(length >= options.min_length);
-        CHECK(length <= options.max_length);
-    }
+    const MovedStarDefects defects = moved_star_defects(mesh, v, options.min_angle_deg, options.min_length, options.max_length);
+    CHECK(defects.folded == 0);
+    CHECK(defects.small_angles == 0);
+    CHECK(defects.edges_out_of_band == 0);
 }
 
 TEST_CASE("snap asks allow_move with the point it would commit, and a veto changes nothing")
@@ -147,12 +149,7 @@ TEST_CASE("snap asks allow_move with the point it would commit, and a veto chang
     OperatorContext ctx(mesh, model, hooks);
     const VertexHandle v = vertex_at(mesh, Vec3d(2, 2, roof(2)));
     REQUIRE(v.is_valid());
-    SnapOptions options;
-    options.tolerance = 0.05;
-    options.min_angle_deg = 30.0;
-    options.min_length = 0.66;
-    options.max_length = 1.7;
-    options.witnesses = roof_samples();
+    const SnapOptions options = crest_snap_options(0.66, 1.7);
     std::vector<Vec3d> before;
     for (auto w : mesh.vertices()) before.push_back(mesh.point(w));
     CHECK(try_snap_vertex(ctx, v, target, options).status == OpStatus::Hook);
@@ -195,12 +192,7 @@ TEST_CASE("snap shortens an edge already under the band only down to its floor")
     //   without a floor, done with a floor of 0.5, and no edge of the star ends under the floor.
     RoofProjector model;
     const Vec3d target(2.2, 2, roof(2.2));
-    SnapOptions options;
-    options.tolerance = 0.05;
-    options.min_angle_deg = 30.0;
-    options.min_length = 1.2;
-    options.max_length = 3.0;
-    options.witnesses = roof_samples();
+    SnapOptions options = crest_snap_options(1.2, 3.0);
     {
         SurfaceMesh mesh = roof_grid();
         OperatorContext ctx(mesh, model, {});
