@@ -92,14 +92,27 @@ void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const
     if (!(options.hgrad > 1.0)) return;
     // Relax along edges until no size exceeds its neighbour's plus (hgrad − 1)·distance.
     const double slope = options.hgrad - 1.0;
+    // The edges' ends and lengths once, in edge order (the passes below repeat them; the
+    // relaxation's result depends on that order).
+    struct GradedEdge
+    {
+        int a, b;
+        double length;
+    };
+    std::vector<GradedEdge> edges;
+    edges.reserve(input.n_edges());
+    for (auto e : input.edges())
+    {
+        const auto h = input.halfedge_handle(e, 0);
+        edges.push_back({input.from_vertex_handle(h).idx(), input.to_vertex_handle(h).idx(), input.calc_edge_length(e)});
+    }
     for (int pass = 0; pass < 100; ++pass)
     {
         bool changed = false;
-        for (auto e : input.edges())
+        for (const GradedEdge& edge : edges)
         {
-            const auto h = input.halfedge_handle(e, 0);
-            const int a = input.from_vertex_handle(h).idx(), b = input.to_vertex_handle(h).idx();
-            const double len = input.calc_edge_length(e);
+            const int a = edge.a, b = edge.b;
+            const double len = edge.length;
             if (sizes[a] > sizes[b] + slope * len + 1e-15)
             {
                 sizes[a] = sizes[b] + slope * len;
