@@ -1609,6 +1609,8 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     if (settings.refine_to_tolerance && options.tolerance > 0.0)
     {
         const SurfaceProperties props(mesh);
+        options.model_points.reserve(mesh.n_vertices() + mesh.n_edges());
+        options.model_point_smooth.reserve(mesh.n_vertices() + mesh.n_edges());
         for (auto v : mesh.vertices())
         {
             if (mesh.is_isolated(v)) continue;

@@ -25,6 +25,37 @@ constexpr double kPlacementFraction = 1e-2;
 
 Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
 
+// The input's vertex stars, circulated once: the neighbours of v are
+// neighbours[offsets[v] .. offsets[v + 1]) in OpenMesh's vv_range order (the order of the 2-ring,
+// hence of the fit's sums), and area_normals[v] the sum of its faces' normals times their areas
+// in vf_range order (both circulators walk v's outgoing halfedges from the same one; the faces
+// are those of the halfedges that have one). Measured on stanford-bunny: circulating the 2-ring
+// of every vertex anew (seven circulations per vertex) was half of quadric_curvature's own time.
+struct VertexStars
+{
+    std::vector<int> offsets, neighbours;
+    std::vector<Vec3d> area_normals;
+
+    VertexStars(const SurfaceMesh& mesh, const std::vector<Vec3d>& face_normal, const std::vector<double>& face_area)
+    {
+        offsets.reserve(mesh.n_vertices() + 1);
+        neighbours.reserve(2 * mesh.n_edges());
+        area_normals.assign(mesh.n_vertices(), Vec3d(0, 0, 0));
+        offsets.push_back(0);
+        for (auto v : mesh.vertices())
+        {
+            Vec3d& n = area_normals[v.idx()];
+            for (auto h : mesh.voh_range(v))
+            {
+                neighbours.push_back(mesh.to_vertex_handle(h).idx());
+                const FaceHandle f = mesh.face_handle(h);
+                if (f.is_valid()) n += face_normal[f.idx()] * face_area[f.idx()];
+            }
+            offsets.push_back(static_cast<int>(neighbours.size()));
+        }
+    }
+};
+
 // The 2-ring buffers of quadric_curvature, kept from one vertex to the next (the fit itself
 // works on fixed-size matrices).
 struct QuadricFitScratch
@@ -35,47 +66,55 @@ struct QuadricFitScratch
 
 // max(|k1|, |k2|) at v from z = a x² + b xy + c y² + d x + e y fitted to its 2-ring in the frame
 // of the vertex normal; 0 when the ring is too small to fit.
-double quadric_curvature(const SurfaceMesh& mesh, VertexHandle v, const Vec3d& normal, QuadricFitScratch& scratch)
+double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& stars, int v,
+                         const Vec3d& normal, QuadricFitScratch& scratch)
 {
     // The 2-ring without v, each vertex once (a vertex is stamped with the index of the ring it
     // was put in).
     std::vector<int>& ring = scratch.ring;
     std::vector<int>& stamp = scratch.in_ring_of;
-    if (stamp.size() != mesh.n_vertices()) stamp.assign(mesh.n_vertices(), -1);
+    if (stamp.size() != points.size()) stamp.assign(points.size(), -1);
     ring.clear();
-    stamp[v.idx()] = v.idx();
-    auto add = [&](VertexHandle u) {
-        if (stamp[u.idx()] == v.idx()) return;
-        stamp[u.idx()] = v.idx();
-        ring.push_back(u.idx());
+    stamp[v] = v;
+    auto add = [&](int u) {
+        if (stamp[u] == v) return;
+        stamp[u] = v;
+        ring.push_back(u);
     };
-    for (auto w : mesh.vv_range(v))
+    const int* const neighbours = stars.neighbours.data();
+    const int* const offsets = stars.offsets.data();
+    for (int i = offsets[v]; i < offsets[v + 1]; ++i)
     {
+        const int w = neighbours[i];
         add(w);
-        for (auto u : mesh.vv_range(w)) add(u);
+        for (int k = offsets[w]; k < offsets[w + 1]; ++k) add(neighbours[k]);
     }
     if (ring.size() < 6 || !(normal.norm() > 0.0)) return 0.0;
     const Eigen::Vector3d n = to_eigen(normal).normalized();
     const Eigen::Vector3d seed = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     const Eigen::Vector3d e1 = n.cross(seed).normalized();
     const Eigen::Vector3d e2 = n.cross(e1);
-    const Eigen::Vector3d origin = to_eigen(mesh.point(v));
+    const Eigen::Vector3d origin = to_eigen(points[v]);
     // The least-squares fit by its 5×5 normal equations, in coordinates scaled by the ring's
     // size (so the matrix is well scaled whatever the model's units); a rank-revealing solve of
     // fixed size. (A QR of the whole ring matrix was a third of the model's build on the bunny.)
     double scale = 0.0;
-    for (const int idx : ring) scale = std::max(scale, (to_eigen(mesh.point(VertexHandle(idx))) - origin).norm());
+    for (const int idx : ring) scale = std::max(scale, (to_eigen(points[idx]) - origin).norm());
     if (!(scale > 0.0)) return 0.0;
     Eigen::Matrix<double, 5, 5> normal_matrix = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> rhs = Eigen::Matrix<double, 5, 1>::Zero();
     for (const int idx : ring)
     {
-        const Eigen::Vector3d d = (to_eigen(mesh.point(VertexHandle(idx))) - origin) / scale;
+        const Eigen::Vector3d d = (to_eigen(points[idx]) - origin) / scale;
         const double x = d.dot(e1), y = d.dot(e2);
-        Eigen::Matrix<double, 5, 1> row;
-        row << x * x, x * y, y * y, x, y;
-        normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(row);
-        rhs += d.dot(n) * row;
+        const double row[5] = {x * x, x * y, y * y, x, y};
+        // The lower triangle of row·rowᵀ added, element by element as Eigen's rank-one update
+        // of a selfadjoint view does it (the same products and sums; its generic dynamic-size
+        // kernel was a sixth of quadric_curvature's time on the bunny).
+        for (int i = 0; i < 5; ++i)
+            for (int j = i; j < 5; ++j) normal_matrix(j, i) += row[i] * row[j];
+        const double z = d.dot(n);
+        for (int i = 0; i < 5; ++i) rhs(i) += z * row[i];
     }
     normal_matrix.triangularView<Eigen::StrictlyUpper>() = normal_matrix.transpose();
     const Eigen::Matrix<double, 5, 1> c = normal_matrix.colPivHouseholderQr().solve(rhs);
@@ -119,15 +158,16 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
 
     std::vector<std::array<Vec3d, 3>> tris;
     tris.reserve(input.n_faces());
+    face_vertices_.reserve(input.n_faces());
+    face_normals_.reserve(input.n_faces());
     std::vector<Vec3d> face_normal_by_index(input.n_faces());
     std::vector<int> model_face_by_index(input.n_faces(), -1);  // face handle index -> index here
     for (auto f : input.faces())
     {
-        auto fv = input.cfv_iter(f);
-        const Vec3d a = input.point(*fv), b = input.point(*++fv), c = input.point(*++fv);
-        tris.push_back({a, b, c});
         auto vi = input.cfv_iter(f);
         const int i0 = vi->idx(), i1 = (++vi)->idx(), i2 = (++vi)->idx();
+        const Vec3d a = points_[i0], b = points_[i1], c = points_[i2];
+        tris.push_back({a, b, c});
         face_vertices_.push_back({i0, i1, i2});
         face_normals_.push_back(triangle_normal(a, b, c));
         face_normal_by_index[f.idx()] = face_normals_.back();
@@ -202,14 +242,13 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     for (const auto& s : segments) curves_.push_back(ClosestPointTree::from_segments(s));
 
     curvature_.assign(input.n_vertices(), 0.0);
+    // Each face's area once (the vertex normals of the fit read those of their faces).
+    std::vector<double> face_area(input.n_faces());
+    for (auto f : input.faces()) face_area[f.idx()] = input.calc_face_area(f);
+    const VertexStars stars(input, face_normal_by_index, face_area);
     QuadricFitScratch scratch;
     for (auto v : input.vertices())
-    {
-        if (!is_smooth(v)) continue;
-        Vec3d n(0, 0, 0);
-        for (auto f : input.vf_range(v)) n += face_normal_by_index[f.idx()] * input.calc_face_area(f);
-        curvature_[v.idx()] = quadric_curvature(input, v, n, scratch);
-    }
+        if (is_smooth(v)) curvature_[v.idx()] = quadric_curvature(points_, stars, v.idx(), stars.area_normals[v.idx()], scratch);
 }
 
 SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double stop_d2) const
