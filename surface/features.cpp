@@ -68,7 +68,7 @@ public:
             VertexHandle ends[2];
             int found = 0;
             for (auto h : mesh_.voh_range(v))
-                if (sharp_[mesh_.edge_handle(h).idx()]) ends[found++] = mesh_.to_vertex_handle(h);
+                if (sharp_[mesh_.edge_handle(h).idx()] && found < 2) ends[found++] = mesh_.to_vertex_handle(h);
             // An open boundary of a scan zig-zags: only its sharpest turns are corners.
             const double limit = mesh_.is_boundary(v) ? options_.boundary_corner_turn_angle_deg
                                                       : options_.corner_turn_angle_deg;
