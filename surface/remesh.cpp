@@ -1,8 +1,10 @@
 #include "surface/remesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstdint>
@@ -54,6 +56,47 @@ constexpr int kCurveFitSweeps = 4;
 constexpr double kAdaptiveToleranceMargin = 0.8;
 // A point equal to none (NaN coordinates): "not proven near" in the refinement's caches.
 const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
+
+// Whether triangle t's box is clearly farther than `limit` from p: then so is t, whatever the
+// rounding of its closest point (the margin, relative and absolute at p's magnitude, is far
+// above it), and the exact test (detail::distance_to_triangle) may be skipped without changing
+// any answer. `clearly_beyond2` from clearly_beyond_squared(p, limit).
+double clearly_beyond_squared(const Vec3d& p, double limit)
+{
+    const double slack = 1e-9 * (limit + std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}));
+    return (limit + slack) * (limit + slack);
+}
+bool box_clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double clearly_beyond2)
+{
+    double box2 = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+        const double below = std::min({t[0][k], t[1][k], t[2][k]}) - p[k], above = p[k] - std::max({t[0][k], t[1][k], t[2][k]});
+        const double d = std::max({below, above, 0.0});
+        box2 += d * d;
+    }
+    return box2 > clearly_beyond2;
+}
+
+// detail::within_triangles (some triangle within `limit` of p), the triangles whose box is
+// clearly beyond skipped: the witness checks of the tolerance-keeping changes ask it of every
+// model point around against about twenty triangles, of which one or two are near (measured:
+// closest_point_on_triangle was half of the budget collapses' settling).
+bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles, double limit)
+{
+    const double clearly_beyond2 = clearly_beyond_squared(p, limit);
+    for (const auto& t : triangles)
+        if (!box_clearly_beyond(p, t, clearly_beyond2) && detail::distance_to_triangle(p, t) <= limit) return true;
+    return false;
+}
+
+// detail::keeps_witness with the within test above (the same answer).
+bool keeps_witness(const Vec3d& w, const std::vector<std::array<Vec3d, 3>>& before,
+                   const std::vector<std::array<Vec3d, 3>>& after, double bound, double slack)
+{
+    if (within_triangles(w, after, bound)) return true;
+    return !(detail::distance_to_triangles(w, after) > detail::distance_to_triangles(w, before) + slack);
+}
 
 // What a change in the repair stages after the polish must keep.
 enum class Keep
@@ -559,7 +602,7 @@ private:
         double reach = 0.0;
         for (const Vec3d& q : {pa, pb, pc, pd}) reach = std::max(reach, (q - centre).norm());
         for (const std::size_t i : model_point_grid().within(centre, reach + options_.tolerance))
-            if (!detail::keeps_witness(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
+            if (!keeps_witness(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
         return try_flip(ctx_, e, FlipGoal::Quality).done();
     }
 
@@ -615,7 +658,7 @@ private:
         double reach = 0.0;
         for (auto w : mesh_.vv_range(a)) reach = std::max(reach, (mesh_.point(w) - pb).norm());
         for (const std::size_t i : model_point_grid().within(pb, reach + bound))
-            if (!detail::keeps_witness(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
+            if (!keeps_witness(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
         return try_collapse(ctx_, h, max_length, require_gain, min_angle).done();
     }
 
@@ -700,20 +743,11 @@ private:
         if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
         // A triangle whose box is clearly beyond the tolerance is not: its closest point is not
         // computed (bunny: 300k of the 770k triangles asked, most of those around a face that
-        // is not near). The margin (relative, and absolute far above the rounding of the
-        // closest point at p's magnitude) leaves every close call to the exact test.
-        const double slack = 1e-9 * (options_.tolerance + std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}));
-        const double clearly_beyond2 = (options_.tolerance + slack) * (options_.tolerance + slack);
+        // is not near).
+        const double clearly_beyond2 = clearly_beyond_squared(p, options_.tolerance);
         auto within_tolerance = [&](FaceHandle g) {
             const std::array<Vec3d, 3>& t = face_points_[g.idx()];
-            double box2 = 0.0;
-            for (int k = 0; k < 3; ++k)
-            {
-                const double below = std::min({t[0][k], t[1][k], t[2][k]}) - p[k], above = p[k] - std::max({t[0][k], t[1][k], t[2][k]});
-                const double d = std::max({below, above, 0.0});
-                box2 += d * d;
-            }
-            return !(box2 > clearly_beyond2) && detail::distance_to_triangle(p, t) <= options_.tolerance;
+            return !box_clearly_beyond(p, t, clearly_beyond2) && detail::distance_to_triangle(p, t) <= options_.tolerance;
         };
         if (within_tolerance(f)) return f;
         for (auto v : mesh_.fv_range(f))
@@ -1514,11 +1548,6 @@ private:
         if (keep == Keep::Nothing || !(options_.tolerance > 0.0)) return shift_vertex(ctx_, v, options).done();
         const bool keep_lengths = keep == Keep::ToleranceAndLengths;
         const double bound = options_.tolerance;
-        const Vec3d before = mesh_.point(v);
-        const detail::TwoRingPatch patch(mesh_, v);
-        double reach = 0.0;
-        for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
-        const std::vector<std::size_t> around = model_point_grid().within(before, reach + bound);
         auto worst_sample = [&](const Vec3d& at) { return detail::star_samples_beyond(ctx_, v, at, bound); };
         // The star's edges short for the reference size with v at `at`.
         auto short_star_edges = [&](const Vec3d& at) {
@@ -1528,15 +1557,24 @@ private:
                     ++n;
             return n;
         };
-        const double samples_before = worst_sample(before);
-        const int short_before = keep_lengths ? short_star_edges(before) : 0;
         ShiftOptions keeping = options;
+        // The state before the move is gathered here, when a move is asked (the mesh is still
+        // as before it): most smart shifts stop at their quality test and never ask (the
+        // budget collapses' settling spent a third of its time on the patches, witnesses and
+        // samples of shifts that did not move).
         keeping.accept = [&](const Vec3d& after) {
-            if (keep_lengths && short_star_edges(after) > short_before) return false;
+            const Vec3d before = mesh_.point(v);
+            if (keep_lengths && short_star_edges(after) > short_star_edges(before)) return false;
             const double samples_after = worst_sample(after);
-            if (samples_after > bound && samples_after > samples_before) return false;
-            for (const std::size_t k : around)
-                if (!patch.keeps_witness(options_.model_points[k], after, bound, 1e-12 * reach)) return false;
+            if (samples_after > bound && samples_after > worst_sample(before)) return false;
+            // The 2-ring before and after (TwoRingPatch::keeps_witness, with the boxed test).
+            const detail::TwoRingPatch patch(mesh_, v);
+            std::vector<std::array<Vec3d, 3>> patch_after;
+            for (std::size_t i = 0; i < patch.triangles.size(); ++i) patch_after.push_back(patch.triangle(i, &after));
+            double reach = 0.0;
+            for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
+            for (const std::size_t k : model_point_grid().within(before, reach + bound))
+                if (!keeps_witness(options_.model_points[k], patch.triangles, patch_after, bound, 1e-12 * reach)) return false;
             return !options.accept || options.accept(after);
         };
         return shift_vertex(ctx_, v, keeping).done();
