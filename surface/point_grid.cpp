@@ -43,24 +43,6 @@ PointGrid::PointGrid(const std::vector<Vec3d>& points, double cell) : cell_(cell
     }
 }
 
-std::int64_t PointGrid::coordinate(double x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
-
-std::int64_t PointGrid::key(std::int64_t i, std::int64_t j, std::int64_t k) const
-{
-    // 21 bits per axis (cells wrap beyond ±2^20: only more points to filter, never fewer).
-    constexpr std::int64_t mask = (std::int64_t(1) << 21) - 1;
-    return ((i & mask) << 42) | ((j & mask) << 21) | (k & mask);
-}
-
-std::size_t PointGrid::slot_of(std::int64_t key) const
-{
-    // Fibonacci hashing: the product's top bits.
-    const std::size_t mask = slot_key_.size() - 1;
-    std::size_t slot = static_cast<std::size_t>((static_cast<std::uint64_t>(key) * 0x9e3779b97f4a7c15ULL) >> shift_);
-    while (slot_cell_[slot] >= 0 && slot_key_[slot] != key) slot = (slot + 1) & mask;
-    return slot;
-}
-
 std::vector<std::size_t> PointGrid::within(const Vec3d& p, double radius) const
 {
     std::vector<std::size_t> found;

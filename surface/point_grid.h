@@ -3,6 +3,7 @@
 // the refinement's snap asks it for the model points around a vertex's star (the points a move
 // of that vertex may bring nearer to, or take away from, the output).
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -24,11 +25,24 @@ public:
     bool empty() const { return points_.empty(); }
 
 private:
-    std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) const;
-    std::int64_t coordinate(double x) const;
+    // (Inline: a query asks them for each of its 27 to 64 cells.)
+    std::int64_t coordinate(double x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
+    std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) const
+    {
+        // 21 bits per axis (cells wrap beyond ±2^20: only more points to filter, never fewer).
+        constexpr std::int64_t mask = (std::int64_t(1) << 21) - 1;
+        return ((i & mask) << 42) | ((j & mask) << 21) | (k & mask);
+    }
     // The slot of `key` in the open-addressed table: the key's own, or the empty one where it
     // would go.
-    std::size_t slot_of(std::int64_t key) const;
+    std::size_t slot_of(std::int64_t key) const
+    {
+        // Fibonacci hashing: the product's top bits.
+        const std::size_t mask = slot_key_.size() - 1;
+        std::size_t slot = static_cast<std::size_t>((static_cast<std::uint64_t>(key) * 0x9e3779b97f4a7c15ULL) >> shift_);
+        while (slot_cell_[slot] >= 0 && slot_key_[slot] != key) slot = (slot + 1) & mask;
+        return slot;
+    }
 
     double cell_ = 1.0;
     int shift_ = 60;  // 64 - log2(slots)
