@@ -533,11 +533,15 @@ private:
     // Ridge and boundary vertices whose chords stray from the input polyline beyond the
     // tolerance (either way) slid along their curve to the position that follows it best
     // (fit_curve_vertex), in sweeps over the curves while something moves: a vertex's best
-    // place depends on its curve neighbours'.
+    // place depends on its curve neighbours'. A vertex is tried again in a later sweep only when
+    // a vertex within two rings of it moved since its last try: its fit reads nothing farther
+    // (its star, the 2-ring patch, its witnesses and hint), so it would end as before (measured:
+    // the later sweeps, which move a few vertices of tens, cost as much as the first).
     std::size_t fit_curves()
     {
         std::size_t moved = 0;
         if (!(options_.tolerance > 0.0) || !(options_.snap_min_angle_deg > 0.0)) return moved;
+        std::vector<char> unsettled(mesh_.n_vertices(), 1);  // (a fit moves only: no new vertex)
         for (int sweep = 0; sweep < kCurveFitSweeps; ++sweep)
         {
             std::size_t done = 0;
@@ -545,12 +549,20 @@ private:
             {
                 const VertexClass cls = ctx_.vertex_class(v);
                 if (mesh_.status(v).deleted() || (cls != VertexClass::Ridge && cls != VertexClass::Boundary)) continue;
+                if (!unsettled[v.idx()]) continue;
+                unsettled[v.idx()] = 0;
                 // The witnesses within the star's own reach: the curve around v is what it fits.
                 CurveFitOptions fit;
                 set_move_limits(v, nullptr, 0.0, fit);
                 if (!fit_curve_vertex(ctx_, v, fit).done()) continue;
                 set_size(v);
                 ++done;
+                unsettled[v.idx()] = 1;
+                for (auto w : mesh_.vv_range(v))
+                {
+                    unsettled[w.idx()] = 1;
+                    for (auto x : mesh_.vv_range(w)) unsettled[x.idx()] = 1;
+                }
             }
             moved += done;
             if (options_.verbosity > 0) std::fprintf(stderr, "remesh: curve fit sweep %d: %zu moves\n", sweep + 1, done);
