@@ -13,6 +13,7 @@
 #include <memory>
 #include <queue>
 
+#include "surface/boxed_distance.h"
 #include "surface/closest_point_tree.h"
 #include "surface/fit_curve_vertex.h"
 #include "surface/hdi_projection.h"
@@ -56,47 +57,6 @@ constexpr int kCurveFitSweeps = 4;
 constexpr double kAdaptiveToleranceMargin = 0.8;
 // A point equal to none (NaN coordinates): "not proven near" in the refinement's caches.
 const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
-
-// Whether triangle t's box is clearly farther than `limit` from p: then so is t, whatever the
-// rounding of its closest point (the margin, relative and absolute at p's magnitude, is far
-// above it), and the exact test (detail::distance_to_triangle) may be skipped without changing
-// any answer. `clearly_beyond2` from clearly_beyond_squared(p, limit).
-double clearly_beyond_squared(const Vec3d& p, double limit)
-{
-    const double slack = 1e-9 * (limit + std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}));
-    return (limit + slack) * (limit + slack);
-}
-bool box_clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double clearly_beyond2)
-{
-    double box2 = 0.0;
-    for (int k = 0; k < 3; ++k)
-    {
-        const double below = std::min({t[0][k], t[1][k], t[2][k]}) - p[k], above = p[k] - std::max({t[0][k], t[1][k], t[2][k]});
-        const double d = std::max({below, above, 0.0});
-        box2 += d * d;
-    }
-    return box2 > clearly_beyond2;
-}
-
-// detail::within_triangles (some triangle within `limit` of p), the triangles whose box is
-// clearly beyond skipped: the witness checks of the tolerance-keeping changes ask it of every
-// model point around against about twenty triangles, of which one or two are near (measured:
-// closest_point_on_triangle was half of the budget collapses' settling).
-bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles, double limit)
-{
-    const double clearly_beyond2 = clearly_beyond_squared(p, limit);
-    for (const auto& t : triangles)
-        if (!box_clearly_beyond(p, t, clearly_beyond2) && detail::distance_to_triangle(p, t) <= limit) return true;
-    return false;
-}
-
-// detail::keeps_witness with the within test above (the same answer).
-bool keeps_witness(const Vec3d& w, const std::vector<std::array<Vec3d, 3>>& before,
-                   const std::vector<std::array<Vec3d, 3>>& after, double bound, double slack)
-{
-    if (within_triangles(w, after, bound)) return true;
-    return !(detail::distance_to_triangles(w, after) > detail::distance_to_triangles(w, before) + slack);
-}
 
 // What a change in the repair stages after the polish must keep.
 enum class Keep
@@ -614,7 +574,7 @@ private:
         double reach = 0.0;
         for (const Vec3d& q : {pa, pb, pc, pd}) reach = std::max(reach, (q - centre).norm());
         for (const std::size_t i : model_point_grid().within(centre, reach + options_.tolerance))
-            if (!keeps_witness(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
+            if (!keeps_witness_boxed(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
         return try_flip(ctx_, e, FlipGoal::Quality).done();
     }
 
@@ -670,7 +630,7 @@ private:
         double reach = 0.0;
         for (auto w : mesh_.vv_range(a)) reach = std::max(reach, (mesh_.point(w) - pb).norm());
         for (const std::size_t i : model_point_grid().within(pb, reach + bound))
-            if (!keeps_witness(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
+            if (!keeps_witness_boxed(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
         return try_collapse(ctx_, h, max_length, require_gain, min_angle).done();
     }
 
@@ -1586,7 +1546,7 @@ private:
             double reach = 0.0;
             for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
             for (const std::size_t k : model_point_grid().within(before, reach + bound))
-                if (!keeps_witness(options_.model_points[k], patch.triangles, patch_after, bound, 1e-12 * reach)) return false;
+                if (!keeps_witness_boxed(options_.model_points[k], patch.triangles, patch_after, bound, 1e-12 * reach)) return false;
             return !options.accept || options.accept(after);
         };
         return shift_vertex(ctx_, v, keeping).done();
