@@ -728,11 +728,12 @@ private:
         return FaceHandle();
     }
 
-    // Model point i proven within the tolerance of the output by its face of last time or a face
-    // around that face's vertices (which becomes its face).
+    // Model point of rank i (model_points_in_space_order) proven within the tolerance of the
+    // output by its face of last time or a face around that face's vertices (which becomes its
+    // face).
     bool near_by_face_of(std::size_t i)
     {
-        const FaceHandle near = near_face_around(options_.model_points[i], point_face_[i]);
+        const FaceHandle near = near_face_around(points_in_space_order_[i], point_face_[i]);
         if (near.is_valid()) point_face_[i] = near;
         return near.is_valid();
     }
@@ -852,7 +853,14 @@ private:
         }
         std::sort(keyed.begin(), keyed.end());
         space_order_.resize(keyed.size());
-        for (std::size_t i = 0; i < keyed.size(); ++i) space_order_[i] = keyed[i].second;
+        rank_in_space_order_.resize(keyed.size());
+        points_in_space_order_.resize(keyed.size());
+        for (std::size_t i = 0; i < keyed.size(); ++i)
+        {
+            space_order_[i] = keyed[i].second;
+            rank_in_space_order_[keyed[i].second] = i;
+            points_in_space_order_[i] = options_.model_points[keyed[i].second];
+        }
         return space_order_;
     }
 
@@ -893,7 +901,10 @@ private:
         // does; after the last one, bench_surface's Hausdorff column is the check).
         std::vector<VertexHandle> split_vertices;  // of the last round (and ends of its distance flips)
         std::vector<VertexHandle> revisit;         // ends of the last round's candidates not tried
-        std::vector<std::size_t> far_points = model_points_in_space_order();
+        // (By rank in space order: the points, and their faces in point_face_, are then read in
+        // memory order in the first round's pass over all of them.)
+        std::vector<std::size_t> far_points(model_points_in_space_order().size());
+        for (std::size_t r = 0; r < far_points.size(); ++r) far_points[r] = r;
         // The per-element scratch of a round: members, kept zero between rounds (the entries a
         // round set are reset from its lists), so a round pays for what it touches only (the
         // per-round vectors of all edges, faces and vertices cost 9 % of the refinement, half
@@ -989,7 +1000,7 @@ private:
                 changed.clear();
             }
             split_vertices.clear();
-            std::vector<std::size_t> still_far;
+            std::vector<std::size_t> still_far;  // ranks
             struct FarHit
             {
                 double distance;
@@ -1011,8 +1022,8 @@ private:
             if (point_face_.size() != options_.model_points.size()) point_face_.assign(options_.model_points.size(), FaceHandle());
             update_face_points();
             std::vector<std::size_t> unproven;
-            for (const std::size_t i : far_points)
-                if (!near_by_face_of(i)) unproven.push_back(i);
+            for (const std::size_t r : far_points)
+                if (!near_by_face_of(r)) unproven.push_back(r);
             // Consecutive model points are mostly neighbours: the last hit is the hint of the
             // next search, and a point within the tolerance of it is near without a search.
             std::vector<FaceHandle> face_of;  // per triangle of `output`
@@ -1021,18 +1032,19 @@ private:
             if (!unproven.empty()) triangle_of.assign(mesh_.n_faces(), -1);
             for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
             FaceHandle previous;
-            for (const std::size_t i : unproven)
+            for (const std::size_t r : unproven)
             {
-                const Vec3d& point = options_.model_points[i];
+                const std::size_t i = space_order_[r];
+                const Vec3d& point = points_in_space_order_[r];
                 const FaceHandle near = near_face_around(point, previous);
                 if (near.is_valid())
                 {
-                    point_face_[i] = previous = near;
+                    point_face_[r] = previous = near;
                     continue;
                 }
                 const auto hit = output.closest(point, previous.is_valid() ? triangle_of[previous.idx()] : -1);
                 if (hit.primitive < 0) continue;
-                point_face_[i] = previous = face_of[hit.primitive];
+                point_face_[r] = previous = face_of[hit.primitive];
                 if (!(hit.distance > options_.tolerance)) continue;
                 far_hits.push_back({hit.distance, i, face_of[hit.primitive]});
             }
@@ -1052,7 +1064,7 @@ private:
                     if (snap && std::any_of(mesh_.fv_begin(far.face), mesh_.fv_end(far.face),
                                             [&](VertexHandle v) { return snapped_now[v.idx()] != 0; }))
                     {
-                        still_far.push_back(far.point);
+                        still_far.push_back(rank_in_space_order_[far.point]);
                         continue;
                     }
                     const VertexHandle snapped = snap ? snap_toward(far.point, far.face, smooth) : VertexHandle();
@@ -1072,7 +1084,7 @@ private:
                     if (curve_edge.is_valid()) mark_edge(curve_edge, far.distance, 0);
                     else mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
                 }
-                still_far.push_back(far.point);
+                still_far.push_back(rank_in_space_order_[far.point]);
             }
             far_points = std::move(still_far);
             std::vector<std::pair<double, EdgeHandle>> candidates;
@@ -1654,11 +1666,13 @@ private:
     std::clock_t cpu_start_ = std::clock();
     RemeshReport report_;
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first snap
-    // Per model point: the output face that last proved it within the tolerance, or was its
+    // Per model point (by rank in space order): the output face that last proved it within the tolerance, or was its
     // closest (invalid: none yet). Cleared by a compaction (only in the iterations, before any
     // refinement); otherwise faces are garbage-collected at the end of run() only.
-    std::vector<FaceHandle> point_face_;
-    std::vector<std::size_t> space_order_;  // model_points_in_space_order()
+    std::vector<FaceHandle> point_face_;  // (by rank in space_order_)
+    // model_points_in_space_order(): rank -> index, index -> rank, rank -> point.
+    std::vector<std::size_t> space_order_, rank_in_space_order_;
+    std::vector<Vec3d> points_in_space_order_;
     // Per output face / edge: the centroid / midpoint last proven within the tolerance of the
     // model (kNoPoint: none).
     std::vector<Vec3d> near_centroid_, near_midpoint_;
