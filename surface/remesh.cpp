@@ -851,7 +851,22 @@ private:
             }
             keyed[i] = {key, i};
         }
-        std::sort(keyed.begin(), keyed.end());
+        // Sorted by (key, index): a stable radix sort of the keys (the indices come in
+        // increasing order), 11 bits a pass (std::sort of the pairs was half of this function's
+        // time, 10 ms on the bunny's 139k points).
+        std::vector<std::pair<std::uint64_t, std::size_t>> sorted(keyed.size());
+        constexpr int kDigitBits = 11;
+        for (int shift = 0; shift < 3 * kBits && !keyed.empty(); shift += kDigitBits)
+        {
+            std::vector<std::size_t> start((std::size_t(1) << kDigitBits) + 1, 0);
+            auto digit = [&](std::uint64_t key) { return static_cast<std::size_t>((key >> shift) & ((1u << kDigitBits) - 1)); };
+            for (const auto& k : keyed) ++start[digit(k.first) + 1];
+            if (start[digit(keyed.front().first) + 1] == keyed.size()) continue;  // one digit: in order already
+            for (std::size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
+            for (const auto& k : keyed) sorted[start[digit(k.first)]++] = k;
+            keyed.swap(sorted);
+        }
+        assert(std::is_sorted(keyed.begin(), keyed.end()));
         space_order_.resize(keyed.size());
         rank_in_space_order_.resize(keyed.size());
         points_in_space_order_.resize(keyed.size());
