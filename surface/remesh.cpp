@@ -190,6 +190,7 @@ private:
         near_centroid_.clear();
         near_midpoint_.clear();
         face_points_.clear();
+        face_points_stale_ = true;
         watching_angles_ = false;
         moved_since_angle_scan_.clear();
     }
@@ -797,9 +798,11 @@ private:
     // gathered 2.2 % of its bench time), after that the faces at the vertices noted since.
     void update_face_points()
     {
-        if (face_points_.empty())
+        if (face_points_stale_)
         {
+            // (Stale, not cleared: a cleared vector is zero-filled again by the resize.)
             face_points_.resize(mesh_.n_faces());
+            face_points_stale_ = false;
             for (auto f : mesh_.faces())
                 if (!mesh_.status(f).deleted()) face_points_[f.idx()] = detail::face_points(mesh_, f);
         }
@@ -906,7 +909,7 @@ private:
         std::size_t total = 0;
         if (!(options_.tolerance > 0.0)) return total;
         // The output's triangles are kept from round to round (output_tree), the changes noted.
-        face_points_.clear();
+        face_points_stale_ = true;
         changed_vertices_.clear();
         short_edge_changes_.clear();
         noting_changes_ = true;
@@ -1694,6 +1697,7 @@ private:
     // While a refinement runs: the points of each output face (by handle index; stale for a
     // deleted one), and the vertices whose faces changed since they were last brought up.
     std::vector<std::array<Vec3d, 3>> face_points_;
+    bool face_points_stale_ = true;  // all to be gathered again (each refinement's first round)
     std::vector<VertexHandle> changed_vertices_;
     bool noting_changes_ = false;
     RefineScratch refine_scratch_;
