@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "surface/boxed_distance.h"
 #include "surface/closest_point_tree.h"
 #include "surface/local_ops_geometry.h"
 #include "surface/surface_quality.h"
@@ -65,11 +66,15 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
 
     // The excess both ways with v at q: witnesses to the 2-ring; the star's edge midpoints (and
     // the quarter points of its curve chords, which cut the zigs), centroids to the model.
+    std::vector<std::array<Vec3d, 3>> patch_at;  // the patch with v at q (excess)
     auto excess = [&](const Vec3d& q) {
         Excess e;
-        // (Only an excess counts: a witness within the tolerance of some triangle adds nothing.)
+        // (Only an excess counts: a witness within the tolerance of some triangle adds nothing;
+        // TwoRingPatch::within's answer, the triangles clearly beyond skipped.)
+        patch_at.clear();
+        for (std::size_t i = 0; i < patch.triangles.size(); ++i) patch_at.push_back(patch.triangle(i, &q));
         for (const Vec3d& w : options.witnesses)
-            if (!patch.within(w, &q, options.tolerance)) e.add(patch.distance(w, &q), options.tolerance);
+            if (!within_triangles_boxed(w, patch_at, options.tolerance)) e.add(patch.distance(w, &q), options.tolerance);
         auto sample = [&](const Vec3d& s) {
             e.add(ctx.distance_beyond(s, v, options.tolerance), options.tolerance);
         };

@@ -6,22 +6,41 @@
 namespace hdimesh::surface
 {
 
-PointGrid::PointGrid(const std::vector<Vec3d>& points, double cell) : points_(&points), cell_(cell)
+PointGrid::PointGrid(const std::vector<Vec3d>& points, double cell) : cell_(cell)
 {
+    std::size_t slots = 16;
+    shift_ = 60;
+    while (slots < 2 * points.size()) slots *= 2, --shift_;
+    slot_key_.assign(slots, 0);
+    slot_cell_.assign(slots, -1);
+    // Each point's cell (numbered in order of first appearance), and the cells' sizes.
+    std::vector<int> cell_of(points.size());
+    std::vector<std::size_t> count;
     for (std::size_t i = 0; i < points.size(); ++i)
     {
         const Vec3d& p = points[i];
-        cells_[key(coordinate(p[0]), coordinate(p[1]), coordinate(p[2]))].push_back(i);
+        const std::int64_t k = key(coordinate(p[0]), coordinate(p[1]), coordinate(p[2]));
+        const std::size_t slot = slot_of(k);
+        if (slot_cell_[slot] < 0)
+        {
+            slot_key_[slot] = k;
+            slot_cell_[slot] = static_cast<int>(count.size());
+            count.push_back(0);
+        }
+        cell_of[i] = slot_cell_[slot];
+        ++count[cell_of[i]];
     }
-}
-
-std::int64_t PointGrid::coordinate(double x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
-
-std::int64_t PointGrid::key(std::int64_t i, std::int64_t j, std::int64_t k) const
-{
-    // 21 bits per axis (cells wrap beyond ±2^20: only more points to filter, never fewer).
-    constexpr std::int64_t mask = (std::int64_t(1) << 21) - 1;
-    return ((i & mask) << 42) | ((j & mask) << 21) | (k & mask);
+    cell_first_.assign(count.size() + 1, 0);
+    for (std::size_t c = 0; c < count.size(); ++c) cell_first_[c + 1] = cell_first_[c] + count[c];
+    std::vector<std::size_t> next(cell_first_.begin(), cell_first_.end() - 1);
+    points_.resize(points.size());
+    indices_.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+        const std::size_t at = next[cell_of[i]]++;
+        points_[at] = points[i];
+        indices_[at] = i;
+    }
 }
 
 std::vector<std::size_t> PointGrid::within(const Vec3d& p, double radius) const
@@ -35,10 +54,10 @@ std::vector<std::size_t> PointGrid::within(const Vec3d& p, double radius) const
         for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
             for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
             {
-                const auto it = cells_.find(key(i, j, k));
-                if (it == cells_.end()) continue;
-                for (const std::size_t index : it->second)
-                    if (((*points_)[index] - p).sqrnorm() <= r2) found.push_back(index);
+                const int c = slot_cell_[slot_of(key(i, j, k))];
+                if (c < 0) continue;
+                for (std::size_t at = cell_first_[c]; at < cell_first_[c + 1]; ++at)
+                    if ((points_[at] - p).sqrnorm() <= r2) found.push_back(indices_[at]);
             }
     std::sort(found.begin(), found.end());
     found.erase(std::unique(found.begin(), found.end()), found.end());

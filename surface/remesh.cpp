@@ -1,15 +1,19 @@
 #include "surface/remesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstdint>
 #include <ctime>
 #include <limits>
 #include <memory>
+#include <queue>
 
+#include "surface/boxed_distance.h"
 #include "surface/closest_point_tree.h"
 #include "surface/fit_curve_vertex.h"
 #include "surface/hdi_projection.h"
@@ -186,6 +190,9 @@ private:
         near_centroid_.clear();
         near_midpoint_.clear();
         face_points_.clear();
+        face_points_stale_ = true;
+        watching_angles_ = false;
+        moved_since_angle_scan_.clear();
     }
 
     // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
@@ -487,11 +494,15 @@ private:
     // Ridge and boundary vertices whose chords stray from the input polyline beyond the
     // tolerance (either way) slid along their curve to the position that follows it best
     // (fit_curve_vertex), in sweeps over the curves while something moves: a vertex's best
-    // place depends on its curve neighbours'.
+    // place depends on its curve neighbours'. A vertex is tried again in a later sweep only when
+    // a vertex within two rings of it moved since its last try: its fit reads nothing farther
+    // (its star, the 2-ring patch, its witnesses and hint), so it would end as before (measured:
+    // the later sweeps, which move a few vertices of tens, cost as much as the first).
     std::size_t fit_curves()
     {
         std::size_t moved = 0;
         if (!(options_.tolerance > 0.0) || !(options_.snap_min_angle_deg > 0.0)) return moved;
+        std::vector<char> unsettled(mesh_.n_vertices(), 1);  // (a fit moves only: no new vertex)
         for (int sweep = 0; sweep < kCurveFitSweeps; ++sweep)
         {
             std::size_t done = 0;
@@ -499,12 +510,20 @@ private:
             {
                 const VertexClass cls = ctx_.vertex_class(v);
                 if (mesh_.status(v).deleted() || (cls != VertexClass::Ridge && cls != VertexClass::Boundary)) continue;
+                if (!unsettled[v.idx()]) continue;
+                unsettled[v.idx()] = 0;
                 // The witnesses within the star's own reach: the curve around v is what it fits.
                 CurveFitOptions fit;
                 set_move_limits(v, nullptr, 0.0, fit);
                 if (!fit_curve_vertex(ctx_, v, fit).done()) continue;
                 set_size(v);
                 ++done;
+                unsettled[v.idx()] = 1;
+                for (auto w : mesh_.vv_range(v))
+                {
+                    unsettled[w.idx()] = 1;
+                    for (auto x : mesh_.vv_range(w)) unsettled[x.idx()] = 1;
+                }
             }
             moved += done;
             if (options_.verbosity > 0) std::fprintf(stderr, "remesh: curve fit sweep %d: %zu moves\n", sweep + 1, done);
@@ -556,7 +575,7 @@ private:
         double reach = 0.0;
         for (const Vec3d& q : {pa, pb, pc, pd}) reach = std::max(reach, (q - centre).norm());
         for (const std::size_t i : model_point_grid().within(centre, reach + options_.tolerance))
-            if (!detail::keeps_witness(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
+            if (!keeps_witness_boxed(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
         return try_flip(ctx_, e, FlipGoal::Quality).done();
     }
 
@@ -612,7 +631,7 @@ private:
         double reach = 0.0;
         for (auto w : mesh_.vv_range(a)) reach = std::max(reach, (mesh_.point(w) - pb).norm());
         for (const std::size_t i : model_point_grid().within(pb, reach + bound))
-            if (!detail::keeps_witness(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
+            if (!keeps_witness_boxed(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
         return try_collapse(ctx_, h, max_length, require_gain, min_angle).done();
     }
 
@@ -628,9 +647,7 @@ private:
         const bool moves = options_.snap_min_angle_deg > 0.0;
         for (int round = 0; round < 3; ++round)
         {
-            std::vector<FaceHandle> bad;
-            for (auto f : mesh_.faces())
-                if (!mesh_.status(f).deleted() && face_angle_below(f, options_.cleanup_angle_deg)) bad.push_back(f);
+            const std::vector<FaceHandle> bad = faces_under_cleanup_angle();
             std::size_t moved = 0;
             for (const FaceHandle f : bad)
             {
@@ -690,37 +707,42 @@ private:
         return repaired;
     }
 
-    // Whether output face f passes within the tolerance of p (the arithmetic of the tree's search).
-    bool within_tolerance(const Vec3d& p, FaceHandle f) const
-    {
-        return detail::distance_to_triangle(p, detail::face_points(mesh_, f)) <= options_.tolerance;
-    }
-
     // Output face f (if live), or else a face around its vertices, within the tolerance of p
-    // (invalid: none is).
+    // (invalid: none is), by the arithmetic of the tree's search, on the triangles kept up to date
+    // (update_face_points, face_points_: walking the mesh to each face's points was half of
+    // this function's time).
     FaceHandle near_face_around(const Vec3d& p, FaceHandle f) const
     {
         if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
-        if (within_tolerance(p, f)) return f;
+        // A triangle whose box is clearly beyond the tolerance is not: its closest point is not
+        // computed (bunny: 300k of the 770k triangles asked, most of those around a face that
+        // is not near).
+        const double clearly_beyond2 = clearly_beyond_squared(p, options_.tolerance);
+        auto within_tolerance = [&](FaceHandle g) {
+            const std::array<Vec3d, 3>& t = face_points_[g.idx()];
+            return !box_clearly_beyond(p, t, clearly_beyond2) && detail::distance_to_triangle(p, t) <= options_.tolerance;
+        };
+        if (within_tolerance(f)) return f;
         for (auto v : mesh_.fv_range(f))
             for (auto g : mesh_.vf_range(v))
-                if (g != f && within_tolerance(p, g)) return g;
+                if (g != f && within_tolerance(g)) return g;
         return FaceHandle();
     }
 
-    // Model point i proven within the tolerance of the output by its face of last time or a face
-    // around that face's vertices (which becomes its face).
+    // Model point of rank i (model_points_in_space_order) proven within the tolerance of the
+    // output by its face of last time or a face around that face's vertices (which becomes its
+    // face).
     bool near_by_face_of(std::size_t i)
     {
-        const FaceHandle near = near_face_around(options_.model_points[i], point_face_[i]);
+        const FaceHandle near = near_face_around(points_in_space_order_[i], point_face_[i]);
         if (near.is_valid()) point_face_[i] = near;
         return near.is_valid();
     }
 
-    // A tree over the live output faces (in handle order), and the face of each of its triangles.
+    // A tree over the live output faces (in handle order), and the face of each of its
+    // triangles. face_points_ up to date.
     ClosestPointTree output_tree(std::vector<FaceHandle>& face_of)
     {
-        update_face_points();
         std::vector<std::array<Vec3d, 3>> triangles;
         triangles.reserve(mesh_.n_faces());
         face_of.clear();
@@ -735,13 +757,15 @@ private:
     }
 
     // The hooks given, and besides, while the refinement keeps the output's triangles
-    // (face_points_), each operator's changed vertices noted: every face an operator creates or
-    // changes has one of them (a split's new vertex, a flip's new edge's ends, a moved vertex, a
-    // collapse's kept vertex, a removal's new faces' vertices).
+    // (face_points_) and once the small-angle scans started (faces_under_cleanup_angle), each
+    // operator's changed vertices noted: every face an operator creates or changes has one of
+    // them (a split's new vertex, a flip's new edge's ends, a moved vertex, a collapse's kept
+    // vertex, a removal's new faces' vertices).
     SurfaceHooks with_change_notes(SurfaceHooks hooks)
     {
         auto note = [this](VertexHandle v) {
-            if (noting_changes_) changed_vertices_.push_back(v);
+            if (noting_changes_) changed_vertices_.push_back(v), short_edge_changes_.push_back(v);
+            if (watching_angles_) moved_since_angle_scan_.push_back(v);
         };
         hooks.on_split = [note, given = hooks.on_split](const SurfaceMesh& m, VertexHandle a, VertexHandle b, VertexHandle inserted) {
             note(inserted);
@@ -774,9 +798,11 @@ private:
     // gathered 2.2 % of its bench time), after that the faces at the vertices noted since.
     void update_face_points()
     {
-        if (face_points_.empty())
+        if (face_points_stale_)
         {
+            // (Stale, not cleared: a cleared vector is zero-filled again by the resize.)
             face_points_.resize(mesh_.n_faces());
+            face_points_stale_ = false;
             for (auto f : mesh_.faces())
                 if (!mesh_.status(f).deleted()) face_points_[f.idx()] = detail::face_points(mesh_, f);
         }
@@ -828,9 +854,31 @@ private:
             }
             keyed[i] = {key, i};
         }
-        std::sort(keyed.begin(), keyed.end());
+        // Sorted by (key, index): a stable radix sort of the keys (the indices come in
+        // increasing order), 11 bits a pass (std::sort of the pairs was half of this function's
+        // time, 10 ms on the bunny's 139k points).
+        std::vector<std::pair<std::uint64_t, std::size_t>> sorted(keyed.size());
+        constexpr int kDigitBits = 11;
+        for (int shift = 0; shift < 3 * kBits && !keyed.empty(); shift += kDigitBits)
+        {
+            std::vector<std::size_t> start((std::size_t(1) << kDigitBits) + 1, 0);
+            auto digit = [&](std::uint64_t key) { return static_cast<std::size_t>((key >> shift) & ((1u << kDigitBits) - 1)); };
+            for (const auto& k : keyed) ++start[digit(k.first) + 1];
+            if (start[digit(keyed.front().first) + 1] == keyed.size()) continue;  // one digit: in order already
+            for (std::size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
+            for (const auto& k : keyed) sorted[start[digit(k.first)]++] = k;
+            keyed.swap(sorted);
+        }
+        assert(std::is_sorted(keyed.begin(), keyed.end()));
         space_order_.resize(keyed.size());
-        for (std::size_t i = 0; i < keyed.size(); ++i) space_order_[i] = keyed[i].second;
+        rank_in_space_order_.resize(keyed.size());
+        points_in_space_order_.resize(keyed.size());
+        for (std::size_t i = 0; i < keyed.size(); ++i)
+        {
+            space_order_[i] = keyed[i].second;
+            rank_in_space_order_[keyed[i].second] = i;
+            points_in_space_order_[i] = options_.model_points[keyed[i].second];
+        }
         return space_order_;
     }
 
@@ -861,8 +909,9 @@ private:
         std::size_t total = 0;
         if (!(options_.tolerance > 0.0)) return total;
         // The output's triangles are kept from round to round (output_tree), the changes noted.
-        face_points_.clear();
+        face_points_stale_ = true;
         changed_vertices_.clear();
+        short_edge_changes_.clear();
         noting_changes_ = true;
         // After the first round only the points still far get another look. Splits bring the
         // output nearer to the model points; a flip can take it away from a point it passed near
@@ -870,13 +919,22 @@ private:
         // does; after the last one, bench_surface's Hausdorff column is the check).
         std::vector<VertexHandle> split_vertices;  // of the last round (and ends of its distance flips)
         std::vector<VertexHandle> revisit;         // ends of the last round's candidates not tried
-        std::vector<std::size_t> far_points = model_points_in_space_order();
+        // (By rank in space order: the points, and their faces in point_face_, are then read in
+        // memory order in the first round's pass over all of them.)
+        std::vector<std::size_t> far_points(model_points_in_space_order().size());
+        for (std::size_t r = 0; r < far_points.size(); ++r) far_points[r] = r;
+        // The per-element scratch of a round: members, kept zero between rounds (the entries a
+        // round set are reset from its lists), so a round pays for what it touches only (the
+        // per-round vectors of all edges, faces and vertices cost 9 % of the refinement, half
+        // of it in page faults).
+        RefineScratch& scratch = refine_scratch_;
         for (int round = 0; round < options_.refine_rounds; ++round)
         {
-            std::vector<double> edge_error(mesh_.n_edges(), 0.0);  // worst distance that asks for a split
+            scratch.grow(mesh_.n_vertices(), mesh_.n_edges(), mesh_.n_faces());
+            std::vector<double>& edge_error = scratch.edge_error;  // worst distance that asks for a split
             // A model point far from the output: the new vertex goes onto it (index + 1; 0: none).
-            std::vector<std::size_t> edge_target(mesh_.n_edges(), 0);
-            std::vector<EdgeHandle> marked;  // the edges given an error > 0, once each
+            std::vector<std::size_t>& edge_target = scratch.edge_target;
+            std::vector<EdgeHandle>& marked = scratch.marked;  // the edges given an error > 0, once each
             auto raise_error = [&](EdgeHandle e, double distance) {
                 if (!(distance > edge_error[e.idx()])) return false;
                 if (!(edge_error[e.idx()] > 0.0)) marked.push_back(e);
@@ -895,8 +953,9 @@ private:
             };
             // After the first round only the neighbourhood of the last splits changed (and the
             // places refused before stay refused): the projections there only.
-            std::vector<VertexHandle> changed;  // (after round 0)
-            std::vector<char> near_change(mesh_.n_vertices(), round == 0 ? 1 : 0);
+            // (Round 0 looks at everything: none is marked then.)
+            std::vector<VertexHandle>& changed = scratch.changed;  // (after round 0)
+            std::vector<char>& near_change = scratch.near_change;
             auto mark_changed = [&](VertexHandle v) {
                 if (near_change[v.idx()]) return;
                 near_change[v.idx()] = 1;
@@ -941,7 +1000,7 @@ private:
             else
             {
                 // The faces and edges at a changed vertex, each once.
-                std::vector<char> face_seen(mesh_.n_faces(), 0), edge_seen(mesh_.n_edges(), 0);
+                std::vector<char>&face_seen = scratch.face_seen, &edge_seen = scratch.edge_seen;
                 for (const VertexHandle v : changed)
                 {
                     for (auto f : mesh_.vf_range(v))
@@ -949,9 +1008,17 @@ private:
                     for (auto e : mesh_.ve_range(v))
                         if (!edge_seen[e.idx()]) edge_seen[e.idx()] = 1, check_edge(e);
                 }
+                // (A check changes no connectivity: the same faces and edges, unmarked.)
+                for (const VertexHandle v : changed)
+                {
+                    near_change[v.idx()] = 0;
+                    for (auto f : mesh_.vf_range(v)) face_seen[f.idx()] = 0;
+                    for (auto e : mesh_.ve_range(v)) edge_seen[e.idx()] = 0;
+                }
+                changed.clear();
             }
             split_vertices.clear();
-            std::vector<std::size_t> still_far;
+            std::vector<std::size_t> still_far;  // ranks
             struct FarHit
             {
                 double distance;
@@ -959,7 +1026,7 @@ private:
                 FaceHandle face;  // the output triangle closest to the point
             };
             std::vector<FarHit> far_hits;
-            std::vector<char> snapped_now(mesh_.n_vertices(), 0);  // moved by a snap in this round
+            std::vector<char>& snapped_now = scratch.snapped_now;  // moved by a snap in this round
             // (A split later in the round adds vertices, and an edge it cut ends at one of them.)
             auto snapped_end = [&](EdgeHandle e) {
                 const auto he = mesh_.halfedge_handle(e, 0);
@@ -971,28 +1038,31 @@ private:
             // near without a search: the closest face can only be nearer. Most points stay near
             // from one call to the next; the others are searched.
             if (point_face_.size() != options_.model_points.size()) point_face_.assign(options_.model_points.size(), FaceHandle());
+            update_face_points();
             std::vector<std::size_t> unproven;
-            for (const std::size_t i : far_points)
-                if (!near_by_face_of(i)) unproven.push_back(i);
+            for (const std::size_t r : far_points)
+                if (!near_by_face_of(r)) unproven.push_back(r);
             // Consecutive model points are mostly neighbours: the last hit is the hint of the
             // next search, and a point within the tolerance of it is near without a search.
             std::vector<FaceHandle> face_of;  // per triangle of `output`
             const ClosestPointTree output = unproven.empty() ? ClosestPointTree() : output_tree(face_of);
-            std::vector<int> triangle_of(unproven.empty() ? 0 : mesh_.n_faces(), -1);
+            std::vector<int>& triangle_of = scratch.triangle_of;  // (only read when the tree is built)
+            if (!unproven.empty()) triangle_of.assign(mesh_.n_faces(), -1);
             for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
             FaceHandle previous;
-            for (const std::size_t i : unproven)
+            for (const std::size_t r : unproven)
             {
-                const Vec3d& point = options_.model_points[i];
+                const std::size_t i = space_order_[r];
+                const Vec3d& point = points_in_space_order_[r];
                 const FaceHandle near = near_face_around(point, previous);
                 if (near.is_valid())
                 {
-                    point_face_[i] = previous = near;
+                    point_face_[r] = previous = near;
                     continue;
                 }
                 const auto hit = output.closest(point, previous.is_valid() ? triangle_of[previous.idx()] : -1);
                 if (hit.primitive < 0) continue;
-                point_face_[i] = previous = face_of[hit.primitive];
+                point_face_[r] = previous = face_of[hit.primitive];
                 if (!(hit.distance > options_.tolerance)) continue;
                 far_hits.push_back({hit.distance, i, face_of[hit.primitive]});
             }
@@ -1012,7 +1082,7 @@ private:
                     if (snap && std::any_of(mesh_.fv_begin(far.face), mesh_.fv_end(far.face),
                                             [&](VertexHandle v) { return snapped_now[v.idx()] != 0; }))
                     {
-                        still_far.push_back(far.point);
+                        still_far.push_back(rank_in_space_order_[far.point]);
                         continue;
                     }
                     const VertexHandle snapped = snap ? snap_toward(far.point, far.face, smooth) : VertexHandle();
@@ -1020,6 +1090,7 @@ private:
                     {
                         ++snaps;
                         snapped_now[snapped.idx()] = 1;
+                        scratch.snapped.push_back(snapped);
                         split_vertices.push_back(snapped);
                         continue;
                     }
@@ -1031,7 +1102,7 @@ private:
                     if (curve_edge.is_valid()) mark_edge(curve_edge, far.distance, 0);
                     else mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
                 }
-                still_far.push_back(far.point);
+                still_far.push_back(rank_in_space_order_[far.point]);
             }
             far_points = std::move(still_far);
             std::vector<std::pair<double, EdgeHandle>> candidates;
@@ -1067,10 +1138,11 @@ private:
                 if (!snapped.is_valid()) continue;
                 ++snaps;
                 snapped_now[snapped.idx()] = 1;
+                scratch.snapped.push_back(snapped);
                 split_vertices.push_back(snapped);
             }
             report_.refinement_snaps += snaps;
-            std::size_t short_edges = count_short_edges(), edges = count_live_edges();
+            std::size_t short_edges = short_edges_now(round == 0), edges = count_live_edges();
             std::size_t done = 0, splits = 0;  // changes of the round (splits and distance flips), splits
             // The budget goes to the worst places first: a round splits only near the worst
             // distance; the next round sees the result.
@@ -1129,6 +1201,7 @@ private:
             report_.splits += splits;
             report_.refinement_splits += splits;
             done += snaps;
+            scratch.clear_round();
             total += done;
             if (options_.verbosity > 0)
                 std::fprintf(stderr, "remesh: refinement round %d: %zu snaps, %zu edges marked, %zu split, %zu short edges of %zu\n",
@@ -1160,7 +1233,69 @@ private:
             }
         }
         noting_changes_ = false;
+        short_edge_changes_.clear();
         return total;
+    }
+
+    // refine_where_far's per-element scratch, all zero between rounds.
+    struct RefineScratch
+    {
+        std::vector<double> edge_error;
+        std::vector<std::size_t> edge_target;
+        std::vector<EdgeHandle> marked;  // the edges with edge_error > 0
+        std::vector<char> near_change, face_seen, edge_seen, snapped_now;
+        std::vector<VertexHandle> changed;  // the vertices with near_change set
+        std::vector<VertexHandle> snapped;  // the vertices with snapped_now set
+        std::vector<int> triangle_of;       // (assigned whole when used)
+
+        void grow(std::size_t vertices, std::size_t edges, std::size_t faces)
+        {
+            if (edge_error.size() < edges) edge_error.resize(edges, 0.0), edge_target.resize(edges, 0), edge_seen.resize(edges, 0);
+            if (near_change.size() < vertices) near_change.resize(vertices, 0), snapped_now.resize(vertices, 0);
+            if (face_seen.size() < faces) face_seen.resize(faces, 0);
+        }
+        // The end of a round: the entries it set back to zero (near_change, face_seen and
+        // edge_seen are cleared where they are used).
+        void clear_round()
+        {
+            for (const EdgeHandle e : marked) edge_error[e.idx()] = 0.0, edge_target[e.idx()] = 0;
+            marked.clear();
+            for (const VertexHandle v : snapped) snapped_now[v.idx()] = 0;
+            snapped.clear();
+        }
+    };
+
+    // The edges short for the reference size (count_short_edges) while a refinement runs:
+    // counted in full at its first round, after that kept up to date at the edges of the
+    // vertices its changes noted (an edge's length and sizes change only with an end's).
+    std::size_t short_edges_now(bool first_round)
+    {
+        auto is_short = [&](EdgeHandle e) {
+            return !mesh_.status(e).deleted() && size_quality(mesh_.calc_edge_length(e), reference_size(e)) < 0.66;
+        };
+        if (first_round)
+        {
+            edge_is_short_.assign(mesh_.n_edges(), 0);
+            short_edge_count_ = 0;
+            for (auto e : mesh_.edges())
+                if (is_short(e)) edge_is_short_[e.idx()] = 1, ++short_edge_count_;
+        }
+        else
+        {
+            edge_is_short_.resize(mesh_.n_edges(), 0);
+            for (const VertexHandle v : short_edge_changes_)
+                if (!mesh_.status(v).deleted())
+                    for (auto e : mesh_.ve_range(v))
+                    {
+                        const char now = is_short(e) ? 1 : 0;
+                        short_edge_count_ += now;
+                        short_edge_count_ -= edge_is_short_[e.idx()];
+                        edge_is_short_[e.idx()] = now;
+                    }
+        }
+        short_edge_changes_.clear();
+        assert(short_edge_count_ == count_short_edges());
+        return short_edge_count_;
     }
 
     // Edges still too short for the reference size (Qt < 0.66) were kept by the loop's bound on
@@ -1306,6 +1441,50 @@ private:
         }
     }
 
+    // The live faces with an angle under the cleanup's (face_angle_below), in handle order: the
+    // scan of all faces the first time, after that the faces found last time and those at the
+    // vertices changed since (a face gets a new angle only when a vertex of it moves or it is
+    // made anew, and every such change is noted): the same faces, at a fraction of the cost
+    // (rocker-arm's cleanup ran 8 full scans that found 2 triangles each).
+    std::vector<FaceHandle> faces_under_cleanup_angle()
+    {
+        std::vector<FaceHandle> bad;
+        if (!watching_angles_)
+        {
+            for (auto f : mesh_.faces())
+                if (!mesh_.status(f).deleted() && face_angle_below(f, options_.cleanup_angle_deg)) bad.push_back(f);
+            watching_angles_ = true;
+        }
+        else
+        {
+            std::vector<FaceHandle> suspects = std::move(faces_under_angle_);
+            for (const VertexHandle v : moved_since_angle_scan_)
+                if (!mesh_.status(v).deleted())
+                    for (auto f : mesh_.vf_range(v)) suspects.push_back(f);
+            std::sort(suspects.begin(), suspects.end());
+            suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
+            for (const FaceHandle f : suspects)
+                if (!mesh_.status(f).deleted() && face_angle_below(f, options_.cleanup_angle_deg)) bad.push_back(f);
+        }
+        moved_since_angle_scan_.clear();
+#ifndef NDEBUG
+        std::vector<FaceHandle> scanned;
+        for (auto f : mesh_.faces())
+            if (!mesh_.status(f).deleted() && face_angle_below(f, options_.cleanup_angle_deg)) scanned.push_back(f);
+        assert(scanned == bad);
+#endif
+        faces_under_angle_ = bad;
+        return bad;
+    }
+
+    static std::vector<int> face_indices(const std::vector<FaceHandle>& faces)
+    {
+        std::vector<int> indices;
+        indices.reserve(faces.size());
+        for (const FaceHandle f : faces) indices.push_back(f.idx());
+        return indices;
+    }
+
     // Whether f's smallest angle (triangle_min_angle_deg) is under `degrees`. A triangle whose
     // smallest angle is clearly larger (law of cosines, a degree of margin for its rounding) is
     // answered without the three atan2: every cleanup round asks it of every face.
@@ -1315,7 +1494,9 @@ private:
         double l2[3] = {(p[1] - p[2]).sqrnorm(), (p[2] - p[0]).sqrnorm(), (p[0] - p[1]).sqrnorm()};
         std::sort(l2, l2 + 3);  // the smallest angle is opposite the shortest side
         const double cosine = (l2[1] + l2[2] - l2[0]) / (2.0 * std::sqrt(l2[1] * l2[2]));
-        if (l2[0] > 0.0 && cosine < detail::cos_deg(degrees + 1.0)) return false;
+        // (The cleanup's bound computed once: the first scan asks it of every face.)
+        const double clearly_above = degrees == options_.cleanup_angle_deg ? cleanup_angle_margin_cos_ : detail::cos_deg(degrees + 1.0);
+        if (l2[0] > 0.0 && cosine < clearly_above) return false;
         return triangle_min_angle_deg(p[0], p[1], p[2]) < degrees;
     }
 
@@ -1333,9 +1514,7 @@ private:
         smart.smart = true;
         for (int round = 0; round < options_.cleanup_rounds; ++round)
         {
-            std::vector<FaceHandle> bad;
-            for (auto f : mesh_.faces())
-                if (!mesh_.status(f).deleted() && face_angle_below(f, options_.cleanup_angle_deg)) bad.push_back(f);
+            const std::vector<FaceHandle> bad = faces_under_cleanup_angle();
             if (bad.empty()) break;
             std::size_t changed = 0;
             for (const FaceHandle f : bad)
@@ -1371,11 +1550,6 @@ private:
         if (keep == Keep::Nothing || !(options_.tolerance > 0.0)) return shift_vertex(ctx_, v, options).done();
         const bool keep_lengths = keep == Keep::ToleranceAndLengths;
         const double bound = options_.tolerance;
-        const Vec3d before = mesh_.point(v);
-        const detail::TwoRingPatch patch(mesh_, v);
-        double reach = 0.0;
-        for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
-        const std::vector<std::size_t> around = model_point_grid().within(before, reach + bound);
         auto worst_sample = [&](const Vec3d& at) { return detail::star_samples_beyond(ctx_, v, at, bound); };
         // The star's edges short for the reference size with v at `at`.
         auto short_star_edges = [&](const Vec3d& at) {
@@ -1385,15 +1559,24 @@ private:
                     ++n;
             return n;
         };
-        const double samples_before = worst_sample(before);
-        const int short_before = keep_lengths ? short_star_edges(before) : 0;
         ShiftOptions keeping = options;
+        // The state before the move is gathered here, when a move is asked (the mesh is still
+        // as before it): most smart shifts stop at their quality test and never ask (the
+        // budget collapses' settling spent a third of its time on the patches, witnesses and
+        // samples of shifts that did not move).
         keeping.accept = [&](const Vec3d& after) {
-            if (keep_lengths && short_star_edges(after) > short_before) return false;
+            const Vec3d before = mesh_.point(v);
+            if (keep_lengths && short_star_edges(after) > short_star_edges(before)) return false;
             const double samples_after = worst_sample(after);
-            if (samples_after > bound && samples_after > samples_before) return false;
-            for (const std::size_t k : around)
-                if (!patch.keeps_witness(options_.model_points[k], after, bound, 1e-12 * reach)) return false;
+            if (samples_after > bound && samples_after > worst_sample(before)) return false;
+            // The 2-ring before and after (TwoRingPatch::keeps_witness, with the boxed test).
+            const detail::TwoRingPatch patch(mesh_, v);
+            std::vector<std::array<Vec3d, 3>> patch_after;
+            for (std::size_t i = 0; i < patch.triangles.size(); ++i) patch_after.push_back(patch.triangle(i, &after));
+            double reach = 0.0;
+            for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
+            for (const std::size_t k : model_point_grid().within(before, reach + bound))
+                if (!keeps_witness_boxed(options_.model_points[k], patch.triangles, patch_after, bound, 1e-12 * reach)) return false;
             return !options.accept || options.accept(after);
         };
         return shift_vertex(ctx_, v, keeping).done();
@@ -1410,12 +1593,28 @@ private:
         // Rounds: a slide on one side lets the other side slide further.
         for (int round = 0; round < kSlideRounds; ++round)
         {
+            // The faces in handle order, each looked at as the slides before it in the round left
+            // it: those under the angle at the round's start, and those a slide changes further
+            // on (the others have no small angle when their turn comes).
+            const std::vector<FaceHandle> bad = faces_under_cleanup_angle();
+            std::priority_queue<int, std::vector<int>, std::greater<int>> queue(std::greater<int>(), face_indices(bad));
+            int last = -1;
             std::size_t done = 0;
-            for (auto f : mesh_.faces())
+            while (!queue.empty())
             {
+                const int index = queue.top();
+                queue.pop();
+                if (index == last) continue;
+                last = index;
+                const FaceHandle f(index);
                 if (mesh_.status(f).deleted() || !face_angle_below(f, options_.cleanup_angle_deg)) continue;
                 for (auto v : mesh_.fv_range(f))
-                    if (try_slide(v)) ++done;
+                {
+                    if (!try_slide(v)) continue;
+                    ++done;
+                    for (auto g : mesh_.vf_range(v))
+                        if (g.idx() > index) queue.push(g.idx());
+                }
             }
             if (options_.verbosity > 0) std::fprintf(stderr, "remesh: slide round %d: %zu curve vertices slid\n", round + 1, done);
             if (done == 0) break;
@@ -1485,19 +1684,34 @@ private:
     std::clock_t cpu_start_ = std::clock();
     RemeshReport report_;
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first snap
-    // Per model point: the output face that last proved it within the tolerance, or was its
+    // Per model point (by rank in space order): the output face that last proved it within the tolerance, or was its
     // closest (invalid: none yet). Cleared by a compaction (only in the iterations, before any
     // refinement); otherwise faces are garbage-collected at the end of run() only.
-    std::vector<FaceHandle> point_face_;
-    std::vector<std::size_t> space_order_;  // model_points_in_space_order()
+    std::vector<FaceHandle> point_face_;  // (by rank in space_order_)
+    // model_points_in_space_order(): rank -> index, index -> rank, rank -> point.
+    std::vector<std::size_t> space_order_, rank_in_space_order_;
+    std::vector<Vec3d> points_in_space_order_;
     // Per output face / edge: the centroid / midpoint last proven within the tolerance of the
     // model (kNoPoint: none).
     std::vector<Vec3d> near_centroid_, near_midpoint_;
     // While a refinement runs: the points of each output face (by handle index; stale for a
     // deleted one), and the vertices whose faces changed since they were last brought up.
     std::vector<std::array<Vec3d, 3>> face_points_;
+    bool face_points_stale_ = true;  // all to be gathered again (each refinement's first round)
     std::vector<VertexHandle> changed_vertices_;
     bool noting_changes_ = false;
+    RefineScratch refine_scratch_;
+    // While a refinement runs: which edges were short for the reference size at the last count
+    // (short_edges_now), how many, and the vertices changed since.
+    std::vector<char> edge_is_short_;
+    std::size_t short_edge_count_ = 0;
+    std::vector<VertexHandle> short_edge_changes_;
+    // Once the first small-angle scan ran (faces_under_cleanup_angle): the faces it found last
+    // time, and the vertices changed since.
+    bool watching_angles_ = false;
+    const double cleanup_angle_margin_cos_ = detail::cos_deg(options_.cleanup_angle_deg + 1.0);  // face_angle_below
+    std::vector<FaceHandle> faces_under_angle_;
+    std::vector<VertexHandle> moved_since_angle_scan_;
     // The caller's hooks (not the remesher's own wrappers): their owner may keep handles.
     const bool caller_keeps_handles_;
 };
