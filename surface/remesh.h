@@ -34,7 +34,11 @@ struct RemeshOptions
     /// SizeMap::at): used instead of `size` when given, for the look-ups of a size on the model.
     std::function<double(const Vec3d&, int face_hint)> size_near;
     int iterations = 10;
-    int polish_passes = 3;  // after the iterations: quality flips + smart shifts over everything
+    int polish_passes = 3;  // after the iterations: quality flips + smart shifts
+    /// The polish works where a triangle misses this Qe (its vertices, and edges at them; ≥ 1:
+    /// everywhere): the iterations left the rest well shaped, and a smart shift only raises the
+    /// worst Qe of its ball anyway.
+    double polish_below_quality = 0.7;
     /// Operators refuse a change whose new triangles stray farther from the model (≤ 0: none).
     double max_model_distance = 0.0;
     /// The smallest angle a split across a crease may leave (replaces limits' own, 10°, which is

@@ -263,6 +263,11 @@ TEST_CASE("after the polish, snaps and the angle repair keep the tolerance: with
         options.refine_min_length_ratio = 0.1;
         options.refine_rounds = 20;
         options.snap_min_angle_deg = snap_min_angle_deg;
+        // Both paths start the final refinement from the same mesh (nothing before it reads
+        // the snap angle); the whole mesh polished, as when this comparison was set up. With the
+        // polish only at triangles under Qe 0.7 (the default) this sphere's snap path ends with
+        // 111 vertices against 107: snaps save vertices on most meshes, not on every one.
+        options.polish_below_quality = 2.0;
         const RemeshReport report = remesh(mesh, options, sphere);
         CHECK(euler(mesh) == 2);
         check_manifold(mesh);
