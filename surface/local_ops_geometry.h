@@ -57,6 +57,25 @@ inline bool turn_ok(const Vec3d& old_normal, const Vec3d& new_normal, double max
     return turn_ok_cos(old_normal, new_normal, cos_deg(max_turn_deg));
 }
 
+/// turn_ok_cos of the normals (triangle_normal) of two triangles given by their cross products
+/// (b - a) × (c - a) and the norms of these: the same answer, mostly without the normals' six
+/// divisions. Where no product under- or overflows, the cosine times both norms decides when it
+/// is farther than 1e-12 of them from min_cos times both norms (either form's rounding is below
+/// 1e-14 of them); nearer, or out of that range, the normals are made and tested.
+inline bool turn_ok_cross(const Vec3d& old_cross, double old_norm, const Vec3d& new_cross, double new_norm, double min_cos)
+{
+    auto in_range = [](double norm) { return norm >= 1e-140 && norm <= 1e140; };
+    if (in_range(old_norm) && in_range(new_norm) && std::abs(min_cos) <= 1.0)
+    {
+        const double scale = old_norm * new_norm;
+        const double excess = OpenMesh::dot(old_cross, new_cross) - min_cos * scale;
+        if (excess > 1e-12 * scale) return true;
+        if (excess < -1e-12 * scale) return false;
+    }
+    auto unit = [](const Vec3d& n, double norm) { return norm > 0.0 ? n / norm : Vec3d(0, 0, 0); };
+    return turn_ok_cos(unit(old_cross, old_norm), unit(new_cross, new_norm), min_cos);
+}
+
 /// A face around a vertex v, collected once for trial positions that move v only: its points in
 /// face order, the index of v among them and its normal before the move.
 struct StarFace

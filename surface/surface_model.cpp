@@ -223,6 +223,9 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
     };
     Descent out;
     out.face = face;
+    // The input's tables are larger than the cache and a descent's reads wait for one another
+    // (face, its neighbours, their corners): each is asked for as soon as its address is known.
+    __builtin_prefetch(&face_neighbours_[face]);
     out.foot = foot_on(face);
     double d2 = (out.foot - p).sqrnorm();
     // The face the last step came from: its foot was farther than the present one, so it
@@ -242,7 +245,11 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
             const double g_d2 = (q - p).sqrnorm();
             if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2;
         };
-        for (const int g : face_neighbours_[out.face])
+        const std::array<int, 3>& across = face_neighbours_[out.face];
+        for (const int g : across)
+            if (g >= 0 && g != came_from)
+                for (const int v : face_vertices_[g]) __builtin_prefetch(&points_[v]);
+        for (const int g : across)
             if (g >= 0) consider(g);
         if (next < 0)
             for (const int v : face_vertices_[out.face])
@@ -256,6 +263,7 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
             out.converged = true;
             return out;
         }
+        __builtin_prefetch(&face_neighbours_[next]);
         came_from = out.face;
         out.face = next;
         out.foot = next_foot;
@@ -311,6 +319,7 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
     ProjectedPoint out;
     if (face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
     {
+        __builtin_prefetch(&face_normals_[face_hint]);  // where most descents stop (foot_normal's read)
         const Descent descent = descend(p, face_hint);
         if (descent.converged && local_fraction > 0.0 &&
             within_fraction_of_face(descent.face, (descent.foot - p).sqrnorm(), local_fraction))
