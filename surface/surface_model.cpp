@@ -226,6 +226,9 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
     // The input's tables are larger than the cache and a descent's reads wait for one another
     // (face, its neighbours, their corners): each is asked for as soon as its address is known.
     __builtin_prefetch(&face_neighbours_[face]);
+    if (!(stop_d2 >= 0.0))  // the first step's neighbours will be read: their corners too
+        for (const int g : face_neighbours_[face])
+            if (g >= 0) __builtin_prefetch(&face_vertices_[g]);
     out.foot = foot_on(face);
     double d2 = (out.foot - p).sqrnorm();
     // The face the last step came from: its foot was farther than the present one, so it
