@@ -111,11 +111,31 @@ inline double distance_to_triangle(const Vec3d& p, const std::array<Vec3d, 3>& t
     return std::sqrt((closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
 }
 
+/// Whether the squared distance from p to t, as closest_point_on_triangle measures it, is
+/// certainly above d2: t's bounding box is farther, by a margin far above the rounding of that
+/// measure (relative 1e-8, and 1e-8 of the coordinates' magnitude in distance, as
+/// ClosestPointTree::search prunes). The patches' distance tests skip such triangles without
+/// their closest point (measured: most triangles of a 2-ring are this far from a witness).
+inline bool clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double d2)
+{
+    double box_d2 = 0.0, magnitude2 = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+        const double lo = std::min({t[0][k], t[1][k], t[2][k]}), hi = std::max({t[0][k], t[1][k], t[2][k]});
+        const double d = std::max({lo - p[k], p[k] - hi, 0.0});
+        box_d2 += d * d;
+        const double m = std::max({std::abs(lo), std::abs(hi), std::abs(p[k])});
+        magnitude2 += m * m;
+    }
+    return box_d2 > d2 * (1.0 + 1e-8) + 1e-16 * magnitude2;
+}
+
 /// Distance from p to the nearest of `triangles` (a large value when there are none).
 inline double distance_to_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles)
 {
     double best2 = 1e300;
-    for (const auto& t : triangles) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+    for (const auto& t : triangles)
+        if (!clearly_beyond(p, t, best2)) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
     return std::sqrt(best2);
 }
 
@@ -124,7 +144,7 @@ inline double distance_to_triangles(const Vec3d& p, const std::vector<std::array
 inline bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles, double limit)
 {
     for (const auto& t : triangles)
-        if (distance_to_triangle(p, t) <= limit) return true;
+        if (!clearly_beyond(p, t, limit * limit) && distance_to_triangle(p, t) <= limit) return true;
     return false;
 }
 
@@ -205,7 +225,10 @@ struct TwoRingPatch
     bool within(const Vec3d& p, const Vec3d* v_at, double limit) const
     {
         for (std::size_t i = 0; i < triangles.size(); ++i)
-            if (distance_to_triangle(p, triangle(i, v_at)) <= limit) return true;
+        {
+            const std::array<Vec3d, 3> t = triangle(i, v_at);
+            if (!clearly_beyond(p, t, limit * limit) && distance_to_triangle(p, t) <= limit) return true;
+        }
         return false;
     }
 
@@ -216,7 +239,7 @@ struct TwoRingPatch
         for (std::size_t i = 0; i < triangles.size(); ++i)
         {
             const std::array<Vec3d, 3> t = triangle(i, v_at);
-            best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+            if (!clearly_beyond(p, t, best2)) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
         }
         return std::sqrt(best2);
     }
