@@ -298,8 +298,7 @@ Vec3d SurfaceModel::foot_normal(int face, const Vec3d& foot) const
         // A foot clearly off the edge's line, by a bound of rounding² below without its square
         // roots ((|e| + |a|)² ≤ 2 (|e|² + |a|²), a relative margin far above the arithmetic's
         // rounding; in the range where no product under- or overflows): the same decision.
-        // Nearly every foot is inside its face; the three edges' square roots were two thirds
-        // of this function.
+        // Nearly every foot is inside its face: its edges' six square roots are not needed.
         const double e2 = edge.sqrnorm(), a2 = a.sqrnorm();
         const double bound2 = 2e-24 * e2 * (e2 + a2) * (1.0 + 1e-9);
         if (bound2 >= 1e-280 && off_line2 > bound2) continue;

@@ -14,9 +14,6 @@
 namespace hdimesh::surface
 {
 
-/// Qe of the triangle (a, b, c): 2√3 · inradius / longest edge; 0 for a degenerate one.
-/// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle;
-/// out of line they were 9 % of the remesher's time.)
 /// triangle_qe from the lengths |b - a|, |c - b|, |a - c| and |(b - a) × (c - a)|, with its
 /// arithmetic: a caller that has them already (a shift's trials share most of them) gets the
 /// same bits. (An edge's length does not depend on its direction: x - y is exactly -(y - x).)
@@ -29,6 +26,9 @@ inline double triangle_qe_from(double lab, double lbc, double lca, double cross_
     const double inradius = 2.0 * area / perimeter;
     return 2.0 * std::sqrt(3.0) * inradius / longest;
 }
+/// Qe of the triangle (a, b, c): 2√3 · inradius / longest edge; 0 for a degenerate one.
+/// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle;
+/// out of line they were 9 % of the remesher's time.)
 inline double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 {
     return triangle_qe_from((b - a).norm(), (c - b).norm(), (a - c).norm(), OpenMesh::cross(b - a, c - a).norm());
