@@ -262,8 +262,18 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
     };
     Descent out;
     out.face = face;
+    // The input's tables are larger than the cache and a descent's reads wait for one another
+    // (face, its neighbours, their corners): each is asked for as soon as its address is known.
+    __builtin_prefetch(&face_neighbours_[face]);
+    if (!(stop_d2 >= 0.0))  // the first step's neighbours will be read: their corners too
+        for (const int g : face_neighbours_[face])
+            if (g >= 0) __builtin_prefetch(&face_vertices_[g]);
     out.foot = foot_on(face);
     double d2 = (out.foot - p).sqrnorm();
+    // The face the last step came from: its foot was farther than the present one, so it
+    // cannot be nearer than it (the same decision without its foot; measured: 17 % of the
+    // feet a descent computed on stanford-bunny).
+    int came_from = -1;
     for (int step = 0; step < kMaxDescentSteps && !(d2 <= stop_d2); ++step)
     {
         // Across the edges (three faces, the usual way down); for a foot at a corner of the
@@ -272,11 +282,16 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         Vec3d next_foot(0, 0, 0);
         double next_d2 = d2;
         auto consider = [&](int g) {
+            if (g == came_from) return;
             const Vec3d q = foot_on(g);
             const double g_d2 = (q - p).sqrnorm();
             if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2;
         };
-        for (const int g : face_neighbours_[out.face])
+        const std::array<int, 3>& across = face_neighbours_[out.face];
+        for (const int g : across)
+            if (g >= 0 && g != came_from)
+                for (const int v : face_vertices_[g]) __builtin_prefetch(&points_[v]);
+        for (const int g : across)
             if (g >= 0) consider(g);
         if (next < 0)
             for (const int v : face_vertices_[out.face])
@@ -290,6 +305,8 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
             out.converged = true;
             return out;
         }
+        __builtin_prefetch(&face_neighbours_[next]);
+        came_from = out.face;
         out.face = next;
         out.foot = next_foot;
         d2 = next_d2;
@@ -316,9 +333,17 @@ Vec3d SurfaceModel::foot_normal(int face, const Vec3d& foot) const
     {
         const Vec3d& a = points_[fv[k]];
         const Vec3d edge = points_[fv[(k + 1) % 3]] - a;
+        const double off_line2 = OpenMesh::cross(edge, foot - a).sqrnorm();
+        // A foot clearly off the edge's line, by a bound of rounding² below without its square
+        // roots ((|e| + |a|)² ≤ 2 (|e|² + |a|²), a relative margin far above the arithmetic's
+        // rounding; in the range where no product under- or overflows): the same decision.
+        // Nearly every foot is inside its face: its edges' six square roots are not needed.
+        const double e2 = edge.sqrnorm(), a2 = a.sqrnorm();
+        const double bound2 = 2e-24 * e2 * (e2 + a2) * (1.0 + 1e-9);
+        if (bound2 >= 1e-280 && off_line2 > bound2) continue;
         // (The foot's rounding scales with its coordinates, not with the edge's length alone.)
         const double rounding = 1e-12 * edge.norm() * (edge.norm() + a.norm());
-        if (OpenMesh::cross(edge, foot - a).sqrnorm() > rounding * rounding) continue;
+        if (off_line2 > rounding * rounding) continue;
         // fv is the face's vertex circulation (the to-vertices of its halfedges from its first);
         // face_neighbours_ is across its halfedges in the same order, so across the edge from
         // fv[k] to fv[k + 1] is entry k + 1.
@@ -335,6 +360,7 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
     ProjectedPoint out;
     if (face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
     {
+        __builtin_prefetch(&face_normals_[face_hint]);  // where most descents stop (foot_normal's read)
         const Descent descent = descend(p, face_hint);
         if (descent.converged && local_fraction > 0.0 &&
             within_fraction_of_face(descent.face, (descent.foot - p).sqrnorm(), local_fraction))

@@ -14,18 +14,24 @@
 namespace hdimesh::surface
 {
 
+/// triangle_qe from the lengths |b - a|, |c - b|, |a - c| and |(b - a) × (c - a)|, with its
+/// arithmetic: a caller that has them already (a shift's trials share most of them) gets the
+/// same bits. (An edge's length does not depend on its direction: x - y is exactly -(y - x).)
+inline double triangle_qe_from(double lab, double lbc, double lca, double cross_norm)
+{
+    const double longest = std::max({lab, lbc, lca});
+    const double perimeter = lab + lbc + lca;
+    const double area = 0.5 * cross_norm;
+    if (!(longest > 0.0) || !(perimeter > 0.0)) return 0.0;
+    const double inradius = 2.0 * area / perimeter;
+    return 2.0 * std::sqrt(3.0) * inradius / longest;
+}
 /// Qe of the triangle (a, b, c): 2√3 · inradius / longest edge; 0 for a degenerate one.
 /// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle;
 /// out of line they were 9 % of the remesher's time.)
 inline double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 {
-    const double lab = (b - a).norm(), lbc = (c - b).norm(), lca = (a - c).norm();
-    const double longest = std::max({lab, lbc, lca});
-    const double perimeter = lab + lbc + lca;
-    const double area = 0.5 * OpenMesh::cross(b - a, c - a).norm();
-    if (!(longest > 0.0) || !(perimeter > 0.0)) return 0.0;
-    const double inradius = 2.0 * area / perimeter;
-    return 2.0 * std::sqrt(3.0) * inradius / longest;
+    return triangle_qe_from((b - a).norm(), (c - b).norm(), (a - c).norm(), OpenMesh::cross(b - a, c - a).norm());
 }
 /// Smallest interior angle of (a, b, c) in degrees (0 for a degenerate triangle).
 double triangle_min_angle_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c);

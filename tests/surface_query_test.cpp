@@ -20,10 +20,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "surface/closest_point_tree.h"
 #include "surface/local_ops.h"
+#include "surface/local_ops_geometry.h"
 #include "surface/surface_model.h"
 #include "surface_fixtures.h"
 
@@ -442,4 +444,50 @@ TEST_CASE("surface model: the normal of a foot on an edge or at a vertex is the 
         CHECK(beyond.normal[1] == doctest::Approx(0.0));
         CHECK(beyond.normal[2] == doctest::Approx(1.0));
     }
+}
+
+TEST_CASE("shortcut tests decide as the exact ones: a triangle's box beyond a distance, a turn told by cross products")
+{
+    // Random triangles of the unit cube (and slivers among them), points near and far, limits
+    // at the exact squared distance and around it; turn limits at the exact cosine and around it.
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    auto point = [&](double scale) { return Vec3d(scale * unit(random), scale * unit(random), scale * unit(random)); };
+    int skipped = 0, decided = 0;
+    for (int trial = 0; trial < 20000; ++trial)
+    {
+        std::array<Vec3d, 3> t{point(1.0), point(1.0), point(1.0)};
+        if (trial % 4 == 0) t[2] = t[0] + (0.5 + 1e-9 * unit(random)) * (t[1] - t[0]);  // a sliver
+        const Vec3d p = (trial % 3 == 0 ? t[trial % 2] : Vec3d(0, 0, 0)) + point(trial % 2 ? 1e-3 : 2.0);
+        const double exact2 = (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm();
+        for (const double factor : {0.0, 0.25, 1.0 - 1e-6, 1.0 - 1e-12, 1.0, 1.0 + 1e-12, 1.0 + 1e-6, 4.0})
+        {
+            const double limit2 = factor * exact2;
+            // Beyond means the exact measure is above the limit (a skipped triangle could not pass).
+            if (detail::clearly_beyond(p, t, limit2))
+            {
+                ++skipped;
+                CHECK(exact2 > limit2);
+            }
+        }
+
+        // A second triangle sharing the first's a and b: the turn from the first to it.
+        const std::array<Vec3d, 3> u{t[0], t[1], t[2] + point(trial % 2 ? 1e-6 : 0.5)};
+        const Vec3d old_cross = OpenMesh::cross(t[1] - t[0], t[2] - t[0]), new_cross = OpenMesh::cross(u[1] - u[0], u[2] - u[0]);
+        const Vec3d old_normal = detail::normal(t), new_normal = detail::normal(u);
+        const double cosine = OpenMesh::dot(old_normal, new_normal);
+        for (const double min_cos : {cosine, std::nextafter(cosine, 2.0), std::nextafter(cosine, -2.0), cosine - 1e-13,
+                                     cosine + 1e-13, cosine - 1e-3, cosine + 1e-3, 0.8191520442889918, -1.0, 1.0})
+        {
+            const bool exact = detail::turn_ok_cos(old_normal, new_normal, min_cos);
+            CHECK(detail::turn_ok_cross(old_cross, old_cross.norm(), new_cross, new_cross.norm(), min_cos) == exact);
+            ++decided;
+        }
+    }
+    CHECK(skipped > 10000);  // the shortcut does skip
+    CHECK(decided == 200000);
+    // Degenerate triangles: no reference before (any turn passes), none after (always refused).
+    const Vec3d zero(0, 0, 0), up(0, 0, 2);
+    CHECK(detail::turn_ok_cross(zero, 0.0, up, 2.0, 0.9));
+    CHECK(!detail::turn_ok_cross(up, 2.0, zero, 0.0, 0.9));
 }
