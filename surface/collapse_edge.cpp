@@ -112,19 +112,22 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
     }
 
     // Commit. OpenMesh merges the edges (v0, x) and (v1, x) of the two removed faces and may keep
-    // either one, so the curve ids are recorded by end vertex and written back afterwards.
+    // either one, so the curve ids are recorded by end vertex and written back afterwards (only
+    // the curve edges: most collapses have none, and then no list is allocated).
     std::vector<std::pair<VertexHandle, int>> curve_by_end;
-    for (auto oh : mesh.voh_range(v0))
-        if (mesh.to_vertex_handle(oh) != v1) curve_by_end.emplace_back(mesh.to_vertex_handle(oh), ctx.edge_curve(mesh.edge_handle(oh)));
-    for (auto oh : mesh.voh_range(v1))
-        if (mesh.to_vertex_handle(oh) != v0) curve_by_end.emplace_back(mesh.to_vertex_handle(oh), ctx.edge_curve(mesh.edge_handle(oh)));
+    for (const auto& [from, to] : {std::pair{v0, v1}, std::pair{v1, v0}})
+        for (auto oh : mesh.voh_range(from))
+        {
+            const int curve = ctx.edge_curve(mesh.edge_handle(oh));
+            if (mesh.to_vertex_handle(oh) != to && curve != kNoCurve) curve_by_end.emplace_back(mesh.to_vertex_handle(oh), curve);
+        }
     mesh.collapse(h);
     for (auto oh : mesh.voh_range(v1))
     {
         const VertexHandle w = mesh.to_vertex_handle(oh);
         int curve = kNoCurve;
         for (const auto& [end, c] : curve_by_end)
-            if (end == w && c != kNoCurve) curve = c;
+            if (end == w) curve = c;
         mesh.property(ctx.props.edge_curve, mesh.edge_handle(oh)) = curve;
     }
     if (ctx.hooks.on_collapse) ctx.hooks.on_collapse(mesh, v0, v1);

@@ -301,7 +301,9 @@ private:
         for (int pass = 0; pass < 5; ++pass)
         {
             std::size_t done = 0;
-            for (auto e : live_edges())
+            // (A collapse adds no edge: the edges in handle order, those deleted when reached
+            // skipped, are the pass's edges without a list of them.)
+            for (auto e : mesh_.edges())
             {
                 if (mesh_.status(e).deleted()) continue;
                 HalfedgeHandle hs[2] = {mesh_.halfedge_handle(e, 0), mesh_.halfedge_handle(e, 1)};
