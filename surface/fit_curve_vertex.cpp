@@ -5,7 +5,6 @@
 #include <cmath>
 #include <vector>
 
-#include "surface/boxed_distance.h"
 #include "surface/closest_point_tree.h"
 #include "surface/local_ops_geometry.h"
 #include "surface/surface_quality.h"
@@ -74,7 +73,7 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         patch_at.clear();
         for (std::size_t i = 0; i < patch.triangles.size(); ++i) patch_at.push_back(patch.triangle(i, &q));
         for (const Vec3d& w : options.witnesses)
-            if (!within_triangles_boxed(w, patch_at, options.tolerance)) e.add(patch.distance(w, &q), options.tolerance);
+            if (!detail::within_triangles(w, patch_at, options.tolerance)) e.add(patch.distance(w, &q), options.tolerance);
         auto sample = [&](const Vec3d& s) {
             e.add(ctx.distance_beyond(s, v, options.tolerance), options.tolerance);
         };

@@ -139,12 +139,19 @@ inline double distance_to_triangles(const Vec3d& p, const std::vector<std::array
     return std::sqrt(best2);
 }
 
+/// Whether distance_to_triangle(p, t) <= limit: the same answer, without the closest point when
+/// t's box is clearly beyond the limit.
+inline bool within_triangle(const Vec3d& p, const std::array<Vec3d, 3>& t, double limit)
+{
+    return !clearly_beyond(p, t, limit * limit) && distance_to_triangle(p, t) <= limit;
+}
+
 /// Whether distance_to_triangles(p, triangles) <= limit, decided at the first triangle within
 /// it (most witnesses of a tolerance check are, and need no other).
 inline bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles, double limit)
 {
     for (const auto& t : triangles)
-        if (!clearly_beyond(p, t, limit * limit) && distance_to_triangle(p, t) <= limit) return true;
+        if (within_triangle(p, t, limit)) return true;
     return false;
 }
 

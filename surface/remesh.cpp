@@ -13,7 +13,6 @@
 #include <memory>
 #include <queue>
 
-#include "surface/boxed_distance.h"
 #include "surface/closest_point_tree.h"
 #include "surface/fit_curve_vertex.h"
 #include "surface/hdi_projection.h"
@@ -605,7 +604,7 @@ private:
         double reach = 0.0;
         for (const Vec3d& q : {pa, pb, pc, pd}) reach = std::max(reach, (q - centre).norm());
         for (const std::size_t i : model_point_grid().within(centre, reach + options_.tolerance))
-            if (!keeps_witness_boxed(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
+            if (!detail::keeps_witness(options_.model_points[i], output_before, output_after, bound, 1e-12 * reach)) return false;
         return try_flip(ctx_, e, FlipGoal::Quality).done();
     }
 
@@ -661,7 +660,7 @@ private:
         double reach = 0.0;
         for (auto w : mesh_.vv_range(a)) reach = std::max(reach, (mesh_.point(w) - pb).norm());
         for (const std::size_t i : model_point_grid().within(pb, reach + bound))
-            if (!keeps_witness_boxed(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
+            if (!detail::keeps_witness(options_.model_points[i], before, after, bound, 1e-12 * reach)) return false;
         return try_collapse(ctx_, h, max_length, require_gain, min_angle).done();
     }
 
@@ -744,14 +743,10 @@ private:
     FaceHandle near_face_around(const Vec3d& p, FaceHandle f) const
     {
         if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
-        // A triangle whose box is clearly beyond the tolerance is not: its closest point is not
-        // computed (bunny: 300k of the 770k triangles asked, most of those around a face that
-        // is not near).
-        const double clearly_beyond2 = clearly_beyond_squared(p, options_.tolerance);
-        auto within_tolerance = [&](FaceHandle g) {
-            const std::array<Vec3d, 3>& t = face_points_[g.idx()];
-            return !box_clearly_beyond(p, t, clearly_beyond2) && detail::distance_to_triangle(p, t) <= options_.tolerance;
-        };
+        // (detail::within_triangle: a triangle whose box is clearly beyond the tolerance gets
+        // no closest point; bunny: 300k of the 770k triangles asked, most of those around a face
+        // that is not near.)
+        auto within_tolerance = [&](FaceHandle g) { return detail::within_triangle(p, face_points_[g.idx()], options_.tolerance); };
         if (within_tolerance(f)) return f;
         for (auto v : mesh_.fv_range(f))
             for (auto g : mesh_.vf_range(v))
@@ -1640,14 +1635,14 @@ private:
             if (keep_lengths && short_star_edges(after) > short_star_edges(before)) return false;
             const double samples_after = worst_sample(after);
             if (samples_after > bound && samples_after > worst_sample(before)) return false;
-            // The 2-ring before and after (TwoRingPatch::keeps_witness, with the boxed test).
+            // The 2-ring before and after (TwoRingPatch::keeps_witness, whose distance tests skip the triangles clearly beyond).
             const detail::TwoRingPatch patch(mesh_, v);
             std::vector<std::array<Vec3d, 3>> patch_after;
             for (std::size_t i = 0; i < patch.triangles.size(); ++i) patch_after.push_back(patch.triangle(i, &after));
             double reach = 0.0;
             for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
             for (const std::size_t k : model_point_grid().within(before, reach + bound))
-                if (!keeps_witness_boxed(options_.model_points[k], patch.triangles, patch_after, bound, 1e-12 * reach)) return false;
+                if (!detail::keeps_witness(options_.model_points[k], patch.triangles, patch_after, bound, 1e-12 * reach)) return false;
             return !options.accept || options.accept(after);
         };
         return shift_vertex(ctx_, v, keeping).done();
