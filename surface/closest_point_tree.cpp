@@ -1,3 +1,4 @@
+#include "surface/prefetch.h"
 #include "surface/closest_point_tree.h"
 
 #include <algorithm>
@@ -286,13 +287,13 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
             const Node& next = nodes_[near.node];
             if (next.left >= 0)
             {
-                __builtin_prefetch(&nodes_[next.left]);
-                __builtin_prefetch(&nodes_[next.left + 1]);
+                detail::prefetch(&nodes_[next.left]);
+                detail::prefetch(&nodes_[next.left + 1]);
             }
             else
             {
-                __builtin_prefetch(&boxes_[next.first]);
-                __builtin_prefetch(&primitives_[next.first]);
+                detail::prefetch(&boxes_[next.first]);
+                detail::prefetch(&primitives_[next.first]);
             }
         }
     }

@@ -82,34 +82,36 @@ OpStatus collapse_shape_status(const OperatorContext& ctx, HalfedgeHandle h, dou
     return OpStatus::Done;
 }
 
-OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain,
-                      double min_new_angle_deg)
+OpStatus collapse_status(const OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain,
+                         double min_new_angle_deg)
 {
     using namespace detail;
-    SurfaceMesh& mesh = ctx.mesh;
-    OpResult result;
+    const OpStatus shape = collapse_shape_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
+    if (shape != OpStatus::Done) return shape;
+    const SurfaceMesh& mesh = ctx.mesh;
     const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
-    result.status = collapse_shape_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
-    if (result.status != OpStatus::Done) return result;
     const Vec3d p1 = mesh.point(v1);
-    auto survives = [&](FaceHandle f) { return survives_collapse(mesh, f, v1); };
     // The centroids of the changed faces against the model, last: the expensive test.
     if (ctx.limits.max_model_distance > 0.0)
         for (auto f : mesh.vf_range(v0))
         {
-            if (!survives(f)) continue;
+            if (!survives_collapse(mesh, f, v1)) continue;
             const auto after = face_points_with(mesh, f, v0, p1);
             if (!ctx.near_model((after[0] + after[1] + after[2]) / 3.0, v1, ctx.limits.max_model_distance))
-            {
-                result.status = OpStatus::Geometry;
-                return result;
-            }
+                return OpStatus::Geometry;
         }
-    if (ctx.hooks.allow_collapse && !ctx.hooks.allow_collapse(mesh, h))
-    {
-        result.status = OpStatus::Hook;
-        return result;
-    }
+    if (ctx.hooks.allow_collapse && !ctx.hooks.allow_collapse(mesh, h)) return OpStatus::Hook;
+    return OpStatus::Done;
+}
+
+OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain,
+                      double min_new_angle_deg)
+{
+    SurfaceMesh& mesh = ctx.mesh;
+    OpResult result;
+    const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
+    result.status = collapse_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
+    if (result.status != OpStatus::Done) return result;
 
     // Commit. OpenMesh merges the edges (v0, x) and (v1, x) of the two removed faces and may keep
     // either one, so the curve ids are recorded by end vertex and written back afterwards (only

@@ -68,10 +68,8 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
     std::vector<std::array<Vec3d, 3>> patch_at;  // the patch with v at q (excess)
     auto excess = [&](const Vec3d& q) {
         Excess e;
-        // (Only an excess counts: a witness within the tolerance of some triangle adds nothing;
-        // TwoRingPatch::within's answer, the triangles clearly beyond skipped.)
-        patch_at.clear();
-        for (std::size_t i = 0; i < patch.triangles.size(); ++i) patch_at.push_back(patch.triangle(i, &q));
+        // (Only an excess counts: a witness within the tolerance of some triangle adds nothing.)
+        patch.triangles_at(&q, patch_at);
         for (const Vec3d& w : options.witnesses)
             if (!detail::within_triangles(w, patch_at, options.tolerance)) e.add(patch.distance(w, &q), options.tolerance);
         auto sample = [&](const Vec3d& s) {
@@ -101,11 +99,12 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         old_min_angle = std::min(old_min_angle, triangle_min_angle_deg(t[0], t[1], t[2]));
     }
     const double min_angle = std::min(options.min_angle_deg, old_min_angle);
+    const double max_turn_cos = cos_deg(ctx.limits.max_normal_turn_deg);
     auto legal = [&](const Vec3d& q) {
         for (const FaceHandle f : star)
         {
             const auto before = face_points(mesh, f), after = face_points_with(mesh, f, v, q);
-            if (!turn_ok(normal(before), normal(after), ctx.limits.max_normal_turn_deg) ||
+            if (!turn_ok_cos(normal(before), normal(after), max_turn_cos) ||
                 qe(after) < ctx.limits.min_new_quality || triangle_min_angle_deg(after[0], after[1], after[2]) < min_angle)
                 return false;
         }

@@ -80,9 +80,10 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     if (n_mean.norm() > 0.0) n_mean.normalize();
     // Geometry: neither new triangle turns much, and the pair does not fold more than it was
     // (or than a gently curved surface would).
-    if (!turn_ok(n_mean, n_new0, ctx.limits.max_normal_turn_deg) ||
-        !turn_ok(n_mean, n_new1, ctx.limits.max_normal_turn_deg) ||
-        OpenMesh::dot(n_new0, n_new1) < std::min(OpenMesh::dot(n_old0, n_old1), cos_deg(20.0)) - 1e-12)
+    static const double gentle_fold_cos = cos_deg(20.0);
+    const double min_cos = cos_deg(ctx.limits.max_normal_turn_deg);
+    if (!turn_ok_cos(n_mean, n_new0, min_cos) || !turn_ok_cos(n_mean, n_new1, min_cos) ||
+        OpenMesh::dot(n_new0, n_new1) < std::min(OpenMesh::dot(n_old0, n_old1), gentle_fold_cos) - 1e-12)
     {
         result.status = OpStatus::Geometry;
         return result;

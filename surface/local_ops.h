@@ -147,6 +147,11 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at = nullptr
 /// `min_new_angle_deg` > 0: no changed triangle may get a smaller angle than this.
 OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
                       bool require_quality_gain = false, double min_new_angle_deg = 0.0);
+/// Every layer of try_collapse (the shape layers below, the distance to the model, the hook's
+/// veto), without committing: Done when try_collapse would commit. Each layer reads the stars of
+/// h's two ends only (the remesher's collapse passes rely on it to skip an unchanged refusal).
+OpStatus collapse_status(const OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
+                         bool require_quality_gain = false, double min_new_angle_deg = 0.0);
 /// try_collapse's layers up to its distance to the model (class, length, topology, geometry,
 /// quality), without committing: Done when they pass. A caller with an expensive check of its
 /// own runs it after these (the collapse then re-checks them and commits).

@@ -40,19 +40,9 @@ inline std::array<Vec3d, 3> face_points(const SurfaceMesh& mesh, FaceHandle f)
 inline double qe(const std::array<Vec3d, 3>& p) { return triangle_qe(p[0], p[1], p[2]); }
 inline Vec3d normal(const std::array<Vec3d, 3>& p) { return triangle_normal(p[0], p[1], p[2]); }
 
-/// cos(degrees). The last answer is kept: the callers ask the same limit of one operator or test
-/// many times in a row (measured: std::cos was 0.5 % of the five uniform runs, two thirds of it
-/// from the cleanup's angle scan, a third from the shifts).
-inline double cos_deg(double degrees)
-{
-    static thread_local double last_degrees = std::numeric_limits<double>::quiet_NaN(), last_cos = 0.0;
-    if (!(degrees == last_degrees))
-    {
-        last_cos = std::cos(degrees * M_PI / 180.0);
-        last_degrees = degrees;
-    }
-    return last_cos;
-}
+/// cos(degrees). A caller testing many triangles against one limit takes its cosine once and
+/// tests with turn_ok_cos (std::cos per tested triangle was 0.5 % of the five uniform runs).
+inline double cos_deg(double degrees) { return std::cos(degrees * M_PI / 180.0); }
 
 /// The new normal turned by at most the angle whose cosine is `min_cos` from the old one (and is
 /// not degenerate). The cosine once per operator, not per triangle: std::cos per tested triangle
@@ -70,6 +60,10 @@ inline bool turn_ok(const Vec3d& old_normal, const Vec3d& new_normal, double max
     return turn_ok_cos(old_normal, new_normal, cos_deg(max_turn_deg));
 }
 
+/// Whether a cross product's norm is one whose squares and quotients neither under- nor overflow
+/// (dividing by it then gives a unit vector, to rounding).
+inline bool norm_in_safe_range(double norm) { return norm >= 1e-140 && norm <= 1e140; }
+
 /// turn_ok_cos of the normals (triangle_normal) of two triangles given by their cross products
 /// (b - a) × (c - a) and the norms of these: the same answer, mostly without the normals' six
 /// divisions. Where no product under- or overflows, the cosine times both norms decides when it
@@ -77,8 +71,7 @@ inline bool turn_ok(const Vec3d& old_normal, const Vec3d& new_normal, double max
 /// 1e-14 of them); nearer, or out of that range, the normals are made and tested.
 inline bool turn_ok_cross(const Vec3d& old_cross, double old_norm, const Vec3d& new_cross, double new_norm, double min_cos)
 {
-    auto in_range = [](double norm) { return norm >= 1e-140 && norm <= 1e140; };
-    if (in_range(old_norm) && in_range(new_norm) && std::abs(min_cos) <= 1.0)
+    if (norm_in_safe_range(old_norm) && norm_in_safe_range(new_norm) && std::abs(min_cos) <= 1.0)
     {
         const double scale = old_norm * new_norm;
         const double excess = OpenMesh::dot(old_cross, new_cross) - min_cos * scale;
@@ -113,8 +106,8 @@ inline double distance_to_triangle(const Vec3d& p, const std::array<Vec3d, 3>& t
 
 /// Whether the squared distance from p to t, as closest_point_on_triangle measures it, is
 /// certainly above d2: t's bounding box is farther, by a margin far above the rounding of that
-/// measure (relative 1e-8, and 1e-8 of the coordinates' magnitude in distance, as
-/// ClosestPointTree::search prunes). The patches' distance tests skip such triangles without
+/// measure (relative 1e-8, and 1e-8 of the coordinates' magnitude in distance: the same kind of
+/// margin as ClosestPointTree::search prunes with). The patches' distance tests skip such triangles without
 /// their closest point (measured: most triangles of a 2-ring are this far from a witness).
 inline bool clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double d2)
 {
@@ -228,15 +221,12 @@ struct TwoRingPatch
         return t;
     }
 
-    /// Whether distance(p, v_at) <= limit, decided at the first triangle within it.
-    bool within(const Vec3d& p, const Vec3d* v_at, double limit) const
+    /// The patch's triangles with v at *v_at, into `out` (cleared first; a caller testing many
+    /// points against one trial position keeps it).
+    void triangles_at(const Vec3d* v_at, std::vector<std::array<Vec3d, 3>>& out) const
     {
-        for (std::size_t i = 0; i < triangles.size(); ++i)
-        {
-            const std::array<Vec3d, 3> t = triangle(i, v_at);
-            if (!clearly_beyond(p, t, limit * limit) && distance_to_triangle(p, t) <= limit) return true;
-        }
-        return false;
+        out.clear();
+        for (std::size_t i = 0; i < triangles.size(); ++i) out.push_back(triangle(i, v_at));
     }
 
     /// Distance from p to the patch with v at *v_at (nullptr: where it is).
@@ -249,13 +239,6 @@ struct TwoRingPatch
             if (!clearly_beyond(p, t, best2)) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
         }
         return std::sqrt(best2);
-    }
-
-    /// keeps_witness for a move of v to `at`.
-    bool keeps_witness(const Vec3d& w, const Vec3d& at, double bound, double slack) const
-    {
-        if (within(w, &at, bound)) return true;
-        return !(distance(w, &at) > distance(w, nullptr) + slack);
     }
 };
 

@@ -309,7 +309,13 @@ private:
                 if (skip_unchanged && refused_at[e.idx()] >= 0 &&
                     refused_at[e.idx()] >= std::max(ring_changed_at[mesh_.from_vertex_handle(hs[0]).idx()],
                                                     ring_changed_at[mesh_.to_vertex_handle(hs[0]).idx()]))
+                {
+                    // (The layers read the two ends' stars only; a layer reading farther would
+                    // make this skip wrong, which a debug build catches here.)
+                    assert(collapse_status(ctx_, hs[0], kTooLong * edge_size(e)) != OpStatus::Done &&
+                           collapse_status(ctx_, hs[1], kTooLong * edge_size(e)) != OpStatus::Done);
                     continue;
+                }
                 const double h = edge_size(e);
                 if (mesh_.calc_edge_length(e) >= kTooShort * h) continue;
                 if (removal_rank(mesh_.from_vertex_handle(hs[1])) < removal_rank(mesh_.from_vertex_handle(hs[0])))
@@ -805,12 +811,20 @@ private:
             note(v);
             if (given) given(m, v, old_point);
         };
-        hooks.on_collapse = [note, given = hooks.on_collapse](const SurfaceMesh& m, VertexHandle removed, VertexHandle kept) {
+        // A collapse or a removal deletes edges, which the short-edge count cannot reach from
+        // the noted vertices: the next count is a full one (no refinement round runs either
+        // today; the coupled remesher's hooks or a later stage might).
+        auto note_deleted_edges = [this]() {
+            if (noting_changes_) short_edges_need_full_count_ = true;
+        };
+        hooks.on_collapse = [note, note_deleted_edges, given = hooks.on_collapse](const SurfaceMesh& m, VertexHandle removed, VertexHandle kept) {
             note(kept);
+            note_deleted_edges();
             if (given) given(m, removed, kept);
         };
-        hooks.on_remove_vertex = [note, given = hooks.on_remove_vertex](const SurfaceMesh& m, VertexHandle removed,
-                                                                         const std::vector<FaceHandle>& new_faces) {
+        hooks.on_remove_vertex = [note, note_deleted_edges, given = hooks.on_remove_vertex](const SurfaceMesh& m, VertexHandle removed,
+                                                                                             const std::vector<FaceHandle>& new_faces) {
+            note_deleted_edges();
             for (const FaceHandle f : new_faces)
                 for (auto v : m.fv_range(f)) note(v);
             if (given) given(m, removed, new_faces);
@@ -1298,8 +1312,9 @@ private:
         auto is_short = [&](EdgeHandle e) {
             return !mesh_.status(e).deleted() && size_quality(mesh_.calc_edge_length(e), reference_size(e)) < 0.66;
         };
-        if (first_round)
+        if (first_round || short_edges_need_full_count_)
         {
+            short_edges_need_full_count_ = false;
             edge_is_short_.assign(mesh_.n_edges(), 0);
             short_edge_count_ = 0;
             for (auto e : mesh_.edges())
@@ -1407,11 +1422,11 @@ private:
     }
 
     // Per vertex (by handle index): whether it is a corner of a live triangle with Qe under
-    // `quality` (all of them when quality > 1).
+    // `quality` (all of them when quality >= 1).
     std::vector<char> vertices_of_poor_triangles(double quality) const
     {
-        std::vector<char> poor(mesh_.n_vertices(), quality > 1.0 ? 1 : 0);
-        if (quality > 1.0) return poor;
+        std::vector<char> poor(mesh_.n_vertices(), quality >= 1.0 ? 1 : 0);
+        if (quality >= 1.0) return poor;
         for (auto f : mesh_.faces())
         {
             if (mesh_.status(f).deleted()) continue;
@@ -1635,10 +1650,10 @@ private:
             if (keep_lengths && short_star_edges(after) > short_star_edges(before)) return false;
             const double samples_after = worst_sample(after);
             if (samples_after > bound && samples_after > worst_sample(before)) return false;
-            // The 2-ring before and after (TwoRingPatch::keeps_witness, whose distance tests skip the triangles clearly beyond).
+            // The 2-ring before and after (keeps_witness).
             const detail::TwoRingPatch patch(mesh_, v);
             std::vector<std::array<Vec3d, 3>> patch_after;
-            for (std::size_t i = 0; i < patch.triangles.size(); ++i) patch_after.push_back(patch.triangle(i, &after));
+            patch.triangles_at(&after, patch_after);
             double reach = 0.0;
             for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
             for (const std::size_t k : model_point_grid().within(before, reach + bound))
@@ -1772,6 +1787,7 @@ private:
     std::vector<char> edge_is_short_;
     std::size_t short_edge_count_ = 0;
     std::vector<VertexHandle> short_edge_changes_;
+    bool short_edges_need_full_count_ = false;  // edges deleted since the last count
     // Once the first small-angle scan ran (faces_under_cleanup_angle): the faces it found last
     // time, and the vertices changed since.
     bool watching_angles_ = false;

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <vector>
 
+#include "surface/prefetch.h"
 #include "surface/local_ops.h"
 #include "surface/local_ops_geometry.h"
 
@@ -147,7 +148,7 @@ private:
     static bool unit_normal_ok(const Face& face)
     {
         // A norm where neither its squares nor the quotients under- or overflow gives a unit vector.
-        if (face.cross_norm >= 1e-140 && face.cross_norm <= 1e140) return true;
+        if (detail::norm_in_safe_range(face.cross_norm)) return true;
         const Vec3d normal = face.cross_norm > 0.0 ? face.cross / face.cross_norm : Vec3d(0, 0, 0);
         return normal.sqrnorm() > 0.5;
     }
@@ -168,9 +169,9 @@ private:
         if (!start.is_valid()) return;
         // The reads of the second part asked for as soon as their addresses are known.
         auto ask_ahead = [&](HalfedgeHandle h) {
-            __builtin_prefetch(&mesh.point(mesh.to_vertex_handle(h)));
+            detail::prefetch(&mesh.point(mesh.to_vertex_handle(h)));
             const FaceHandle f = mesh.face_handle(h);
-            if (f.is_valid()) __builtin_prefetch(&mesh.face(f));
+            if (f.is_valid()) detail::prefetch(&mesh.face(f));
         };
         s.around.push_back(start);
         ask_ahead(start);

@@ -86,19 +86,20 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         // move and keeps the operators' limit.
         const double turn_limit = options.raise_min_angle ? ctx.limits.max_normal_turn_deg
                                                           : std::max(ctx.limits.max_normal_turn_deg, kMaxSnapTurnDeg);
+        const double turn_limit_cos = cos_deg(turn_limit), from_model_cos = cos_deg(kMaxTurnFromModelDeg);
         for (auto f : mesh.vf_range(v))
         {
             const auto before = face_points(mesh, f), after = face_points_with(mesh, f, v, q);
             const Vec3d n_after = normal(after);
             old_min_angle = std::min(old_min_angle, triangle_min_angle_deg(before[0], before[1], before[2]));
             new_min_angle = std::min(new_min_angle, triangle_min_angle_deg(after[0], after[1], after[2]));
-            if (!turn_ok(normal(before), n_after, turn_limit) || qe(after) < ctx.limits.min_new_quality)
+            if (!turn_ok_cos(normal(before), n_after, turn_limit_cos) || qe(after) < ctx.limits.min_new_quality)
                 return OpStatus::Geometry;
             if (cls == VertexClass::Smooth && q_on_model.ok)
             {
                 const ProjectedPoint under = ctx.model.project_near((after[0] + after[1] + after[2]) / 3.0, VertexClass::Smooth,
                                                                     kNoCurve, q_on_model.face >= 0 ? q_on_model.face : ctx.model_face(v));
-                if (!turn_ok(under.ok ? under.normal : q_on_model.normal, n_after, kMaxTurnFromModelDeg)) return OpStatus::Geometry;
+                if (!turn_ok_cos(under.ok ? under.normal : q_on_model.normal, n_after, from_model_cos)) return OpStatus::Geometry;
             }
         }
         if (options.raise_min_angle ? !(new_min_angle > old_min_angle + kMinAngleGainDeg)

@@ -44,7 +44,8 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
         result.status = OpStatus::Geometry;
         return result;
     }
-    const double max_turn = std::max(ctx.limits.max_normal_turn_deg, 60.0);
+    const double max_turn_cos = cos_deg(std::max(ctx.limits.max_normal_turn_deg, 60.0));
+    const double across_crease_cos = cos_deg(kMaxTurnAcrossCreaseDeg);
     for (const HalfedgeHandle h : {h0, h1})
     {
         const FaceHandle f = mesh.face_handle(h);
@@ -52,15 +53,15 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
         const Vec3d from = mesh.point(mesh.from_vertex_handle(h)), to = mesh.point(mesh.to_vertex_handle(h));
         const Vec3d opposite = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
         const Vec3d old_normal = triangle_normal(from, to, opposite);
-        const bool turn_from_old = turn_ok(old_normal, triangle_normal(from, p, opposite), max_turn) &&
-                                   turn_ok(old_normal, triangle_normal(p, to, opposite), max_turn);
+        const bool turn_from_old = turn_ok_cos(old_normal, triangle_normal(from, p, opposite), max_turn_cos) &&
+                                   turn_ok_cos(old_normal, triangle_normal(p, to, opposite), max_turn_cos);
         // An edge across a crease the features dropped (a chord far from the model): its new
         // vertex, on the model, turns the triangles a lot; that is the point of the split. Then
         // the new triangles must not fold against the model under the new vertex, and stay well shaped.
         const bool follows_model =
             !turn_from_old && projected.ok && cls == VertexClass::Smooth &&
-            turn_ok(projected.normal, triangle_normal(from, p, opposite), kMaxTurnAcrossCreaseDeg) &&
-            turn_ok(projected.normal, triangle_normal(p, to, opposite), kMaxTurnAcrossCreaseDeg) &&
+            turn_ok_cos(projected.normal, triangle_normal(from, p, opposite), across_crease_cos) &&
+            turn_ok_cos(projected.normal, triangle_normal(p, to, opposite), across_crease_cos) &&
             triangle_min_angle_deg(from, p, opposite) >= ctx.limits.min_angle_across_crease_deg &&
             triangle_min_angle_deg(p, to, opposite) >= ctx.limits.min_angle_across_crease_deg;
         if (!turn_from_old && !follows_model)

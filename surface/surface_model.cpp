@@ -1,3 +1,4 @@
+#include "surface/prefetch.h"
 #include "surface/surface_model.h"
 
 #include <algorithm>
@@ -264,10 +265,10 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
     out.face = face;
     // The input's tables are larger than the cache and a descent's reads wait for one another
     // (face, its neighbours, their corners): each is asked for as soon as its address is known.
-    __builtin_prefetch(&face_neighbours_[face]);
+    detail::prefetch(&face_neighbours_[face]);
     if (!(stop_d2 >= 0.0))  // the first step's neighbours will be read: their corners too
         for (const int g : face_neighbours_[face])
-            if (g >= 0) __builtin_prefetch(&face_vertices_[g]);
+            if (g >= 0) detail::prefetch(&face_vertices_[g]);
     out.foot = foot_on(face);
     double d2 = (out.foot - p).sqrnorm();
     // The face the last step came from: its foot was farther than the present one, so it
@@ -290,7 +291,7 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         const std::array<int, 3>& across = face_neighbours_[out.face];
         for (const int g : across)
             if (g >= 0 && g != came_from)
-                for (const int v : face_vertices_[g]) __builtin_prefetch(&points_[v]);
+                for (const int v : face_vertices_[g]) detail::prefetch(&points_[v]);
         for (const int g : across)
             if (g >= 0) consider(g);
         if (next < 0)
@@ -305,7 +306,7 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
             out.converged = true;
             return out;
         }
-        __builtin_prefetch(&face_neighbours_[next]);
+        detail::prefetch(&face_neighbours_[next]);
         came_from = out.face;
         out.face = next;
         out.foot = next_foot;
@@ -360,7 +361,7 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
     ProjectedPoint out;
     if (face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
     {
-        __builtin_prefetch(&face_normals_[face_hint]);  // where most descents stop (foot_normal's read)
+        detail::prefetch(&face_normals_[face_hint]);  // where most descents stop (foot_normal's read)
         const Descent descent = descend(p, face_hint);
         if (descent.converged && local_fraction > 0.0 &&
             within_fraction_of_face(descent.face, (descent.foot - p).sqrnorm(), local_fraction))

@@ -22,6 +22,7 @@ HoleTriangulation triangulate_hole(const SurfaceMesh& mesh, const std::vector<Ve
                                    const Vec3d& vertex_normal, double max_turn_deg)
 {
     using namespace detail;
+    const double max_turn_cos = cos_deg(max_turn_deg);
     const int m = static_cast<int>(ring.size());
     std::vector<std::vector<double>> best(m, std::vector<double>(m, -1.0));
     std::vector<std::vector<int>> split(m, std::vector<int>(m, -1));
@@ -39,7 +40,7 @@ HoleTriangulation triangulate_hole(const SurfaceMesh& mesh, const std::vector<Ve
             {
                 if (best[i][k] < 0.0 || best[k][j] < 0.0) continue;
                 const std::array<Vec3d, 3> t{mesh.point(ring[i]), mesh.point(ring[k]), mesh.point(ring[j])};
-                if (!turn_ok(vertex_normal, normal(t), max_turn_deg)) continue;
+                if (!turn_ok_cos(vertex_normal, normal(t), max_turn_cos)) continue;
                 const double q = std::min({best[i][k], best[k][j], qe(t)});
                 if (q > best[i][j])
                 {

@@ -15,6 +15,7 @@
 #include "surface/surface_io.h"
 #include "surface/surface_model.h"
 #include "surface/surface_quality.h"
+#include "surface_fixtures.h"
 
 using namespace hdimesh::surface;
 
@@ -283,4 +284,84 @@ TEST_CASE("remesh on an HDI model of a sphere: vertices on the unit sphere withi
     for (auto v : mesh.vertices()) CHECK(std::abs(mesh.point(v).norm() - 1.0) < 0.01);
     const QualityReport q = measure_quality(mesh, 0.25);
     CHECK(q.percent_qt_ge_066 > 95.0);
+}
+
+TEST_CASE("the polish works where a triangle misses Qe 0.7: nothing moves elsewhere, the worst Qe rises")
+{
+    // A flat patch of equilateral triangles (rows shifted by half a side) with one interior
+    // vertex pushed by (0.5, 0.2), which spoils its triangles:
+    //
+    //    .   .   .   .   .          a row of the patch, the spoiled vertex X pushed
+    //      .   .  ->X  .   .        from its place toward its right neighbour
+    //    .   .   .   .   .
+    //
+    // One polish pass and no other stage (no iterations, no cleanup, no tolerance): only the
+    // corners of triangles under Qe 0.7 may move (and exactly keep their place elsewhere); the
+    // polish everywhere (polish_below_quality >= 1) tries every vertex.
+    const int n = 9;
+    const double row = std::sqrt(3.0) / 2.0;
+    auto build = [&]() {
+        SurfaceMesh mesh;
+        std::vector<VertexHandle> v;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) v.push_back(mesh.add_vertex(Vec3d(i + 0.5 * (j % 2), j * row, 0.0)));
+        auto at = [&](int i, int j) { return v[j * (n + 1) + i]; };
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                if (j % 2 == 0)
+                {
+                    mesh.add_face(at(i, j), at(i + 1, j), at(i, j + 1));
+                    mesh.add_face(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                }
+                else
+                {
+                    mesh.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+                    mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+                }
+        hdimesh::surface::fixtures::mark_all_smooth(mesh);
+        const VertexHandle spoiled = at(4, 4);
+        mesh.set_point(spoiled, mesh.point(spoiled) + Vec3d(0.5, 0.2, 0.0));
+        return mesh;
+    };
+    const hdimesh::surface::fixtures::PlaneProjector plane;
+    auto polish_once = [&](double below_quality, SurfaceMesh& mesh) {
+        RemeshOptions options;
+        options.size = [](const Vec3d&) { return 1.0; };
+        options.iterations = 0;
+        options.polish_passes = 1;
+        options.cleanup_rounds = 0;
+        options.polish_below_quality = below_quality;
+        return remesh(mesh, options, plane);
+    };
+    auto worst_qe = [](const SurfaceMesh& mesh) {
+        double worst = 1.0;
+        for (auto f : mesh.faces()) worst = std::min(worst, face_qe(mesh, f));
+        return worst;
+    };
+
+    SurfaceMesh focused = build();
+    const SurfaceMesh input = focused;
+    std::set<int> near_poor;  // corners of the input's triangles under Qe 0.7
+    for (auto f : input.faces())
+        if (face_qe(input, f) < 0.7)
+            for (auto v : input.fv_range(f)) near_poor.insert(v.idx());
+    REQUIRE(near_poor.size() >= 4);  // the spoiled vertex and neighbours
+    const RemeshReport focused_report = polish_once(0.7, focused);
+    REQUIRE(focused.n_vertices() == input.n_vertices());
+    int moved = 0;
+    for (auto v : input.vertices())
+    {
+        const bool same = focused.point(v) == input.point(v);
+        if (!same) ++moved;
+        if (!near_poor.count(v.idx())) CHECK(same);
+    }
+    CHECK(moved > 0);
+    CHECK(worst_qe(focused) > worst_qe(input));
+
+    SurfaceMesh everywhere = build();
+    const RemeshReport everywhere_report = polish_once(1.0, everywhere);
+    CHECK(worst_qe(everywhere) > worst_qe(input));
+    CHECK(everywhere_report.shifts >= focused_report.shifts);
+    MESSAGE("worst Qe " << worst_qe(input) << " -> " << worst_qe(focused) << " (focused, " << focused_report.shifts
+                        << " shifts), " << worst_qe(everywhere) << " (everywhere, " << everywhere_report.shifts << " shifts)");
 }
