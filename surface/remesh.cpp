@@ -235,21 +235,13 @@ private:
                       mesh_.property(ctx_.props.vertex_size, mesh_.to_vertex_handle(h)));
     }
 
-    std::vector<EdgeHandle> live_edges() const
-    {
-        std::vector<EdgeHandle> edges;
-        edges.reserve(mesh_.n_edges());
-        for (auto e : mesh_.edges())
-            if (!mesh_.status(e).deleted()) edges.push_back(e);
-        return edges;
-    }
 
     void split_long_edges()
     {
         for (int pass = 0; pass < 10; ++pass)
         {
             std::vector<std::pair<double, EdgeHandle>> candidates;
-            for (auto e : live_edges())
+            for (auto e : mesh_.edges())
             {
                 const double ratio = mesh_.calc_edge_length(e) / edge_size(e);
                 if (ratio > kTooLong) candidates.emplace_back(ratio, e);
@@ -1348,7 +1340,7 @@ private:
         for (int pass = 0; pass < 3; ++pass)
         {
             std::size_t done = 0;
-            for (auto e : live_edges())
+            for (auto e : mesh_.edges())
             {
                 if (mesh_.status(e).deleted() ||
                     size_quality(mesh_.calc_edge_length(e), options_.refine_reference_size) >= 0.66)
@@ -1382,7 +1374,7 @@ private:
         for (int pass = 0; pass < 3; ++pass)
         {
             std::size_t done = 0;
-            for (auto e : live_edges())
+            for (auto e : mesh_.edges())
             {
                 if (mesh_.status(e).deleted() || ctx_.is_feature(e) ||
                     size_quality(mesh_.calc_edge_length(e), options_.refine_reference_size) >= 0.66)
@@ -1464,7 +1456,7 @@ private:
         }
         auto deviation = [&](VertexHandle v, int delta) { return std::abs(valence_excess[v.idx()] + delta); };
         std::size_t done = 0;
-        for (auto e : live_edges())
+        for (auto e : mesh_.edges())  // (a flip adds no edge; one deleted when reached is skipped)
         {
             if (mesh_.status(e).deleted()) continue;
             if (only_at && !has_marked_end(e, *only_at)) continue;
