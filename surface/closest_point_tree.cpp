@@ -74,6 +74,13 @@ ClosestPointTree ClosestPointTree::lazy_from_triangles(std::vector<std::array<Ve
     return tree;
 }
 
+void ClosestPointTree::rebuild_lazy(std::vector<std::array<Vec3d, 3>>& triangles)
+{
+    primitives_.swap(triangles);
+    segments_ = false;
+    build(true);
+}
+
 ClosestPointTree ClosestPointTree::from_segments(const std::vector<std::array<Vec3d, 2>>& segments)
 {
     ClosestPointTree tree;
@@ -94,7 +101,9 @@ void ClosestPointTree::build(bool lazy)
     // them from small arrays instead of the primitives (measured: the build was 7 % of the
     // remesher's time on rocker-arm, which builds the output's tree every refinement round).
     // The same sums and min/max as before: the same tree.
-    BuildScratch scratch;
+    // (A lazy tree keeps its scratch for the splits to come, and a rebuilt one its capacity.)
+    BuildScratch eager_scratch;
+    BuildScratch& scratch = lazy ? scratch_ : eager_scratch;
     scratch.lo.resize(primitives_.size());
     scratch.hi.resize(primitives_.size());
     scratch.centroid.resize(primitives_.size());
@@ -114,11 +123,12 @@ void ClosestPointTree::build(bool lazy)
     if (lazy)
     {
         // The leaf-order arrays are filled leaf by leaf as the searches split the nodes.
-        given_ = std::move(primitives_);
-        primitives_.clear();  // (a moved-from vector's content is unspecified)
+        // (Swapped, not moved: a rebuilt tree's leaf-order array reuses the storage of the
+        // triangles it was given before.)
+        given_.swap(primitives_);
+        primitives_.clear();
         primitives_.resize(given_.size());
         boxes_.resize(given_.size());
-        scratch_ = std::move(scratch);
         if (given_.empty()) return;
         nodes_.reserve(2 * given_.size() + 1);  // a binary tree over n primitives: < 2n nodes
         nodes_.push_back(Node{});

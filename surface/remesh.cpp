@@ -762,21 +762,20 @@ private:
         return near.is_valid();
     }
 
-    // A tree over the live output faces (in handle order), and the face of each of its
-    // triangles. face_points_ up to date.
-    ClosestPointTree output_tree(std::vector<FaceHandle>& face_of)
+    // output_tree_ made a (lazy) tree over the live output faces in handle order, and
+    // output_tree_faces_ the face of each of its triangles, in the memory of the last round's.
+    // face_points_ up to date.
+    void rebuild_output_tree()
     {
-        std::vector<std::array<Vec3d, 3>> triangles;
-        triangles.reserve(mesh_.n_faces());
-        face_of.clear();
-        face_of.reserve(mesh_.n_faces());
+        output_tree_triangles_.clear();
+        output_tree_faces_.clear();
         for (auto f : mesh_.faces())
         {
             if (mesh_.status(f).deleted()) continue;
-            triangles.push_back(face_points_[f.idx()]);
-            face_of.push_back(f);
+            output_tree_triangles_.push_back(face_points_[f.idx()]);
+            output_tree_faces_.push_back(f);
         }
-        return ClosestPointTree::lazy_from_triangles(std::move(triangles));
+        output_tree_.rebuild_lazy(output_tree_triangles_);
     }
 
     // The hooks given, and besides, while the refinement keeps the output's triangles
@@ -1075,11 +1074,15 @@ private:
                 if (!near_by_face_of(r)) unproven.push_back(r);
             // Consecutive model points are mostly neighbours: the last hit is the hint of the
             // next search, and a point within the tolerance of it is near without a search.
-            std::vector<FaceHandle> face_of;  // per triangle of `output`
-            const ClosestPointTree output = unproven.empty() ? ClosestPointTree() : output_tree(face_of);
+            if (!unproven.empty()) rebuild_output_tree();
+            const ClosestPointTree& output = output_tree_;
+            const std::vector<FaceHandle>& face_of = output_tree_faces_;  // per triangle of `output`
             std::vector<int>& triangle_of = scratch.triangle_of;  // (only read when the tree is built)
-            if (!unproven.empty()) triangle_of.assign(mesh_.n_faces(), -1);
-            for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
+            if (!unproven.empty())
+            {
+                triangle_of.assign(mesh_.n_faces(), -1);
+                for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
+            }
             FaceHandle previous;
             for (const std::size_t r : unproven)
             {
@@ -1774,6 +1777,11 @@ private:
     std::vector<VertexHandle> changed_vertices_;
     bool noting_changes_ = false;
     RefineScratch refine_scratch_;
+    // The refinement's tree of the output (rebuild_output_tree), its triangles' faces, and the
+    // storage its triangles are gathered in.
+    ClosestPointTree output_tree_;
+    std::vector<FaceHandle> output_tree_faces_;
+    std::vector<std::array<Vec3d, 3>> output_tree_triangles_;
     // While a refinement runs: which edges were short for the reference size at the last count
     // (short_edges_now), how many, and the vertices changed since.
     std::vector<char> edge_is_short_;
