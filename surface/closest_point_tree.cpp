@@ -68,9 +68,7 @@ ClosestPointTree ClosestPointTree::from_triangles(std::vector<std::array<Vec3d, 
 ClosestPointTree ClosestPointTree::lazy_from_triangles(std::vector<std::array<Vec3d, 3>> triangles)
 {
     ClosestPointTree tree;
-    tree.primitives_ = std::move(triangles);
-    tree.segments_ = false;
-    tree.build(true);
+    tree.rebuild_lazy(triangles);
     return tree;
 }
 

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "surface/closest_point_tree.h"
@@ -123,12 +122,18 @@ inline bool clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double
     return box_d2 > d2 * (1.0 + 1e-8) + 1e-16 * magnitude2;
 }
 
+/// best2 lowered to the squared distance from p to t where that is smaller (t skipped when its
+/// box is clearly beyond): the step of a search for the nearest of several triangles.
+inline void lower_to_squared_distance(const Vec3d& p, const std::array<Vec3d, 3>& t, double& best2)
+{
+    if (!clearly_beyond(p, t, best2)) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+}
+
 /// Distance from p to the nearest of `triangles` (a large value when there are none).
 inline double distance_to_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles)
 {
     double best2 = 1e300;
-    for (const auto& t : triangles)
-        if (!clearly_beyond(p, t, best2)) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+    for (const auto& t : triangles) lower_to_squared_distance(p, t, best2);
     return std::sqrt(best2);
 }
 
@@ -233,11 +238,7 @@ struct TwoRingPatch
     double distance(const Vec3d& p, const Vec3d* v_at) const
     {
         double best2 = 1e300;
-        for (std::size_t i = 0; i < triangles.size(); ++i)
-        {
-            const std::array<Vec3d, 3> t = triangle(i, v_at);
-            if (!clearly_beyond(p, t, best2)) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
-        }
+        for (std::size_t i = 0; i < triangles.size(); ++i) lower_to_squared_distance(p, triangle(i, v_at), best2);
         return std::sqrt(best2);
     }
 };

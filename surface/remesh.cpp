@@ -938,7 +938,7 @@ private:
                                   : options_.refine_short_edge_budget;
         std::size_t total = 0;
         if (!(options_.tolerance > 0.0)) return total;
-        // The output's triangles are kept from round to round (output_tree), the changes noted.
+        // The output's triangles are kept from round to round (face_points_), the changes noted.
         face_points_stale_ = true;
         changed_vertices_.clear();
         short_edge_changes_.clear();
@@ -1058,12 +1058,7 @@ private:
             std::vector<FarHit> far_hits;
             std::vector<char>& snapped_now = scratch.snapped_now;  // moved by a snap in this round
             // (A split later in the round adds vertices, and an edge it cut ends at one of them.)
-            auto snapped_end = [&](EdgeHandle e) {
-                const auto he = mesh_.halfedge_handle(e, 0);
-                for (const VertexHandle v : {mesh_.from_vertex_handle(he), mesh_.to_vertex_handle(he)})
-                    if (static_cast<std::size_t>(v.idx()) < snapped_now.size() && snapped_now[v.idx()]) return true;
-                return false;
-            };
+            auto snapped_end = [&](EdgeHandle e) { return has_marked_end(e, snapped_now); };
             // A point within the tolerance of its face of last time (or of a face around it) is
             // near without a search: the closest face can only be nearer. Most points stay near
             // from one call to the next; the others are searched.
@@ -1490,13 +1485,18 @@ private:
         return done;
     }
 
-    // Whether an end of e is marked in `marks` (vertices added after it was made are not).
+    // Whether v is marked in `marks`, per vertex by handle index (a vertex added after they were
+    // made is not).
+    static bool is_marked(VertexHandle v, const std::vector<char>& marks)
+    {
+        return static_cast<std::size_t>(v.idx()) < marks.size() && marks[v.idx()];
+    }
+
+    // Whether an end of e is marked in `marks` (is_marked).
     bool has_marked_end(EdgeHandle e, const std::vector<char>& marks) const
     {
         const auto h = mesh_.halfedge_handle(e, 0);
-        for (const VertexHandle v : {mesh_.from_vertex_handle(h), mesh_.to_vertex_handle(h)})
-            if (static_cast<std::size_t>(v.idx()) < marks.size() && marks[v.idx()]) return true;
-        return false;
+        return is_marked(mesh_.from_vertex_handle(h), marks) || is_marked(mesh_.to_vertex_handle(h), marks);
     }
 
     // Shifts of the live vertices (smart: never lowering the worst Qe of a ball); with `only`,
@@ -1508,7 +1508,7 @@ private:
         for (auto v : mesh_.vertices())
         {
             if (mesh_.status(v).deleted()) continue;
-            if (only && !(static_cast<std::size_t>(v.idx()) < only->size() && (*only)[v.idx()])) continue;
+            if (only && !is_marked(v, *only)) continue;
             if (shift_vertex(ctx_, v, shift).done())
             {
                 set_size(v);
