@@ -62,7 +62,7 @@ int main(int argc, char** argv)
         std::string input, output, sol, stats;
         double hsiz = 0, hausd = 0, hmin = 0, hmax = 0, hgrad = 1.3, ridge_angle = 45;
         bool use_hdi = false, has_hsiz = false, has_sol = false, has_hausd = false, no_ridges = false, has_hmax = false;
-        int verbosity = 1, iterations = 10;
+        int verbosity = 1, iterations = 8;
         cli::CommandLine cmd("surfremesh", "Remesh a triangle surface (OBJ, OFF, STL, PLY, Medit .mesh) to a size.");
         cmd.positional("IN", &input, "input surface");
         cmd.option("-o", &output, "output surface (format by extension)");
@@ -75,7 +75,7 @@ int main(int argc, char** argv)
         cmd.option("--ridge-angle", &ridge_angle, "ridge detection angle in degrees (default 45)");
         cmd.flag("--hdi", &use_hdi, "smooth vertices on the HDI model instead of the input facets (experimental)");
         cmd.flag("--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)");
-        cmd.option("--iterations", &iterations, "remeshing iterations (default 10)");
+        cmd.option("--iterations", &iterations, "remeshing iterations (default 8)");
         cmd.option("--stats", &stats, "write the before/after figures as JSON");
         cmd.option("-v", &verbosity, "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details)");
         cmd.parse(argc, argv);

@@ -82,7 +82,19 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     // (or than a gently curved surface would).
     static const double gentle_fold_cos = cos_deg(20.0);
     const double min_cos = cos_deg(ctx.limits.max_normal_turn_deg);
-    if (!turn_ok_cos(n_mean, n_new0, min_cos) || !turn_ok_cos(n_mean, n_new1, min_cos) ||
+    const bool turns_little = turn_ok_cos(n_mean, n_new0, min_cos) && turn_ok_cos(n_mean, n_new1, min_cos);
+    // A chord across a crease the features dropped folds its pair over the crease; the distance
+    // flip that lays the two triangles onto the crease's two sides turns them a lot, which is the
+    // point of it (the mean of a folded pair's normals is no reference). Then each new triangle
+    // must follow the model under its centroid within the turn limit.
+    auto follows_model = [&](const std::array<Vec3d, 3>& t, const Vec3d& n, VertexHandle near) {
+        const ProjectedPoint foot =
+            ctx.model.project_near((t[0] + t[1] + t[2]) / 3.0, VertexClass::Smooth, kNoCurve, ctx.model_face(near));
+        return foot.ok && turn_ok_cos(foot.normal, n, min_cos);
+    };
+    const bool across_crease = !turns_little && goal == FlipGoal::Distance && follows_model(new0, n_new0, c) &&
+                               follows_model(new1, n_new1, c);
+    if ((!turns_little && !across_crease) ||
         OpenMesh::dot(n_new0, n_new1) < std::min(OpenMesh::dot(n_old0, n_old1), gentle_fold_cos) - 1e-12)
     {
         result.status = OpStatus::Geometry;

@@ -165,6 +165,8 @@ enum class FlipGoal
     Quality,  // the worst Qe of the two triangles rises
     /// The pair comes nearer the model (the farthest of the edge midpoint and the two centroids
     /// drops by a quarter: a chord across a crease turned along it) and keeps half its worst Qe.
+    /// Its triangles may turn past the turn limit when each follows the model's normal under
+    /// its centroid within it (a pair folded over a crease, laid onto the crease's sides).
     Distance,
 };
 OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal);
