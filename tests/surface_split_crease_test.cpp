@@ -82,6 +82,19 @@ double projected_area_xy(const SurfaceMesh& mesh)
     return area;
 }
 
+// Every triangle lies in a side of the roof: its centroid on the roof, its normal the side's.
+void check_triangles_lie_in_roof(const SurfaceMesh& mesh, const RoofProjector& roof, double height)
+{
+    for (auto f : mesh.faces())
+    {
+        auto fv = mesh.cfv_iter(f);
+        const Vec3d p = mesh.point(*fv), q = mesh.point(*++fv), s = mesh.point(*++fv);
+        const Vec3d centroid = (p + q + s) / 3.0;
+        CHECK(centroid[2] == doctest::Approx(height * (1.0 - std::abs(centroid[0]))));
+        CHECK(triangle_normal(p, q, s).dot(roof.project(centroid, VertexClass::Smooth, kNoCurve).normal) == doctest::Approx(1.0));
+    }
+}
+
 }  // namespace
 
 TEST_CASE("a chord under a sharp crease is split onto the crease although its triangles turn past 60 degrees")
@@ -144,14 +157,7 @@ TEST_CASE("a distance flip turns a chord under a crease along it; a flip that br
     REQUIRE(try_flip(ctx, chord(mesh), FlipGoal::Distance).done());
     CHECK_FALSE(mesh.find_halfedge(VertexHandle(0), VertexHandle(1)).is_valid());
     CHECK(mesh.find_halfedge(VertexHandle(2), VertexHandle(3)).is_valid());
-    for (auto f : mesh.faces())
-    {
-        auto fv = mesh.cfv_iter(f);
-        const Vec3d p = mesh.point(*fv), q = mesh.point(*++fv), s = mesh.point(*++fv);
-        const Vec3d centroid = (p + q + s) / 3.0;
-        CHECK(centroid[2] == doctest::Approx(height * (1.0 - std::abs(centroid[0]))));
-        CHECK(triangle_normal(p, q, s)[2] > 0.0);
-    }
+    check_triangles_lie_in_roof(mesh, roof, height);
     CHECK(projected_area_xy(mesh) == doctest::Approx(area_before));
 
     // Flipped back, the chord would leave the roof again (and fold the pair): refused, untouched.
@@ -197,15 +203,7 @@ TEST_CASE("across a crease sharper than the turn limit, a distance flip lays the
     CHECK(try_flip(ctx, chord(mesh), FlipGoal::Quality).status == OpStatus::Geometry);
     REQUIRE(try_flip(ctx, chord(mesh), FlipGoal::Distance).done());
     CHECK(mesh.find_halfedge(VertexHandle(2), VertexHandle(3)).is_valid());
-    for (auto f : mesh.faces())
-    {
-        auto fv = mesh.cfv_iter(f);
-        const Vec3d p = mesh.point(*fv), q = mesh.point(*++fv), s = mesh.point(*++fv);
-        const Vec3d centroid = (p + q + s) / 3.0;
-        CHECK(centroid[2] == doctest::Approx(kRoofHeight * (1.0 - std::abs(centroid[0]))));
-        CHECK(triangle_normal(p, q, s).dot(roof.project(centroid, VertexClass::Smooth, kNoCurve).normal) ==
-              doctest::Approx(1.0));
-    }
+    check_triangles_lie_in_roof(mesh, roof, kRoofHeight);
     CHECK(projected_area_xy(mesh) == doctest::Approx(area_before));
 }
 
