@@ -282,11 +282,17 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         int next = -1;
         Vec3d next_foot(0, 0, 0);
         double next_d2 = d2;
+        // A descent with a stop distance (near_model's proof search) steps to the first nearer
+        // neighbour instead of the nearest: its caller's answer does not depend on the path
+        // (a face within the distance proves it; else the exact search decides). Measured on
+        // near_model's calls of a stanford-bunny run replayed: 4.2 feet per descent when each
+        // step computed all its neighbours' feet, 12 % of its time saved.
+        bool stepping = false;
         auto consider = [&](int g) {
-            if (g == came_from) return;
+            if (g == came_from || stepping) return;
             const Vec3d q = foot_on(g);
             const double g_d2 = (q - p).sqrnorm();
-            if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2;
+            if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2, stepping = stop_d2 >= 0.0;
         };
         const std::array<int, 3>& across = face_neighbours_[out.face];
         for (const int g : across)

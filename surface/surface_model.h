@@ -70,7 +70,9 @@ public:
     std::size_t curve_count() const { return curves_.size(); }
 
 private:
-    // closest_on_input's descent from a face over the input toward p.
+    // closest_on_input's descent from a face over the input toward p: to the nearest neighbour
+    // each step. With stop_d2 ≥ 0 (near_model's proof search): to the first nearer neighbour,
+    // until a face within sqrt(stop_d2) of p.
     struct Descent
     {
         int face = -1;           // where it stopped
