@@ -2,6 +2,7 @@
 #include "surface/surface_model.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -25,6 +26,24 @@ namespace
 constexpr double kPlacementFraction = 1e-2;
 
 Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
+
+// The plane of the triangle (a, b, c) with its unit normal n (triangle_normal), for the
+// descent's bound (SurfaceModel::FacePlane). Every sine of its angles is at least
+// |ab × ac| / longest² (twice the area over the product of two edges); at 1e-4 or more the
+// normal's direction is within 1e-11 of the exact plane's and the closest point the descent
+// computes within 1e-14 (|a| + |b| + |c|) of that plane: the margin 1e-9 (|a| + |b| + |c|)
+// covers both with a wide berth. A flatter triangle gets no bound (an infinite margin).
+SurfaceModel::FacePlane face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& n)
+{
+    SurfaceModel::FacePlane plane;
+    plane.normal = n;
+    plane.offset = OpenMesh::dot(n, a);
+    const double cross = OpenMesh::cross(b - a, c - a).norm();
+    const double longest2 = std::max({(b - a).sqrnorm(), (c - b).sqrnorm(), (a - c).sqrnorm()});
+    const bool well_shaped = cross > 0.0 && cross >= 1e-4 * longest2 && std::isfinite(longest2);
+    plane.margin = well_shaped ? 1e-9 * (a.norm() + b.norm() + c.norm()) : std::numeric_limits<double>::infinity();
+    return plane;
+}
 
 // The input's vertex stars, circulated once: the neighbours of v are
 // neighbours[offsets[v] .. offsets[v + 1]) in OpenMesh's vv_range order (the order of the 2-ring,
@@ -161,6 +180,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     tris.reserve(input.n_faces());
     face_vertices_.reserve(input.n_faces());
     face_normals_.reserve(input.n_faces());
+    face_planes_.reserve(input.n_faces());
     std::vector<Vec3d> face_normal_by_index(input.n_faces());
     std::vector<int> model_face_by_index(input.n_faces(), -1);  // face handle index -> index here
     for (auto f : input.faces())
@@ -171,6 +191,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         tris.push_back({a, b, c});
         face_vertices_.push_back({i0, i1, i2});
         face_normals_.push_back(triangle_normal(a, b, c));
+        face_planes_.push_back(face_plane(a, b, c, face_normals_.back()));
         face_normal_by_index[f.idx()] = face_normals_.back();
         model_face_by_index[f.idx()] = static_cast<int>(face_vertices_.size()) - 1;
     }
@@ -261,14 +282,18 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         const auto& fv = face_vertices_[f];
         return closest_point_on_triangle(p, points_[fv[0]], points_[fv[1]], points_[fv[2]]);
     };
+    // The rounding of a plane distance at p (FacePlane::margin is the triangle's part): the
+    // coordinates' sum bounds |p|.
+    const double p_margin = 1e-9 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]));
+    const bool proof_search = stop_d2 >= 0.0;
     Descent out;
     out.face = face;
     // The input's tables are larger than the cache and a descent's reads wait for one another
     // (face, its neighbours, their corners): each is asked for as soon as its address is known.
     detail::prefetch(&face_neighbours_[face]);
-    if (!(stop_d2 >= 0.0))  // the first step's neighbours will be read: their corners too
+    if (!proof_search)  // the first step's neighbours will be read: their corners too
         for (const int g : face_neighbours_[face])
-            if (g >= 0) detail::prefetch(&face_vertices_[g]);
+            if (g >= 0) detail::prefetch(&face_vertices_[g]), detail::prefetch(&face_planes_[g]);
     out.foot = foot_on(face);
     double d2 = (out.foot - p).sqrnorm();
     // The face the last step came from: its foot was farther than the present one, so it
@@ -290,14 +315,32 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         bool stepping = false;
         auto consider = [&](int g) {
             if (g == came_from || stepping) return;
+            // A face whose plane is clearly farther than the nearest foot so far cannot have a
+            // nearer foot (its triangle lies in that plane): the same decision without its foot.
+            // Measured: 36 to 60 % of the neighbours' feet of the remesher's descents.
+            // (Not in a proof search, which steps to the first nearer face: there the bound cost
+            // more than it saved, near_model's time +10 % on stanford-bunny.)
+            if (!proof_search)
+            {
+                const FacePlane& plane = face_planes_[g];
+                const double beyond = std::abs(OpenMesh::dot(plane.normal, p) - plane.offset) - (plane.margin + p_margin);
+                if (beyond > 0.0 && beyond * beyond > next_d2 * (1.0 + 1e-12))
+                {
+                    assert(!((foot_on(g) - p).sqrnorm() < next_d2));
+                    return;
+                }
+            }
             const Vec3d q = foot_on(g);
             const double g_d2 = (q - p).sqrnorm();
-            if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2, stepping = stop_d2 >= 0.0;
+            if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2, stepping = proof_search;
         };
         const std::array<int, 3>& across = face_neighbours_[out.face];
         for (const int g : across)
             if (g >= 0 && g != came_from)
+            {
+                if (!proof_search) detail::prefetch(&face_planes_[g]);
                 for (const int v : face_vertices_[g]) detail::prefetch(&points_[v]);
+            }
         for (const int g : across)
             if (g >= 0) consider(g);
         if (next < 0)
