@@ -27,24 +27,6 @@ constexpr double kPlacementFraction = 1e-2;
 
 Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
 
-// The plane of the triangle (a, b, c) with its unit normal n (triangle_normal), for the
-// descent's bound (SurfaceModel::FacePlane). Every sine of its angles is at least
-// |ab × ac| / longest² (twice the area over the product of two edges); at 1e-4 or more the
-// normal's direction is within 1e-11 of the exact plane's and the closest point the descent
-// computes within 1e-14 (|a| + |b| + |c|) of that plane: the margin 1e-9 (|a| + |b| + |c|)
-// covers both with a wide berth. A flatter triangle gets no bound (an infinite margin).
-SurfaceModel::FacePlane face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& n)
-{
-    SurfaceModel::FacePlane plane;
-    plane.normal = n;
-    plane.offset = OpenMesh::dot(n, a);
-    const double cross = OpenMesh::cross(b - a, c - a).norm();
-    const double longest2 = std::max({(b - a).sqrnorm(), (c - b).sqrnorm(), (a - c).sqrnorm()});
-    const bool well_shaped = cross > 0.0 && cross >= 1e-4 * longest2 && std::isfinite(longest2);
-    plane.margin = well_shaped ? 1e-9 * (a.norm() + b.norm() + c.norm()) : std::numeric_limits<double>::infinity();
-    return plane;
-}
-
 // The input's vertex stars, circulated once: the neighbours of v are
 // neighbours[offsets[v] .. offsets[v + 1]) in OpenMesh's vv_range order (the order of the 2-ring,
 // hence of the fit's sums), and area_normals[v] the sum of its faces' normals times their areas
@@ -284,6 +266,23 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     QuadricFitScratch scratch;
     for (auto v : input.vertices())
         if (is_smooth(v)) curvature_[v.idx()] = quadric_curvature(points_, stars, v.idx(), stars.area_normals[v.idx()], scratch);
+}
+
+// For the descent's bound (FacePlane). Every sine of the triangle's angles is at least
+// |ab × ac| / longest² (twice the area over the product of two edges); at 1e-4 or more the
+// normal's direction is within 1e-11 of the exact plane's and the closest point the descent
+// computes within 1e-14 (|a| + |b| + |c|) of that plane: the margin 1e-9 (|a| + |b| + |c|)
+// covers both with a wide berth. A flatter triangle gets no bound (an infinite margin).
+SurfaceModel::FacePlane SurfaceModel::face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& unit_normal)
+{
+    FacePlane plane;
+    plane.normal = unit_normal;
+    plane.offset = OpenMesh::dot(unit_normal, a);
+    const double cross = OpenMesh::cross(b - a, c - a).norm();
+    const double longest2 = std::max({(b - a).sqrnorm(), (c - b).sqrnorm(), (a - c).sqrnorm()});
+    const bool well_shaped = cross > 0.0 && cross >= 1e-4 * longest2 && std::isfinite(longest2);
+    plane.margin = well_shaped ? 1e-9 * (a.norm() + b.norm() + c.norm()) : std::numeric_limits<double>::infinity();
+    return plane;
 }
 
 SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double stop_d2) const
