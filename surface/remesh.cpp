@@ -296,9 +296,12 @@ private:
         {
             std::size_t done = 0;
             // (A collapse adds no edge: the edges in handle order, those deleted when reached
-            // skipped, are the pass's edges without a list of them.)
-            for (auto e : mesh_.edges())
+            // skipped, are the pass's edges without a list of them. By index: OpenMesh's
+            // skipping iterator asks the virtual n_edges() at each step.)
+            const int edge_count = static_cast<int>(mesh_.n_edges());
+            for (int index = 0; index < edge_count; ++index)
             {
+                const EdgeHandle e(index);
                 if (mesh_.status(e).deleted()) continue;
                 HalfedgeHandle hs[2] = {mesh_.halfedge_handle(e, 0), mesh_.halfedge_handle(e, 1)};
                 if (skip_unchanged && std::max(refused_at[e.idx()], long_enough_at[e.idx()]) >= 0)
