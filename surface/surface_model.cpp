@@ -2,6 +2,7 @@
 #include "surface/surface_model.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -102,22 +103,35 @@ double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& st
     double scale = 0.0;
     for (const int idx : ring) scale = std::max(scale, (to_eigen(points[idx]) - origin).norm());
     if (!(scale > 0.0)) return 0.0;
-    Eigen::Matrix<double, 5, 5> normal_matrix = Eigen::Matrix<double, 5, 5>::Zero();
-    Eigen::Matrix<double, 5, 1> rhs = Eigen::Matrix<double, 5, 1>::Zero();
+    // The lower triangle of row·rowᵀ summed, element by element as Eigen's rank-one update of
+    // a selfadjoint view does it (the same products and sums; its generic dynamic-size kernel
+    // was a sixth of quadric_curvature's time on the bunny), in named scalars: an array of the
+    // row's entries was stored and read back as pairs, which waited on the stores (measured on
+    // the bunny: quadric_curvature's own samples 8 % fewer, the best of four runs each).
+    double xxxx = 0, xxxy = 0, xxyy = 0, xxx = 0, xxy = 0;  // (x², xy, y², x, y) times x²
+    double xyxy = 0, xyyy = 0, xyx = 0, xyy = 0;            // ... times xy
+    double yyyy = 0, yyx = 0, yyy = 0;                      // ... times y²
+    double xx = 0, xy = 0, yy = 0;                          // ... times x and y
+    double zxx = 0, zxy = 0, zyy = 0, zx = 0, zy = 0;       // z times the row
     for (const int idx : ring)
     {
         const Eigen::Vector3d d = (to_eigen(points[idx]) - origin) / scale;
         const double x = d.dot(e1), y = d.dot(e2);
-        const double row[5] = {x * x, x * y, y * y, x, y};
-        // The lower triangle of row·rowᵀ added, element by element as Eigen's rank-one update
-        // of a selfadjoint view does it (the same products and sums; its generic dynamic-size
-        // kernel was a sixth of quadric_curvature's time on the bunny).
-        for (int i = 0; i < 5; ++i)
-            for (int j = i; j < 5; ++j) normal_matrix(j, i) += row[i] * row[j];
+        const double r0 = x * x, r1 = x * y, r2 = y * y;
+        xxxx += r0 * r0, xxxy += r0 * r1, xxyy += r0 * r2, xxx += r0 * x, xxy += r0 * y;
+        xyxy += r1 * r1, xyyy += r1 * r2, xyx += r1 * x, xyy += r1 * y;
+        yyyy += r2 * r2, yyx += r2 * x, yyy += r2 * y;
+        xx += x * x, xy += x * y, yy += y * y;
         const double z = d.dot(n);
-        for (int i = 0; i < 5; ++i) rhs(i) += z * row[i];
+        zxx += z * r0, zxy += z * r1, zyy += z * r2, zx += z * x, zy += z * y;
     }
-    normal_matrix.triangularView<Eigen::StrictlyUpper>() = normal_matrix.transpose();
+    Eigen::Matrix<double, 5, 5> normal_matrix;
+    normal_matrix << xxxx, xxxy, xxyy, xxx, xxy,  //
+        xxxy, xyxy, xyyy, xyx, xyy,               //
+        xxyy, xyyy, yyyy, yyx, yyy,               //
+        xxx, xyx, yyx, xx, xy,                    //
+        xxy, xyy, yyy, xy, yy;
+    const Eigen::Matrix<double, 5, 1> rhs(zxx, zxy, zyy, zx, zy);
     const Eigen::Matrix<double, 5, 1> c = normal_matrix.colPivHouseholderQr().solve(rhs);
     if (!c.allFinite()) return 0.0;
     Eigen::Matrix2d shape;
@@ -161,6 +175,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     tris.reserve(input.n_faces());
     face_vertices_.reserve(input.n_faces());
     face_normals_.reserve(input.n_faces());
+    face_planes_.reserve(input.n_faces());
     std::vector<Vec3d> face_normal_by_index(input.n_faces());
     std::vector<int> model_face_by_index(input.n_faces(), -1);  // face handle index -> index here
     for (auto f : input.faces())
@@ -171,6 +186,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         tris.push_back({a, b, c});
         face_vertices_.push_back({i0, i1, i2});
         face_normals_.push_back(triangle_normal(a, b, c));
+        face_planes_.push_back(face_plane(a, b, c, face_normals_.back()));
         face_normal_by_index[f.idx()] = face_normals_.back();
         model_face_by_index[f.idx()] = static_cast<int>(face_vertices_.size()) - 1;
     }
@@ -252,6 +268,23 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         if (is_smooth(v)) curvature_[v.idx()] = quadric_curvature(points_, stars, v.idx(), stars.area_normals[v.idx()], scratch);
 }
 
+// For the descent's bound (FacePlane). Every sine of the triangle's angles is at least
+// |ab × ac| / longest² (twice the area over the product of two edges); at 1e-4 or more the
+// normal's direction is within 1e-11 of the exact plane's and the closest point the descent
+// computes within 1e-14 (|a| + |b| + |c|) of that plane: the margin 1e-9 (|a| + |b| + |c|)
+// covers both with a wide berth. A flatter triangle gets no bound (an infinite margin).
+SurfaceModel::FacePlane SurfaceModel::face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& unit_normal)
+{
+    FacePlane plane;
+    plane.normal = unit_normal;
+    plane.offset = OpenMesh::dot(unit_normal, a);
+    const double cross = OpenMesh::cross(b - a, c - a).norm();
+    const double longest2 = std::max({(b - a).sqrnorm(), (c - b).sqrnorm(), (a - c).sqrnorm()});
+    const bool well_shaped = cross > 0.0 && cross >= 1e-4 * longest2 && std::isfinite(longest2);
+    plane.margin = well_shaped ? 1e-9 * (a.norm() + b.norm() + c.norm()) : std::numeric_limits<double>::infinity();
+    return plane;
+}
+
 SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double stop_d2) const
 {
     // Most descents end in a step or two (a shifted vertex moves by a fraction of the output
@@ -261,14 +294,18 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         const auto& fv = face_vertices_[f];
         return closest_point_on_triangle(p, points_[fv[0]], points_[fv[1]], points_[fv[2]]);
     };
+    // The rounding of a plane distance at p (FacePlane::margin is the triangle's part): the
+    // coordinates' sum bounds |p|.
+    const double p_margin = 1e-9 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]));
+    const bool proof_search = stop_d2 >= 0.0;
     Descent out;
     out.face = face;
     // The input's tables are larger than the cache and a descent's reads wait for one another
     // (face, its neighbours, their corners): each is asked for as soon as its address is known.
     detail::prefetch(&face_neighbours_[face]);
-    if (!(stop_d2 >= 0.0))  // the first step's neighbours will be read: their corners too
+    if (!proof_search)  // the first step's neighbours will be read: their corners too
         for (const int g : face_neighbours_[face])
-            if (g >= 0) detail::prefetch(&face_vertices_[g]);
+            if (g >= 0) detail::prefetch(&face_vertices_[g]), detail::prefetch(&face_planes_[g]);
     out.foot = foot_on(face);
     double d2 = (out.foot - p).sqrnorm();
     // The face the last step came from: its foot was farther than the present one, so it
@@ -282,16 +319,40 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         int next = -1;
         Vec3d next_foot(0, 0, 0);
         double next_d2 = d2;
+        // A descent with a stop distance (near_model's proof search) steps to the first nearer
+        // neighbour instead of the nearest: its caller's answer does not depend on the path
+        // (a face within the distance proves it; else the exact search decides). Measured on
+        // near_model's calls of a stanford-bunny run replayed: 4.2 feet per descent when each
+        // step computed all its neighbours' feet, 12 % of its time saved.
+        bool stepping = false;
         auto consider = [&](int g) {
-            if (g == came_from) return;
+            if (g == came_from || stepping) return;
+            // A face whose plane is clearly farther than the nearest foot so far cannot have a
+            // nearer foot (its triangle lies in that plane): the same decision without its foot.
+            // Measured: 36 to 60 % of the neighbours' feet of the remesher's descents.
+            // (Not in a proof search, which steps to the first nearer face: there the bound cost
+            // more than it saved, near_model's time +10 % on stanford-bunny.)
+            if (!proof_search)
+            {
+                const FacePlane& plane = face_planes_[g];
+                const double beyond = std::abs(OpenMesh::dot(plane.normal, p) - plane.offset) - (plane.margin + p_margin);
+                if (beyond > 0.0 && beyond * beyond > next_d2 * (1.0 + 1e-12))
+                {
+                    assert(!((foot_on(g) - p).sqrnorm() < next_d2));
+                    return;
+                }
+            }
             const Vec3d q = foot_on(g);
             const double g_d2 = (q - p).sqrnorm();
-            if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2;
+            if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2, stepping = proof_search;
         };
         const std::array<int, 3>& across = face_neighbours_[out.face];
         for (const int g : across)
             if (g >= 0 && g != came_from)
+            {
+                if (!proof_search) detail::prefetch(&face_planes_[g]);
                 for (const int v : face_vertices_[g]) detail::prefetch(&points_[v]);
+            }
         for (const int g : across)
             if (g >= 0) consider(g);
         if (next < 0)

@@ -70,7 +70,21 @@ public:
     std::size_t curve_count() const { return curves_.size(); }
 
 private:
-    // closest_on_input's descent from a face over the input toward p.
+    // A face's plane for the descent's lower bound on the distance to the face: |normal · p -
+    // offset| is within margin + 1e-9 (|p_x| + |p_y| + |p_z|) of p's distance to the plane of
+    // the exact triangle, and the descent's computed foot on it no nearer than that distance
+    // less the same margin (an infinite margin for a triangle too flat to bound).
+    struct FacePlane
+    {
+        Vec3d normal{0, 0, 0};
+        double offset = 0.0;
+        double margin = 0.0;
+    };
+    // The plane of the triangle (a, b, c) with its unit normal (triangle_normal).
+    static FacePlane face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& unit_normal);
+    // closest_on_input's descent from a face over the input toward p: to the nearest neighbour
+    // each step. With stop_d2 ≥ 0 (near_model's proof search): to the first nearer neighbour,
+    // until a face within sqrt(stop_d2) of p.
     struct Descent
     {
         int face = -1;           // where it stopped
@@ -87,6 +101,7 @@ private:
 
     std::vector<Vec3d> points_;
     std::vector<Vec3d> face_normals_;
+    std::vector<FacePlane> face_planes_;
     std::vector<Vec3d> vertex_normals_;  // angle-weighted
     std::vector<std::array<int, 3>> face_vertices_;
     std::vector<std::array<int, 3>> face_neighbours_;  // across each edge (-1: open boundary)
