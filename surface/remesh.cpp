@@ -192,6 +192,8 @@ private:
         // The refinement's caches are by handle: renumbered, they would name other elements
         // (compaction runs before the first refinement, when they are still empty).
         point_face_.clear();
+        point_proven_in_.clear();
+        face_changed_in_.clear();
         near_centroid_.clear();
         near_midpoint_.clear();
         face_points_.clear();
@@ -795,9 +797,20 @@ private:
     // face).
     bool near_by_face_of(std::size_t i)
     {
-        const FaceHandle near = near_face_around(points_in_space_order_[i], point_face_[i]);
-        if (near.is_valid()) point_face_[i] = near;
+        // Proven by a face unchanged since: near_face_around would find that face again at once.
+        const FaceHandle f = point_face_[i];
+        if (point_proven_in_[i] > 0 && f.is_valid() && face_changed_in_[f.idx()] <= point_proven_in_[i] && !mesh_.status(f).deleted())
+            return true;
+        const FaceHandle near = near_face_around(points_in_space_order_[i], f);
+        if (near.is_valid()) set_point_face(i, near, true);
         return near.is_valid();
+    }
+
+    // Model point of rank i's face: the one that proves it near this round, or the one nearest.
+    void set_point_face(std::size_t i, FaceHandle f, bool proves_near)
+    {
+        point_face_[i] = f;
+        point_proven_in_[i] = proves_near ? refine_round_ : 0;
     }
 
     // output_tree_ made a (lazy) tree over the live output faces in handle order, and
@@ -866,20 +879,27 @@ private:
     // gathered 2.2 % of its bench time), after that the faces at the vertices noted since.
     void update_face_points()
     {
+        // A face whose points change (or that is new) is noted changed in this round.
+        face_changed_in_.resize(mesh_.n_faces(), refine_round_);
+        auto refresh = [&](FaceHandle f) {
+            const std::array<Vec3d, 3> points = detail::face_points(mesh_, f);
+            if (points != face_points_[f.idx()]) face_points_[f.idx()] = points, face_changed_in_[f.idx()] = refine_round_;
+        };
         if (face_points_stale_)
         {
-            // (Stale, not cleared: a cleared vector is zero-filled again by the resize.)
+            // (Stale, not cleared: a cleared vector is zero-filled again by the resize. Compared:
+            // the faces the stages since the last refinement left as they were keep their proofs.)
             face_points_.resize(mesh_.n_faces());
             face_points_stale_ = false;
             for (auto f : mesh_.faces())
-                if (!mesh_.status(f).deleted()) face_points_[f.idx()] = detail::face_points(mesh_, f);
+                if (!mesh_.status(f).deleted()) refresh(f);
         }
         else
         {
             face_points_.resize(mesh_.n_faces());
             for (const VertexHandle v : changed_vertices_)
                 if (!mesh_.status(v).deleted())
-                    for (auto f : mesh_.vf_range(v)) face_points_[f.idx()] = detail::face_points(mesh_, f);
+                    for (auto f : mesh_.vf_range(v)) refresh(f);
         }
         changed_vertices_.clear();
 #ifndef NDEBUG
@@ -1100,7 +1120,12 @@ private:
             // A point within the tolerance of its face of last time (or of a face around it) is
             // near without a search: the closest face can only be nearer. Most points stay near
             // from one call to the next; the others are searched.
-            if (point_face_.size() != options_.model_points.size()) point_face_.assign(options_.model_points.size(), FaceHandle());
+            if (point_face_.size() != options_.model_points.size())
+            {
+                point_face_.assign(options_.model_points.size(), FaceHandle());
+                point_proven_in_.assign(options_.model_points.size(), 0);
+            }
+            ++refine_round_;
             update_face_points();
             std::vector<std::size_t> unproven;
             for (const std::size_t r : far_points)
@@ -1124,13 +1149,14 @@ private:
                 const FaceHandle near = near_face_around(point, previous);
                 if (near.is_valid())
                 {
-                    point_face_[r] = previous = near;
+                    set_point_face(r, previous = near, true);
                     continue;
                 }
                 const auto hit = output.closest(point, previous.is_valid() ? triangle_of[previous.idx()] : -1);
                 if (hit.primitive < 0) continue;
-                point_face_[r] = previous = face_of[hit.primitive];
-                if (!(hit.distance > options_.tolerance)) continue;
+                const bool near_now = !(hit.distance > options_.tolerance);
+                set_point_face(r, previous = face_of[hit.primitive], near_now);
+                if (near_now) continue;
                 far_hits.push_back({hit.distance, i, face_of[hit.primitive]});
             }
             // Farthest first: a vertex of the closest triangle snapped onto the point costs no
@@ -1802,6 +1828,11 @@ private:
     // closest (invalid: none yet). Cleared by a compaction (only in the iterations, before any
     // refinement); otherwise faces are garbage-collected at the end of run() only.
     std::vector<FaceHandle> point_face_;  // (by rank in space_order_)
+    // The refinement rounds, counted over all calls (0: none): the round in which point_face_
+    // proved a point near (0: it does not), and the last in which a face's points changed; a
+    // proof holds while its face has not changed since.
+    std::uint32_t refine_round_ = 0;
+    std::vector<std::uint32_t> point_proven_in_, face_changed_in_;
     // model_points_in_space_order(): rank -> index, index -> rank, rank -> point.
     std::vector<std::size_t> space_order_, rank_in_space_order_;
     std::vector<Vec3d> points_in_space_order_;
