@@ -1061,14 +1061,25 @@ private:
             // ranks it. (A maximum per edge: the order of the faces and edges does not matter.)
             // A point proven near before (the same point: whether it is near depends on it alone)
             // is near again: after a cleanup most of the output is as the last call left it.
+            if (point_face_.size() != options_.model_points.size())
+            {
+                point_face_.assign(options_.model_points.size(), FaceHandle());
+                point_proven_in_.assign(options_.model_points.size(), 0);
+            }
+            ++refine_round_;
+            update_face_points();
             if (near_centroid_.size() < mesh_.n_faces()) near_centroid_.resize(mesh_.n_faces(), kNoPoint);
             if (near_midpoint_.size() < mesh_.n_edges()) near_midpoint_.resize(mesh_.n_edges(), kNoPoint);
+            // (The centroid from the face's points kept in face_points_, in the order of
+            // face_vertices: the same sum; most faces are proven near by the cache, and walking
+            // the mesh to their points cost more than the test.)
             auto check_face = [&](FaceHandle f) {
-                const auto fv = detail::face_vertices(mesh_, f);
-                const Vec3d centroid = (mesh_.point(fv[0]) + mesh_.point(fv[1]) + mesh_.point(fv[2])) / 3.0;
+                const auto& t = face_points_[f.idx()];
+                const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
                 if (near_centroid_[f.idx()] == centroid) return;
-                if (ctx_.near_model(centroid, fv[0], options_.tolerance)) near_centroid_[f.idx()] = centroid;
-                else mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
+                const VertexHandle hint = mesh_.from_vertex_handle(mesh_.halfedge_handle(f));  // face_vertices' first
+                if (ctx_.near_model(centroid, hint, options_.tolerance)) near_centroid_[f.idx()] = centroid;
+                else mark_longest(f, ctx_.distance_to_model(centroid, hint), 0);
             };
             auto check_edge = [&](EdgeHandle e) {
                 const auto h = mesh_.halfedge_handle(e, 0);
@@ -1120,13 +1131,6 @@ private:
             // A point within the tolerance of its face of last time (or of a face around it) is
             // near without a search: the closest face can only be nearer. Most points stay near
             // from one call to the next; the others are searched.
-            if (point_face_.size() != options_.model_points.size())
-            {
-                point_face_.assign(options_.model_points.size(), FaceHandle());
-                point_proven_in_.assign(options_.model_points.size(), 0);
-            }
-            ++refine_round_;
-            update_face_points();
             std::vector<std::size_t> unproven;
             for (const std::size_t r : far_points)
                 if (!near_by_face_of(r)) unproven.push_back(r);
