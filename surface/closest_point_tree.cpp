@@ -225,6 +225,41 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p, int hint) const
     return hit.primitive >= 0 ? hit : closest(p);
 }
 
+bool ClosestPointTree::alone_within(const Vec3d& p, int primitive, double bound_d2) const
+{
+    if (nodes_.empty()) return true;
+    auto box_d2 = [&](const Vec3d& lo, const Vec3d& hi) {
+        double d2 = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+            const double d = std::max({lo[k] - p[k], p[k] - hi[k], 0.0});
+            d2 += d * d;
+        }
+        return d2;
+    };
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+        const int index = stack[--top];
+        if (box_d2(nodes_[index].lo, nodes_[index].hi) > bound_d2) continue;
+        if (nodes_[index].left < 0 && nodes_[index].count > kLeafSize) split_node(index, scratch_);
+        const Node& n = nodes_[index];
+        if (n.left >= 0)
+        {
+            stack[top++] = n.left;
+            stack[top++] = n.right;
+            continue;
+        }
+        for (int i = n.first; i < n.first + n.count; ++i)
+            if (order_[i] != primitive && !(box_d2(boxes_[i][0], boxes_[i][1]) > bound_d2) &&
+                (closest_on(primitives_[i], p) - p).sqrnorm() <= bound_d2)
+                return false;
+    }
+    return true;
+}
+
 ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) const
 {
     Hit best;

@@ -51,6 +51,11 @@ public:
     /// just above the hint's distance, never at it), so the answer does not depend on the hint;
     /// an out-of-range hint is ignored.
     Hit closest(const Vec3d& p, int hint) const;
+    /// Whether no primitive but `primitive` (an index as given) has its closest point within
+    /// sqrt(bound_d2) of p. (The remesher's refinement asks it of a far point's closest face with
+    /// a bound just above its distance: while that face and those around it do not change, the
+    /// face stays the closest, whatever tree the output makes.)
+    bool alone_within(const Vec3d& p, int primitive, double bound_d2) const;
     bool empty() const { return primitives_.empty(); }
     std::size_t size() const { return primitives_.size(); }
 

@@ -48,6 +48,9 @@ constexpr double kRefineFocus = 0.75;
 // The refinement's walk toward a model point from the face of the point before stops after
 // this many vertices (measured, cheburashka's first round: 2 on average).
 constexpr int kWalkSteps = 16;
+// A far point's closest face is alone when no other face is within its distance times
+// sqrt(1 + this): far above the rounding by which the tree's search may prefer a face as close.
+constexpr double kAloneMargin = 1e-6;
 // A refinement snap moves a vertex at most this fraction of the size (farther: a split's job).
 constexpr double kMaxSnapDistance = 0.6;
 // A split refused onto its far model point is tried these fractions of the way from the edge's
@@ -880,19 +883,25 @@ private:
     void update_face_points()
     {
         // A face whose points change (or that is new) is noted changed in this round.
-        face_changed_in_.resize(mesh_.n_faces(), refine_round_);
+        // (faces_changed_now_: those of a round after the first, each once.)
+        const std::size_t known_faces = face_points_.size();
+        face_changed_in_.resize(mesh_.n_faces(), 0);
+        faces_changed_now_.clear();
         auto refresh = [&](FaceHandle f) {
             const std::array<Vec3d, 3> points = detail::face_points(mesh_, f);
-            if (points != face_points_[f.idx()]) face_points_[f.idx()] = points, face_changed_in_[f.idx()] = refine_round_;
+            if (static_cast<std::size_t>(f.idx()) < known_faces && points == face_points_[f.idx()]) return;
+            face_points_[f.idx()] = points;
+            if (face_changed_in_[f.idx()] != refine_round_ && !face_points_stale_) faces_changed_now_.push_back(f);
+            face_changed_in_[f.idx()] = refine_round_;
         };
         if (face_points_stale_)
         {
             // (Stale, not cleared: a cleared vector is zero-filled again by the resize. Compared:
             // the faces the stages since the last refinement left as they were keep their proofs.)
             face_points_.resize(mesh_.n_faces());
-            face_points_stale_ = false;
             for (auto f : mesh_.faces())
                 if (!mesh_.status(f).deleted()) refresh(f);
+            face_points_stale_ = false;
         }
         else
         {
@@ -1011,6 +1020,8 @@ private:
         // memory order in the first round's pass over all of them.)
         std::vector<std::size_t> far_points(model_points_in_space_order().size());
         for (std::size_t r = 0; r < far_points.size(); ++r) far_points[r] = r;
+        // After the first round: far_points' hits of the round before (the first has none).
+        std::vector<FarHit> far_known;
         // The per-element scratch of a round: members, kept zero between rounds (the entries a
         // round set are reset from its lists), so a round pays for what it touches only (the
         // per-round vectors of all edges, faces and vertices cost 9 % of the refinement, half
@@ -1118,12 +1129,7 @@ private:
             }
             split_vertices.clear();
             std::vector<std::size_t> still_far;  // ranks
-            struct FarHit
-            {
-                double distance;
-                std::size_t point;
-                FaceHandle face;  // the output triangle closest to the point
-            };
+            std::vector<FarHit> still_far_hits;   // their hits of this round
             std::vector<FarHit> far_hits;
             std::vector<char>& snapped_now = scratch.snapped_now;  // moved by a snap in this round
             // (A split later in the round adds vertices, and an edge it cut ends at one of them.)
@@ -1132,8 +1138,17 @@ private:
             // near without a search: the closest face can only be nearer. Most points stay near
             // from one call to the next; the others are searched.
             std::vector<std::size_t> unproven;
-            for (const std::size_t r : far_points)
+            for (std::size_t k = 0; k < far_points.size(); ++k)
+            {
+                const std::size_t r = far_points[k];
+                if (k < far_known.size() && still_closest(far_known[k]))
+                {
+                    far_hits.push_back(far_known[k]);
+                    set_point_face(r, far_known[k].face, false);
+                    continue;
+                }
                 if (!near_by_face_of(r)) unproven.push_back(r);
+            }
             // Consecutive model points are mostly neighbours: the last hit is the hint of the
             // next search, and a point within the tolerance of it is near without a search.
             if (!unproven.empty()) rebuild_output_tree();
@@ -1161,7 +1176,8 @@ private:
                 const bool near_now = !(hit.distance > options_.tolerance);
                 set_point_face(r, previous = face_of[hit.primitive], near_now);
                 if (near_now) continue;
-                far_hits.push_back({hit.distance, i, face_of[hit.primitive]});
+                const bool alone = output.alone_within(point, hit.primitive, hit.distance * hit.distance * (1.0 + kAloneMargin));
+                far_hits.push_back({hit.distance, i, face_of[hit.primitive], alone});
             }
             // Farthest first: a vertex of the closest triangle snapped onto the point costs no
             // short edge; the points no snap reaches ask for a split.
@@ -1180,6 +1196,7 @@ private:
                                             [&](VertexHandle v) { return snapped_now[v.idx()] != 0; }))
                     {
                         still_far.push_back(rank_in_space_order_[far.point]);
+                        still_far_hits.push_back(far);
                         continue;
                     }
                     const VertexHandle snapped = snap ? snap_toward(far.point, far.face, smooth) : VertexHandle();
@@ -1200,8 +1217,10 @@ private:
                     else mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
                 }
                 still_far.push_back(rank_in_space_order_[far.point]);
+                still_far_hits.push_back(far);
             }
             far_points = std::move(still_far);
+            far_known = std::move(still_far_hits);
             std::vector<std::pair<double, EdgeHandle>> candidates;
             std::sort(marked.begin(), marked.end());  // (the verbose lines in index order)
             for (const EdgeHandle e : marked)
@@ -1332,6 +1351,37 @@ private:
         noting_changes_ = false;
         short_edge_changes_.clear();
         return total;
+    }
+
+    // A model point farther than the tolerance from the output, and its closest output face (the
+    // first in the output tree's order among equally close ones).
+    struct FarHit
+    {
+        double distance;
+        std::size_t point;
+        FaceHandle face;
+        bool alone;  // no other face within the distance and a margin (kAloneMargin)
+    };
+
+    // Whether `hit` of the round before holds in this one: its face alone close to the point,
+    // and unchanged since, and no face changed since within the distance and the margin: its
+    // face is then the only one that close and the output tree's search would find it again
+    // (whatever the tree's order among ties: there is none). Most far points stay far from one
+    // round to the next, away from the round's few splits.
+    bool still_closest(const FarHit& hit) const
+    {
+        const FaceHandle f = hit.face;
+        if (!hit.alone || mesh_.status(f).deleted() || face_changed_in_[f.idx()] == refine_round_) return false;
+        const Vec3d& p = options_.model_points[hit.point];
+        const double bound_d2 = hit.distance * hit.distance * (1.0 + kAloneMargin);
+        for (const FaceHandle g : faces_changed_now_)
+        {
+            if (mesh_.status(g).deleted()) continue;
+            const auto& t = face_points_[g.idx()];
+            if (!detail::clearly_beyond(p, t, bound_d2) && (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm() <= bound_d2)
+                return false;
+        }
+        return true;
     }
 
     // refine_where_far's per-element scratch, all zero between rounds.
@@ -1837,6 +1887,7 @@ private:
     // proof holds while its face has not changed since.
     std::uint32_t refine_round_ = 0;
     std::vector<std::uint32_t> point_proven_in_, face_changed_in_;
+    std::vector<FaceHandle> faces_changed_now_;  // the faces changed in this round (after a call's first)
     // model_points_in_space_order(): rank -> index, index -> rank, rank -> point.
     std::vector<std::size_t> space_order_, rank_in_space_order_;
     std::vector<Vec3d> points_in_space_order_;
