@@ -1165,6 +1165,7 @@ private:
             // near without a search: the closest face can only be nearer. Most points stay near
             // from one call to the next; the others are searched.
             std::vector<std::size_t> unproven;
+            unproven.reserve(far_points.size());  // (the first call's first round: all of them, not grown by doubling)
             for (std::size_t k = 0; k < far_points.size(); ++k)
             {
                 const std::size_t r = far_points[k];
