@@ -54,6 +54,17 @@ Vec3d closest_point_on_segment(const Vec3d& p, const Vec3d& a, const Vec3d& b)
 namespace
 {
 constexpr int kLeafSize = 4;
+
+// v made n long; a lazy tree rebuilt over a few more primitives each time (the remesher's
+// refinement rounds) reserves a quarter more when it must grow: made exactly n long, its arrays
+// were reallocated at each rebuild, their memory touched anew (a rebuild in the second round
+// cost as much as the first).
+template <class T>
+void resize_with_room(std::vector<T>& v, std::size_t n)
+{
+    if (v.capacity() < n) v.reserve(n + n / 4);
+    v.resize(n);
+}
 }
 
 ClosestPointTree ClosestPointTree::from_triangles(std::vector<std::array<Vec3d, 3>> triangles)
@@ -92,7 +103,7 @@ ClosestPointTree ClosestPointTree::from_segments(const std::vector<std::array<Ve
 void ClosestPointTree::build(bool lazy)
 {
     lazy_ = lazy;
-    order_.resize(primitives_.size());
+    resize_with_room(order_, primitives_.size());
     for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
     nodes_.clear();
     // Per primitive, once: its box and its centroid sums (the split keys), so a node reads
@@ -102,9 +113,9 @@ void ClosestPointTree::build(bool lazy)
     // (A lazy tree keeps its scratch for the splits to come, and a rebuilt one its capacity.)
     BuildScratch eager_scratch;
     BuildScratch& scratch = lazy ? scratch_ : eager_scratch;
-    scratch.lo.resize(primitives_.size());
-    scratch.hi.resize(primitives_.size());
-    scratch.centroid.resize(primitives_.size());
+    resize_with_room(scratch.lo, primitives_.size());
+    resize_with_room(scratch.hi, primitives_.size());
+    resize_with_room(scratch.centroid, primitives_.size());
     for (std::size_t i = 0; i < primitives_.size(); ++i)
     {
         const auto& t = primitives_[i];
@@ -123,16 +134,20 @@ void ClosestPointTree::build(bool lazy)
         // The leaf-order arrays are filled leaf by leaf as the searches split the nodes.
         // (Swapped, not moved: a rebuilt tree's leaf-order array reuses the storage of the
         // triangles it was given before.)
+        // (Not cleared: a leaf writes its entries before a search reads them, and zero-filling the
+        // whole array again at every rebuild of the remesher's refinement rounds was most of what
+        // a rebuild wrote.)
         given_.swap(primitives_);
-        primitives_.clear();
-        primitives_.resize(given_.size());
-        boxes_.resize(given_.size());
+        count_ = given_.size();
+        if (primitives_.size() < count_) resize_with_room(primitives_, count_);
+        if (boxes_.size() < count_) resize_with_room(boxes_, count_);
         if (given_.empty()) return;
-        nodes_.reserve(2 * given_.size() + 1);  // a binary tree over n primitives: < 2n nodes
+        if (nodes_.capacity() < 2 * count_ + 1) nodes_.reserve(2 * count_ + 1 + count_ / 2);  // a binary tree over n primitives: < 2n nodes
         nodes_.push_back(Node{});
         set_node(0, 0, static_cast<int>(given_.size()), scratch_);
         return;
     }
+    count_ = primitives_.size();
     if (!primitives_.empty())
     {
         nodes_.reserve(2 * primitives_.size() + 1);  // a binary tree over n primitives: < 2n nodes
@@ -215,7 +230,7 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p) const
 
 ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p, int hint) const
 {
-    if (hint < 0 || hint >= static_cast<int>(primitives_.size())) return closest(p);
+    if (hint < 0 || hint >= static_cast<int>(count_)) return closest(p);
     // Just above the hint's squared distance: the primitives closest to p all pass the bound, and
     // the first of them in traversal order wins, as without a bound. The relative margin covers
     // the rounding of box distances against point distances.
@@ -223,6 +238,41 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p, int hint) const
     const double hint_d2 = (closest_on(lazy_ ? given_[hint] : primitives_[position_[hint]], p) - p).sqrnorm();
     const Hit hit = search(p, hint_d2 * (1.0 + 1e-9) + std::numeric_limits<double>::min());
     return hit.primitive >= 0 ? hit : closest(p);
+}
+
+bool ClosestPointTree::alone_within(const Vec3d& p, int primitive, double bound_d2) const
+{
+    if (nodes_.empty()) return true;
+    auto box_d2 = [&](const Vec3d& lo, const Vec3d& hi) {
+        double d2 = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+            const double d = std::max({lo[k] - p[k], p[k] - hi[k], 0.0});
+            d2 += d * d;
+        }
+        return d2;
+    };
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+        const int index = stack[--top];
+        if (box_d2(nodes_[index].lo, nodes_[index].hi) > bound_d2) continue;
+        if (nodes_[index].left < 0 && nodes_[index].count > kLeafSize) split_node(index, scratch_);
+        const Node& n = nodes_[index];
+        if (n.left >= 0)
+        {
+            stack[top++] = n.left;
+            stack[top++] = n.right;
+            continue;
+        }
+        for (int i = n.first; i < n.first + n.count; ++i)
+            if (order_[i] != primitive && !(box_d2(boxes_[i][0], boxes_[i][1]) > bound_d2) &&
+                (closest_on(primitives_[i], p) - p).sqrnorm() <= bound_d2)
+                return false;
+    }
+    return true;
 }
 
 ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) const

@@ -51,8 +51,13 @@ public:
     /// just above the hint's distance, never at it), so the answer does not depend on the hint;
     /// an out-of-range hint is ignored.
     Hit closest(const Vec3d& p, int hint) const;
-    bool empty() const { return primitives_.empty(); }
-    std::size_t size() const { return primitives_.size(); }
+    /// Whether no primitive but `primitive` (an index as given) has its closest point within
+    /// sqrt(bound_d2) of p. (The remesher's refinement asks it of a far point's closest face with
+    /// a bound just above its distance: while that face and those around it do not change, the
+    /// face stays the closest, whatever tree the output makes.)
+    bool alone_within(const Vec3d& p, int primitive, double bound_d2) const;
+    bool empty() const { return count_ == 0; }
+    std::size_t size() const { return count_; }
 
 private:
     struct Node
@@ -79,7 +84,8 @@ private:
 
     // Mutable: a lazy tree's search splits the nodes it opens first (an eager tree's never
     // changes after the build).
-    mutable std::vector<std::array<Vec3d, 3>> primitives_;  // in leaf order once built
+    std::size_t count_ = 0;                                 // primitives
+    mutable std::vector<std::array<Vec3d, 3>> primitives_;  // in leaf order once built (lazy: the first count_, filled leaf by leaf)
     mutable std::vector<std::array<Vec3d, 2>> boxes_;       // per primitive in leaf order: lo, hi
     bool segments_ = false;
     mutable std::vector<int> order_;  // leaf-order position -> index as given

@@ -45,6 +45,12 @@ constexpr double kSlideMinLength = 0.3;
 constexpr int kSlideRounds = 8;
 // A refinement round splits only where the distance is at least this fraction of its worst.
 constexpr double kRefineFocus = 0.75;
+// The refinement's walk toward a model point from the face of the point before stops after
+// this many vertices (measured, cheburashka's first round: 2 on average).
+constexpr int kWalkSteps = 16;
+// A far point's closest face is alone when no other face is within its distance times
+// sqrt(1 + this): far above the rounding by which the tree's search may prefer a face as close.
+constexpr double kAloneMargin = 1e-6;
 // A refinement snap moves a vertex at most this fraction of the size (farther: a split's job).
 constexpr double kMaxSnapDistance = 0.6;
 // A split refused onto its far model point is tried these fractions of the way from the edge's
@@ -56,6 +62,17 @@ constexpr int kCurveFitSweeps = 4;
 constexpr double kAdaptiveToleranceMargin = 0.8;
 // A point equal to none (NaN coordinates): "not proven near" in the refinement's caches.
 const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
+
+// v made n long (new entries `value`) with room for a quarter more when it must grow: the
+// refinement's per-element arrays grow a little each round, and a vector made exactly n long is
+// reallocated at the next round, its memory touched anew (page faults were an eighth of the
+// refinement's samples on stanford-bunny).
+template <class T>
+void resize_with_room(std::vector<T>& v, std::size_t n, const T& value = T())
+{
+    if (v.capacity() < n) v.reserve(n + n / 4);
+    v.resize(n, value);
+}
 
 // What a change in the repair stages after the polish must keep.
 enum class Keep
@@ -189,6 +206,8 @@ private:
         // The refinement's caches are by handle: renumbered, they would name other elements
         // (compaction runs before the first refinement, when they are still empty).
         point_face_.clear();
+        point_proven_in_.clear();
+        face_changed_in_.clear();
         near_centroid_.clear();
         near_midpoint_.clear();
         face_points_.clear();
@@ -752,10 +771,11 @@ private:
         return repaired;
     }
 
-    // Output face f (if live), or else a face around its vertices, within the tolerance of p
-    // (invalid: none is), by the arithmetic of the tree's search, on the triangles kept up to date
+    // Output face f (if live), or else a face found from it, within the tolerance of p (invalid:
+    // none is), by the arithmetic of the tree's search, on the triangles kept up to date
     // (update_face_points, face_points_: walking the mesh to each face's points was half of
-    // this function's time).
+    // this function's time). Which face proves p near decides nothing else: a point not proven
+    // near here is measured by the tree, whose answer depends on the point alone.
     FaceHandle near_face_around(const Vec3d& p, FaceHandle f) const
     {
         if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
@@ -764,10 +784,56 @@ private:
         // that is not near.)
         auto within_tolerance = [&](FaceHandle g) { return detail::within_triangle(p, face_points_[g.idx()], options_.tolerance); };
         if (within_tolerance(f)) return f;
+        // The faces around the vertex a walk from f toward p ends at: the first refinement's
+        // points in space order are mostly a few faces from the one before, where f's own
+        // vertices do not reach and the tree's search cost about 4 us a point (measured,
+        // cheburashka's first round: 3258 -> 209 searches, the round's proofs 28 -> 13 ms;
+        // stanford-bunny 5075 -> 437, 52 -> 29 ms).
+        // (Around a vertex by its outgoing halfedges: OpenMesh's circulators cost a third more
+        // here. Which of the faces proves p near is no matter, their order neither.)
+        const VertexHandle end = vertex_toward(p, f);
+        const HalfedgeHandle first = mesh_.halfedge_handle(end);
+        HalfedgeHandle h = first;
+        do
+        {
+            const FaceHandle g = mesh_.face_handle(h);
+            if (g.is_valid() && within_tolerance(g)) return g;
+            h = mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h));
+        } while (h != first);
         for (auto v : mesh_.fv_range(f))
             for (auto g : mesh_.vf_range(v))
                 if (g != f && within_tolerance(g)) return g;
         return FaceHandle();
+    }
+
+    // From the corner of f nearest to p, the neighbour nearest to p while it is nearer than the
+    // vertex before, at most kWalkSteps times (a walk across the model costs more than the
+    // tree's search).
+    VertexHandle vertex_toward(const Vec3d& p, FaceHandle f) const
+    {
+        VertexHandle v;
+        double v_d2 = std::numeric_limits<double>::max();
+        for (const VertexHandle w : detail::face_vertices(mesh_, f))
+        {
+            const double d2 = (mesh_.point(w) - p).sqrnorm();
+            if (d2 < v_d2) v_d2 = d2, v = w;
+        }
+        for (int step = 0; step < kWalkSteps; ++step)
+        {
+            VertexHandle next;
+            const HalfedgeHandle first = mesh_.halfedge_handle(v);
+            HalfedgeHandle h = first;
+            do
+            {
+                const VertexHandle w = mesh_.to_vertex_handle(h);
+                const double d2 = (mesh_.point(w) - p).sqrnorm();
+                if (d2 < v_d2) v_d2 = d2, next = w;
+                h = mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h));
+            } while (h != first);
+            if (!next.is_valid()) break;
+            v = next;
+        }
+        return v;
     }
 
     // Model point of rank i (model_points_in_space_order) proven within the tolerance of the
@@ -775,9 +841,20 @@ private:
     // face).
     bool near_by_face_of(std::size_t i)
     {
-        const FaceHandle near = near_face_around(points_in_space_order_[i], point_face_[i]);
-        if (near.is_valid()) point_face_[i] = near;
+        // Proven by a face unchanged since: near_face_around would find that face again at once.
+        const FaceHandle f = point_face_[i];
+        if (point_proven_in_[i] > 0 && f.is_valid() && face_changed_in_[f.idx()] <= point_proven_in_[i] && !mesh_.status(f).deleted())
+            return true;
+        const FaceHandle near = near_face_around(points_in_space_order_[i], f);
+        if (near.is_valid()) set_point_face(i, near, true);
         return near.is_valid();
+    }
+
+    // Model point of rank i's face: the one that proves it near this round, or the one nearest.
+    void set_point_face(std::size_t i, FaceHandle f, bool proves_near)
+    {
+        point_face_[i] = f;
+        point_proven_in_[i] = proves_near ? refine_round_ : 0;
     }
 
     // output_tree_ made a (lazy) tree over the live output faces in handle order, and
@@ -787,6 +864,10 @@ private:
     {
         output_tree_triangles_.clear();
         output_tree_faces_.clear();
+        // (With room: the buffers the tree hands back were made exactly as long as the last
+        // round's output, which grew since.)
+        if (output_tree_triangles_.capacity() < mesh_.n_faces()) output_tree_triangles_.reserve(mesh_.n_faces() + mesh_.n_faces() / 4);
+        if (output_tree_faces_.capacity() < mesh_.n_faces()) output_tree_faces_.reserve(mesh_.n_faces() + mesh_.n_faces() / 4);
         for (auto f : mesh_.faces())
         {
             if (mesh_.status(f).deleted()) continue;
@@ -846,20 +927,33 @@ private:
     // gathered 2.2 % of its bench time), after that the faces at the vertices noted since.
     void update_face_points()
     {
+        // A face whose points change (or that is new) is noted changed in this round.
+        // (faces_changed_now_: those of a round after the first, each once.)
+        const std::size_t known_faces = face_points_.size();
+        resize_with_room(face_changed_in_, mesh_.n_faces(), std::uint32_t{0});
+        faces_changed_now_.clear();
+        auto refresh = [&](FaceHandle f) {
+            const std::array<Vec3d, 3> points = detail::face_points(mesh_, f);
+            if (static_cast<std::size_t>(f.idx()) < known_faces && points == face_points_[f.idx()]) return;
+            face_points_[f.idx()] = points;
+            if (face_changed_in_[f.idx()] != refine_round_ && !face_points_stale_) faces_changed_now_.push_back(f);
+            face_changed_in_[f.idx()] = refine_round_;
+        };
         if (face_points_stale_)
         {
-            // (Stale, not cleared: a cleared vector is zero-filled again by the resize.)
-            face_points_.resize(mesh_.n_faces());
-            face_points_stale_ = false;
+            // (Stale, not cleared: a cleared vector is zero-filled again by the resize. Compared:
+            // the faces the stages since the last refinement left as they were keep their proofs.)
+            resize_with_room(face_points_, mesh_.n_faces());
             for (auto f : mesh_.faces())
-                if (!mesh_.status(f).deleted()) face_points_[f.idx()] = detail::face_points(mesh_, f);
+                if (!mesh_.status(f).deleted()) refresh(f);
+            face_points_stale_ = false;
         }
         else
         {
-            face_points_.resize(mesh_.n_faces());
+            resize_with_room(face_points_, mesh_.n_faces());
             for (const VertexHandle v : changed_vertices_)
                 if (!mesh_.status(v).deleted())
-                    for (auto f : mesh_.vf_range(v)) face_points_[f.idx()] = detail::face_points(mesh_, f);
+                    for (auto f : mesh_.vf_range(v)) refresh(f);
         }
         changed_vertices_.clear();
 #ifndef NDEBUG
@@ -971,6 +1065,8 @@ private:
         // memory order in the first round's pass over all of them.)
         std::vector<std::size_t> far_points(model_points_in_space_order().size());
         for (std::size_t r = 0; r < far_points.size(); ++r) far_points[r] = r;
+        // After the first round: far_points' hits of the round before (the first has none).
+        std::vector<FarHit> far_known;
         // The per-element scratch of a round: members, kept zero between rounds (the entries a
         // round set are reset from its lists), so a round pays for what it touches only (the
         // per-round vectors of all edges, faces and vertices cost 9 % of the refinement, half
@@ -1021,14 +1117,25 @@ private:
             // ranks it. (A maximum per edge: the order of the faces and edges does not matter.)
             // A point proven near before (the same point: whether it is near depends on it alone)
             // is near again: after a cleanup most of the output is as the last call left it.
-            if (near_centroid_.size() < mesh_.n_faces()) near_centroid_.resize(mesh_.n_faces(), kNoPoint);
-            if (near_midpoint_.size() < mesh_.n_edges()) near_midpoint_.resize(mesh_.n_edges(), kNoPoint);
+            if (point_face_.size() != options_.model_points.size())
+            {
+                point_face_.assign(options_.model_points.size(), FaceHandle());
+                point_proven_in_.assign(options_.model_points.size(), 0);
+            }
+            ++refine_round_;
+            update_face_points();
+            if (near_centroid_.size() < mesh_.n_faces()) resize_with_room(near_centroid_, mesh_.n_faces(), kNoPoint);
+            if (near_midpoint_.size() < mesh_.n_edges()) resize_with_room(near_midpoint_, mesh_.n_edges(), kNoPoint);
+            // (The centroid from the face's points kept in face_points_, in the order of
+            // face_vertices: the same sum; most faces are proven near by the cache, and walking
+            // the mesh to their points cost more than the test.)
             auto check_face = [&](FaceHandle f) {
-                const auto fv = detail::face_vertices(mesh_, f);
-                const Vec3d centroid = (mesh_.point(fv[0]) + mesh_.point(fv[1]) + mesh_.point(fv[2])) / 3.0;
+                const auto& t = face_points_[f.idx()];
+                const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
                 if (near_centroid_[f.idx()] == centroid) return;
-                if (ctx_.near_model(centroid, fv[0], options_.tolerance)) near_centroid_[f.idx()] = centroid;
-                else mark_longest(f, ctx_.distance_to_model(centroid, fv[0]), 0);
+                const VertexHandle hint = mesh_.from_vertex_handle(mesh_.halfedge_handle(f));  // face_vertices' first
+                if (ctx_.near_model(centroid, hint, options_.tolerance)) near_centroid_[f.idx()] = centroid;
+                else mark_longest(f, ctx_.distance_to_model(centroid, hint), 0);
             };
             auto check_edge = [&](EdgeHandle e) {
                 const auto h = mesh_.halfedge_handle(e, 0);
@@ -1067,12 +1174,7 @@ private:
             }
             split_vertices.clear();
             std::vector<std::size_t> still_far;  // ranks
-            struct FarHit
-            {
-                double distance;
-                std::size_t point;
-                FaceHandle face;  // the output triangle closest to the point
-            };
+            std::vector<FarHit> still_far_hits;   // their hits of this round
             std::vector<FarHit> far_hits;
             std::vector<char>& snapped_now = scratch.snapped_now;  // moved by a snap in this round
             // (A split later in the round adds vertices, and an edge it cut ends at one of them.)
@@ -1080,11 +1182,19 @@ private:
             // A point within the tolerance of its face of last time (or of a face around it) is
             // near without a search: the closest face can only be nearer. Most points stay near
             // from one call to the next; the others are searched.
-            if (point_face_.size() != options_.model_points.size()) point_face_.assign(options_.model_points.size(), FaceHandle());
-            update_face_points();
             std::vector<std::size_t> unproven;
-            for (const std::size_t r : far_points)
+            unproven.reserve(far_points.size());  // (the first call's first round: all of them, not grown by doubling)
+            for (std::size_t k = 0; k < far_points.size(); ++k)
+            {
+                const std::size_t r = far_points[k];
+                if (k < far_known.size() && still_closest(far_known[k]))
+                {
+                    far_hits.push_back(far_known[k]);
+                    set_point_face(r, far_known[k].face, false);
+                    continue;
+                }
                 if (!near_by_face_of(r)) unproven.push_back(r);
+            }
             // Consecutive model points are mostly neighbours: the last hit is the hint of the
             // next search, and a point within the tolerance of it is near without a search.
             if (!unproven.empty()) rebuild_output_tree();
@@ -1093,6 +1203,7 @@ private:
             std::vector<int>& triangle_of = scratch.triangle_of;  // (only read when the tree is built)
             if (!unproven.empty())
             {
+                if (triangle_of.capacity() < mesh_.n_faces()) triangle_of.reserve(mesh_.n_faces() + mesh_.n_faces() / 4);
                 triangle_of.assign(mesh_.n_faces(), -1);
                 for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
             }
@@ -1104,14 +1215,16 @@ private:
                 const FaceHandle near = near_face_around(point, previous);
                 if (near.is_valid())
                 {
-                    point_face_[r] = previous = near;
+                    set_point_face(r, previous = near, true);
                     continue;
                 }
                 const auto hit = output.closest(point, previous.is_valid() ? triangle_of[previous.idx()] : -1);
                 if (hit.primitive < 0) continue;
-                point_face_[r] = previous = face_of[hit.primitive];
-                if (!(hit.distance > options_.tolerance)) continue;
-                far_hits.push_back({hit.distance, i, face_of[hit.primitive]});
+                const bool near_now = !(hit.distance > options_.tolerance);
+                set_point_face(r, previous = face_of[hit.primitive], near_now);
+                if (near_now) continue;
+                const bool alone = output.alone_within(point, hit.primitive, hit.distance * hit.distance * (1.0 + kAloneMargin));
+                far_hits.push_back({hit.distance, i, face_of[hit.primitive], alone});
             }
             // Farthest first: a vertex of the closest triangle snapped onto the point costs no
             // short edge; the points no snap reaches ask for a split.
@@ -1130,6 +1243,7 @@ private:
                                             [&](VertexHandle v) { return snapped_now[v.idx()] != 0; }))
                     {
                         still_far.push_back(rank_in_space_order_[far.point]);
+                        still_far_hits.push_back(far);
                         continue;
                     }
                     const VertexHandle snapped = snap ? snap_toward(far.point, far.face, smooth) : VertexHandle();
@@ -1150,8 +1264,10 @@ private:
                     else mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
                 }
                 still_far.push_back(rank_in_space_order_[far.point]);
+                still_far_hits.push_back(far);
             }
             far_points = std::move(still_far);
+            far_known = std::move(still_far_hits);
             std::vector<std::pair<double, EdgeHandle>> candidates;
             std::sort(marked.begin(), marked.end());  // (the verbose lines in index order)
             for (const EdgeHandle e : marked)
@@ -1284,6 +1400,37 @@ private:
         return total;
     }
 
+    // A model point farther than the tolerance from the output, and its closest output face (the
+    // first in the output tree's order among equally close ones).
+    struct FarHit
+    {
+        double distance;
+        std::size_t point;
+        FaceHandle face;
+        bool alone;  // no other face within the distance and a margin (kAloneMargin)
+    };
+
+    // Whether `hit` of the round before holds in this one: its face alone close to the point,
+    // and unchanged since, and no face changed since within the distance and the margin: its
+    // face is then the only one that close and the output tree's search would find it again
+    // (whatever the tree's order among ties: there is none). Most far points stay far from one
+    // round to the next, away from the round's few splits.
+    bool still_closest(const FarHit& hit) const
+    {
+        const FaceHandle f = hit.face;
+        if (!hit.alone || mesh_.status(f).deleted() || face_changed_in_[f.idx()] == refine_round_) return false;
+        const Vec3d& p = options_.model_points[hit.point];
+        const double bound_d2 = hit.distance * hit.distance * (1.0 + kAloneMargin);
+        for (const FaceHandle g : faces_changed_now_)
+        {
+            if (mesh_.status(g).deleted()) continue;
+            const auto& t = face_points_[g.idx()];
+            if (!detail::clearly_beyond(p, t, bound_d2) && (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm() <= bound_d2)
+                return false;
+        }
+        return true;
+    }
+
     // refine_where_far's per-element scratch, all zero between rounds.
     struct RefineScratch
     {
@@ -1297,9 +1444,10 @@ private:
 
         void grow(std::size_t vertices, std::size_t edges, std::size_t faces)
         {
-            if (edge_error.size() < edges) edge_error.resize(edges, 0.0), edge_target.resize(edges, 0), edge_seen.resize(edges, 0);
-            if (near_change.size() < vertices) near_change.resize(vertices, 0), snapped_now.resize(vertices, 0);
-            if (face_seen.size() < faces) face_seen.resize(faces, 0);
+            if (edge_error.size() < edges)
+                resize_with_room(edge_error, edges, 0.0), resize_with_room(edge_target, edges, std::size_t{0}), resize_with_room(edge_seen, edges, char{0});
+            if (near_change.size() < vertices) resize_with_room(near_change, vertices, char{0}), resize_with_room(snapped_now, vertices, char{0});
+            if (face_seen.size() < faces) resize_with_room(face_seen, faces, char{0});
         }
         // The end of a round: the entries it set back to zero (near_change, face_seen and
         // edge_seen are cleared where they are used).
@@ -1323,6 +1471,7 @@ private:
         if (first_round || short_edges_need_full_count_)
         {
             short_edges_need_full_count_ = false;
+            if (edge_is_short_.capacity() < mesh_.n_edges()) edge_is_short_.reserve(mesh_.n_edges() + mesh_.n_edges() / 4);
             edge_is_short_.assign(mesh_.n_edges(), 0);
             short_edge_count_ = 0;
             for (auto e : mesh_.edges())
@@ -1330,7 +1479,7 @@ private:
         }
         else
         {
-            edge_is_short_.resize(mesh_.n_edges(), 0);
+            resize_with_room(edge_is_short_, mesh_.n_edges(), char{0});
             for (const VertexHandle v : short_edge_changes_)
                 if (!mesh_.status(v).deleted())
                     for (auto e : mesh_.ve_range(v))
@@ -1782,6 +1931,12 @@ private:
     // closest (invalid: none yet). Cleared by a compaction (only in the iterations, before any
     // refinement); otherwise faces are garbage-collected at the end of run() only.
     std::vector<FaceHandle> point_face_;  // (by rank in space_order_)
+    // The refinement rounds, counted over all calls (0: none): the round in which point_face_
+    // proved a point near (0: it does not), and the last in which a face's points changed; a
+    // proof holds while its face has not changed since.
+    std::uint32_t refine_round_ = 0;
+    std::vector<std::uint32_t> point_proven_in_, face_changed_in_;
+    std::vector<FaceHandle> faces_changed_now_;  // the faces changed in this round (after a call's first)
     // model_points_in_space_order(): rank -> index, index -> rank, rank -> point.
     std::vector<std::size_t> space_order_, rank_in_space_order_;
     std::vector<Vec3d> points_in_space_order_;

@@ -193,6 +193,49 @@ TEST_CASE("closest point tree: a lazily built tree answers as the eager one, tie
     CHECK(ClosestPointTree::lazy_from_triangles({}).closest(Vec3d(0, 0, 0)).primitive == -1);
 }
 
+TEST_CASE("closest point tree: alone_within tells whether another primitive is that close, as brute force does")
+{
+    // Points off the bumpy grid, over its vertices (the faces around a vertex tie exactly: never
+    // alone) and sampled around it; each asked about its closest primitive with a bound just
+    // above its distance (mostly alone) and one a bit larger (often not), on an eager tree and
+    // on a lazy one that has not opened those nodes yet.
+    const int n = 8;
+    const SurfaceMesh mesh = bumpy_grid(n);
+    const auto triangles = triangles_of(mesh);
+    const ClosestPointTree eager = ClosestPointTree::from_triangles(triangles);
+    std::vector<Vec3d> points = sample_points(mesh, n, 200);
+    for (auto v : mesh.vertices())
+    {
+        Vec3d normal(0, 0, 0);
+        for (auto f : mesh.vf_range(v)) normal += mesh.calc_face_normal(f);
+        if (normal.norm() > 0.0) points.push_back(mesh.point(v) + 0.05 * normal.normalized());
+    }
+    int differs = 0, alone = 0, not_alone = 0;
+    for (std::size_t k = 0; k < points.size(); ++k)
+    {
+        const Vec3d& p = points[k];
+        const auto hit = eager.closest(p);
+        REQUIRE(hit.primitive >= 0);
+        for (const double factor : {1.0 + 1e-6, 1.5})
+        {
+            const double bound_d2 = hit.distance * hit.distance * factor;
+            bool brute = true;
+            for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+            {
+                const auto& tri = triangles[t];
+                if (t != hit.primitive && (closest_point_on_triangle(p, tri[0], tri[1], tri[2]) - p).sqrnorm() <= bound_d2) brute = false;
+            }
+            const ClosestPointTree lazy = ClosestPointTree::lazy_from_triangles(triangles);
+            if (eager.alone_within(p, hit.primitive, bound_d2) != brute || lazy.alone_within(p, hit.primitive, bound_d2) != brute) ++differs;
+            (brute ? alone : not_alone) += 1;
+        }
+    }
+    CHECK(alone > 0);
+    CHECK(not_alone > 0);
+    CHECK(differs == 0);
+    CHECK(ClosestPointTree::lazy_from_triangles({}).alone_within(Vec3d(0, 0, 0), -1, 1.0));
+}
+
 TEST_CASE("closest point tree: hinted segment queries equal the exact ones")
 {
     // A helix of 60 segments, queried from around it and at its own vertices (two segments each).
