@@ -1,7 +1,9 @@
 #include "surface/prefetch.h"
 #include "surface/closest_point_tree.h"
+#include "surface/vector_room.h"
 
 #include <algorithm>
+#include <cassert>
 #include <limits>
 
 namespace hdimesh::surface
@@ -55,16 +57,6 @@ namespace
 {
 constexpr int kLeafSize = 4;
 
-// v made n long; a lazy tree rebuilt over a few more primitives each time (the remesher's
-// refinement rounds) reserves a quarter more when it must grow: made exactly n long, its arrays
-// were reallocated at each rebuild, their memory touched anew (a rebuild in the second round
-// cost as much as the first).
-template <class T>
-void resize_with_room(std::vector<T>& v, std::size_t n)
-{
-    if (v.capacity() < n) v.reserve(n + n / 4);
-    v.resize(n);
-}
 }
 
 ClosestPointTree ClosestPointTree::from_triangles(std::vector<std::array<Vec3d, 3>> triangles)
@@ -103,7 +95,7 @@ ClosestPointTree ClosestPointTree::from_segments(const std::vector<std::array<Ve
 void ClosestPointTree::build(bool lazy)
 {
     lazy_ = lazy;
-    resize_with_room(order_, primitives_.size());
+    detail::resize_with_room(order_, primitives_.size());
     for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
     nodes_.clear();
     // Per primitive, once: its box and its centroid sums (the split keys), so a node reads
@@ -113,9 +105,13 @@ void ClosestPointTree::build(bool lazy)
     // (A lazy tree keeps its scratch for the splits to come, and a rebuilt one its capacity.)
     BuildScratch eager_scratch;
     BuildScratch& scratch = lazy ? scratch_ : eager_scratch;
-    resize_with_room(scratch.lo, primitives_.size());
-    resize_with_room(scratch.hi, primitives_.size());
-    resize_with_room(scratch.centroid, primitives_.size());
+    auto size_scratch = [&](auto& v) {
+        if (lazy) detail::resize_with_room(v, primitives_.size());
+        else v.resize(primitives_.size());  // (built once, dropped after the build)
+    };
+    size_scratch(scratch.lo);
+    size_scratch(scratch.hi);
+    size_scratch(scratch.centroid);
     for (std::size_t i = 0; i < primitives_.size(); ++i)
     {
         const auto& t = primitives_[i];
@@ -139,8 +135,8 @@ void ClosestPointTree::build(bool lazy)
         // a rebuild wrote.)
         given_.swap(primitives_);
         count_ = given_.size();
-        if (primitives_.size() < count_) resize_with_room(primitives_, count_);
-        if (boxes_.size() < count_) resize_with_room(boxes_, count_);
+        if (primitives_.size() < count_) detail::resize_with_room(primitives_, count_);
+        if (boxes_.size() < count_) detail::resize_with_room(boxes_, count_);
         if (given_.empty()) return;
         if (nodes_.capacity() < 2 * count_ + 1) nodes_.reserve(2 * count_ + 1 + count_ / 2);  // a binary tree over n primitives: < 2n nodes
         nodes_.push_back(Node{});
@@ -279,6 +275,7 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
 {
     Hit best;
     if (nodes_.empty()) return best;
+    assert(lazy_ || primitives_.size() == count_);
     double best_d2 = bound_d2;
     auto box_d2 = [&](const Vec3d& lo, const Vec3d& hi) {
         double d2 = 0.0;

@@ -85,7 +85,10 @@ private:
     // Mutable: a lazy tree's search splits the nodes it opens first (an eager tree's never
     // changes after the build).
     std::size_t count_ = 0;                                 // primitives
-    mutable std::vector<std::array<Vec3d, 3>> primitives_;  // in leaf order once built (lazy: the first count_, filled leaf by leaf)
+    // In leaf order once built. Lazy: only the first count_ entries are the tree's, each written
+    // when its leaf is opened (the rest, and unopened leaves, hold an earlier build's: never
+    // read; primitives_.size() is not the count).
+    mutable std::vector<std::array<Vec3d, 3>> primitives_;
     mutable std::vector<std::array<Vec3d, 2>> boxes_;       // per primitive in leaf order: lo, hi
     bool segments_ = false;
     mutable std::vector<int> order_;  // leaf-order position -> index as given

@@ -90,7 +90,8 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     auto follows_model = [&](const std::array<Vec3d, 3>& t, const Vec3d& n, VertexHandle near) {
         const ProjectedPoint foot =
             ctx.model.project_near((t[0] + t[1] + t[2]) / 3.0, VertexClass::Smooth, kNoCurve, ctx.model_face(near));
-        return foot.ok && turn_ok_cos(foot.normal, n, min_cos);
+        // (A degenerate input face has no normal: turn_ok_cos would take any turn.)
+        return foot.ok && foot.normal.sqrnorm() > 0.5 && turn_ok_cos(foot.normal, n, min_cos);
     };
     const bool across_crease = !turns_little && goal == FlipGoal::Distance && follows_model(new0, n_new0, c) &&
                                follows_model(new1, n_new1, c);

@@ -21,6 +21,7 @@
 #include "surface/surface_errors.h"
 #include "surface/surface_model.h"
 #include "surface/surface_quality.h"
+#include "surface/vector_room.h"
 
 namespace hdimesh::surface
 {
@@ -51,6 +52,10 @@ constexpr int kWalkSteps = 16;
 // A far point's closest face is alone when no other face is within its distance times
 // sqrt(1 + this): far above the rounding by which the tree's search may prefer a face as close.
 constexpr double kAloneMargin = 1e-6;
+// A far point's hit of the round before is looked at again only when the round changed at most
+// this many faces (each is measured against it): after a round of many changes the tree's
+// search costs less.
+constexpr std::size_t kMaxChangedFacesForReuse = 1024;
 // A refinement snap moves a vertex at most this fraction of the size (farther: a split's job).
 constexpr double kMaxSnapDistance = 0.6;
 // A split refused onto its far model point is tried these fractions of the way from the edge's
@@ -63,16 +68,6 @@ constexpr double kAdaptiveToleranceMargin = 0.8;
 // A point equal to none (NaN coordinates): "not proven near" in the refinement's caches.
 const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
 
-// v made n long (new entries `value`) with room for a quarter more when it must grow: the
-// refinement's per-element arrays grow a little each round, and a vector made exactly n long is
-// reallocated at the next round, its memory touched anew (page faults were an eighth of the
-// refinement's samples on stanford-bunny).
-template <class T>
-void resize_with_room(std::vector<T>& v, std::size_t n, const T& value = T())
-{
-    if (v.capacity() < n) v.reserve(n + n / 4);
-    v.resize(n, value);
-}
 
 // What a change in the repair stages after the polish must keep.
 enum class Keep
@@ -801,8 +796,11 @@ private:
             h = mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h));
         } while (h != first);
         for (auto v : mesh_.fv_range(f))
+        {
+            if (v == end) continue;  // (its faces were just tried)
             for (auto g : mesh_.vf_range(v))
                 if (g != f && within_tolerance(g)) return g;
+        }
         return FaceHandle();
     }
 
@@ -837,8 +835,8 @@ private:
     }
 
     // Model point of rank i (model_points_in_space_order) proven within the tolerance of the
-    // output by its face of last time or a face around that face's vertices (which becomes its
-    // face).
+    // output: by its proof of an earlier round if that face has not changed since, else by its
+    // face of last time or a face near_face_around finds from it (which becomes its face).
     bool near_by_face_of(std::size_t i)
     {
         // Proven by a face unchanged since: near_face_around would find that face again at once.
@@ -866,8 +864,8 @@ private:
         output_tree_faces_.clear();
         // (With room: the buffers the tree hands back were made exactly as long as the last
         // round's output, which grew since.)
-        if (output_tree_triangles_.capacity() < mesh_.n_faces()) output_tree_triangles_.reserve(mesh_.n_faces() + mesh_.n_faces() / 4);
-        if (output_tree_faces_.capacity() < mesh_.n_faces()) output_tree_faces_.reserve(mesh_.n_faces() + mesh_.n_faces() / 4);
+        detail::reserve_with_room(output_tree_triangles_, mesh_.n_faces());
+        detail::reserve_with_room(output_tree_faces_, mesh_.n_faces());
         for (auto f : mesh_.faces())
         {
             if (mesh_.status(f).deleted()) continue;
@@ -930,7 +928,7 @@ private:
         // A face whose points change (or that is new) is noted changed in this round.
         // (faces_changed_now_: those of a round after the first, each once.)
         const std::size_t known_faces = face_points_.size();
-        resize_with_room(face_changed_in_, mesh_.n_faces(), std::uint32_t{0});
+        detail::resize_with_room(face_changed_in_, mesh_.n_faces(), std::uint32_t{0});
         faces_changed_now_.clear();
         auto refresh = [&](FaceHandle f) {
             const std::array<Vec3d, 3> points = detail::face_points(mesh_, f);
@@ -943,14 +941,14 @@ private:
         {
             // (Stale, not cleared: a cleared vector is zero-filled again by the resize. Compared:
             // the faces the stages since the last refinement left as they were keep their proofs.)
-            resize_with_room(face_points_, mesh_.n_faces());
+            detail::resize_with_room(face_points_, mesh_.n_faces());
             for (auto f : mesh_.faces())
                 if (!mesh_.status(f).deleted()) refresh(f);
             face_points_stale_ = false;
         }
         else
         {
-            resize_with_room(face_points_, mesh_.n_faces());
+            detail::resize_with_room(face_points_, mesh_.n_faces());
             for (const VertexHandle v : changed_vertices_)
                 if (!mesh_.status(v).deleted())
                     for (auto f : mesh_.vf_range(v)) refresh(f);
@@ -1124,8 +1122,8 @@ private:
             }
             ++refine_round_;
             update_face_points();
-            if (near_centroid_.size() < mesh_.n_faces()) resize_with_room(near_centroid_, mesh_.n_faces(), kNoPoint);
-            if (near_midpoint_.size() < mesh_.n_edges()) resize_with_room(near_midpoint_, mesh_.n_edges(), kNoPoint);
+            if (near_centroid_.size() < mesh_.n_faces()) detail::resize_with_room(near_centroid_, mesh_.n_faces(), kNoPoint);
+            if (near_midpoint_.size() < mesh_.n_edges()) detail::resize_with_room(near_midpoint_, mesh_.n_edges(), kNoPoint);
             // (The centroid from the face's points kept in face_points_, in the order of
             // face_vertices: the same sum; most faces are proven near by the cache, and walking
             // the mesh to their points cost more than the test.)
@@ -1179,9 +1177,10 @@ private:
             std::vector<char>& snapped_now = scratch.snapped_now;  // moved by a snap in this round
             // (A split later in the round adds vertices, and an edge it cut ends at one of them.)
             auto snapped_end = [&](EdgeHandle e) { return has_marked_end(e, snapped_now); };
-            // A point within the tolerance of its face of last time (or of a face around it) is
-            // near without a search: the closest face can only be nearer. Most points stay near
-            // from one call to the next; the others are searched.
+            // A point within the tolerance of its face of last time (or of a face found from it)
+            // is near without a search: the closest face can only be nearer. Most points stay near
+            // from one call to the next; the others are searched. A far point whose hit of the
+            // round before still holds (still_closest) needs neither.
             std::vector<std::size_t> unproven;
             unproven.reserve(far_points.size());  // (the first call's first round: all of them, not grown by doubling)
             for (std::size_t k = 0; k < far_points.size(); ++k)
@@ -1189,8 +1188,10 @@ private:
                 const std::size_t r = far_points[k];
                 if (k < far_known.size() && still_closest(far_known[k]))
                 {
-                    far_hits.push_back(far_known[k]);
-                    set_point_face(r, far_known[k].face, false);
+                    FarHit again = far_known[k];
+                    again.measured_in = refine_round_;  // as good as a search of this round
+                    far_hits.push_back(again);
+                    set_point_face(r, again.face, false);
                     continue;
                 }
                 if (!near_by_face_of(r)) unproven.push_back(r);
@@ -1203,7 +1204,7 @@ private:
             std::vector<int>& triangle_of = scratch.triangle_of;  // (only read when the tree is built)
             if (!unproven.empty())
             {
-                if (triangle_of.capacity() < mesh_.n_faces()) triangle_of.reserve(mesh_.n_faces() + mesh_.n_faces() / 4);
+                detail::reserve_with_room(triangle_of, mesh_.n_faces());
                 triangle_of.assign(mesh_.n_faces(), -1);
                 for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
             }
@@ -1224,7 +1225,7 @@ private:
                 set_point_face(r, previous = face_of[hit.primitive], near_now);
                 if (near_now) continue;
                 const bool alone = output.alone_within(point, hit.primitive, hit.distance * hit.distance * (1.0 + kAloneMargin));
-                far_hits.push_back({hit.distance, i, face_of[hit.primitive], alone});
+                far_hits.push_back({hit.distance, i, face_of[hit.primitive], alone, refine_round_});
             }
             // Farthest first: a vertex of the closest triangle snapped onto the point costs no
             // short edge; the points no snap reaches ask for a split.
@@ -1401,24 +1402,29 @@ private:
     }
 
     // A model point farther than the tolerance from the output, and its closest output face (the
-    // first in the output tree's order among equally close ones).
+    // first in the output tree's order among equally close ones; reused in the next round only
+    // when alone, where no order among ties is involved).
     struct FarHit
     {
         double distance;
         std::size_t point;
         FaceHandle face;
-        bool alone;  // no other face within the distance and a margin (kAloneMargin)
+        bool alone;                // no other face within the distance and a margin (kAloneMargin)
+        std::uint32_t measured_in;  // the refinement round of the search
     };
 
     // Whether `hit` of the round before holds in this one: its face alone close to the point,
     // and unchanged since, and no face changed since within the distance and the margin: its
     // face is then the only one that close and the output tree's search would find it again
     // (whatever the tree's order among ties: there is none). Most far points stay far from one
-    // round to the next, away from the round's few splits.
+    // round to the next, away from the round's few splits. (faces_changed_now_ holds the faces
+    // changed in this round only: a hit of an earlier round is searched again.)
     bool still_closest(const FarHit& hit) const
     {
         const FaceHandle f = hit.face;
-        if (!hit.alone || mesh_.status(f).deleted() || face_changed_in_[f.idx()] == refine_round_) return false;
+        if (!hit.alone || hit.measured_in + 1 != refine_round_ || faces_changed_now_.size() > kMaxChangedFacesForReuse ||
+            mesh_.status(f).deleted() || face_changed_in_[f.idx()] > hit.measured_in)
+            return false;
         const Vec3d& p = options_.model_points[hit.point];
         const double bound_d2 = hit.distance * hit.distance * (1.0 + kAloneMargin);
         for (const FaceHandle g : faces_changed_now_)
@@ -1445,9 +1451,9 @@ private:
         void grow(std::size_t vertices, std::size_t edges, std::size_t faces)
         {
             if (edge_error.size() < edges)
-                resize_with_room(edge_error, edges, 0.0), resize_with_room(edge_target, edges, std::size_t{0}), resize_with_room(edge_seen, edges, char{0});
-            if (near_change.size() < vertices) resize_with_room(near_change, vertices, char{0}), resize_with_room(snapped_now, vertices, char{0});
-            if (face_seen.size() < faces) resize_with_room(face_seen, faces, char{0});
+                detail::resize_with_room(edge_error, edges, 0.0), detail::resize_with_room(edge_target, edges, std::size_t{0}), detail::resize_with_room(edge_seen, edges, char{0});
+            if (near_change.size() < vertices) detail::resize_with_room(near_change, vertices, char{0}), detail::resize_with_room(snapped_now, vertices, char{0});
+            if (face_seen.size() < faces) detail::resize_with_room(face_seen, faces, char{0});
         }
         // The end of a round: the entries it set back to zero (near_change, face_seen and
         // edge_seen are cleared where they are used).
@@ -1471,7 +1477,7 @@ private:
         if (first_round || short_edges_need_full_count_)
         {
             short_edges_need_full_count_ = false;
-            if (edge_is_short_.capacity() < mesh_.n_edges()) edge_is_short_.reserve(mesh_.n_edges() + mesh_.n_edges() / 4);
+            detail::reserve_with_room(edge_is_short_, mesh_.n_edges());
             edge_is_short_.assign(mesh_.n_edges(), 0);
             short_edge_count_ = 0;
             for (auto e : mesh_.edges())
@@ -1479,7 +1485,7 @@ private:
         }
         else
         {
-            resize_with_room(edge_is_short_, mesh_.n_edges(), char{0});
+            detail::resize_with_room(edge_is_short_, mesh_.n_edges(), char{0});
             for (const VertexHandle v : short_edge_changes_)
                 if (!mesh_.status(v).deleted())
                     for (auto e : mesh_.ve_range(v))

@@ -34,8 +34,8 @@ struct RemeshOptions
     /// SizeMap::at): used instead of `size` when given, for the look-ups of a size on the model.
     std::function<double(const Vec3d&, int face_hint)> size_near;
     /// Rounds of split, collapse, flip and shift. 8: the issue-6 targets hold from 8 to 12 on
-    /// the five models (bench_surface --iterations N), and each round costs about a tenth of a
-    /// run (cheburashka: 14 ms of 0.26 s).
+    /// the five models (bench_surface --iterations N), and each round costs about a twentieth
+    /// of a run (cheburashka: 14 ms of 0.26 s).
     int iterations = 8;
     int polish_passes = 3;  // after the iterations: quality flips + smart shifts
     /// The polish works where a triangle misses this Qe (its vertices, and edges at them; ≥ 1:

@@ -169,20 +169,22 @@ TEST_CASE("a distance flip turns a chord under a crease along it; a flip that br
 namespace
 {
 
-// The roof's points with the normal of a flat model, (0, 0, 1) everywhere: a model that says
-// there is no crease under the chord.
-class FlatNormalRoofProjector final : public Projector
+// The roof's points with one given normal everywhere: (0, 0, 1), a model that says there is no
+// crease under the chord; (0, 0, 0), the normal of a degenerate model face.
+class RoofPointsProjector final : public Projector
 {
 public:
+    explicit RoofPointsProjector(const Vec3d& normal) : normal_(normal) {}
     ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const override
     {
         ProjectedPoint out = roof_.project(p, cls, curve);
-        out.normal = Vec3d(0, 0, 1);
+        out.normal = normal_;
         return out;
     }
 
 private:
     RoofProjector roof_;
+    Vec3d normal_;
 };
 
 }  // namespace
@@ -207,14 +209,18 @@ TEST_CASE("across a crease sharper than the turn limit, a distance flip lays the
     CHECK(projected_area_xy(mesh) == doctest::Approx(area_before));
 }
 
-TEST_CASE("the same flip is refused, leaving the mesh untouched, when the model's normals do not follow it")
+TEST_CASE("the same flip is refused, leaving the mesh untouched, when the model's normals do not follow it or are degenerate")
 {
-    SurfaceMesh mesh = chord_under_crease(0.5);
-    const FlatNormalRoofProjector flat_normals;
-    SurfaceHooks hooks;
-    OperatorContext ctx(mesh, flat_normals, hooks);
-    CHECK(try_flip(ctx, chord(mesh), FlipGoal::Distance).status == OpStatus::Geometry);
-    CHECK(mesh.find_halfedge(VertexHandle(0), VertexHandle(1)).is_valid());
-    CHECK_FALSE(mesh.find_halfedge(VertexHandle(2), VertexHandle(3)).is_valid());
-    CHECK(mesh.point(VertexHandle(2)) == Vec3d(0, 0.5, kRoofHeight));
+    for (const Vec3d& normal : {Vec3d(0, 0, 1), Vec3d(0, 0, 0)})
+    {
+        CAPTURE(normal);
+        SurfaceMesh mesh = chord_under_crease(0.5);
+        const RoofPointsProjector model(normal);
+        SurfaceHooks hooks;
+        OperatorContext ctx(mesh, model, hooks);
+        CHECK(try_flip(ctx, chord(mesh), FlipGoal::Distance).status == OpStatus::Geometry);
+        CHECK(mesh.find_halfedge(VertexHandle(0), VertexHandle(1)).is_valid());
+        CHECK_FALSE(mesh.find_halfedge(VertexHandle(2), VertexHandle(3)).is_valid());
+        CHECK(mesh.point(VertexHandle(2)) == Vec3d(0, 0.5, kRoofHeight));
+    }
 }
