@@ -171,6 +171,14 @@ enum class FlipGoal
 };
 OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal);
 
+/// OpenMesh's topology test of a flip (TriConnectivity::is_flip_ok: not a boundary edge, the two
+/// opposite vertices distinct and not yet joined by an edge), with the same answer, read through
+/// the mesh's inline accessors (see flip_edge.cpp for why).
+bool flip_topology_ok(const SurfaceMesh& mesh, EdgeHandle e);
+
+/// The number of edges at v (OpenMesh's valence(v)), by the inline circulator.
+int ring_valence(const SurfaceMesh& mesh, VertexHandle v);
+
 /// Removes a smooth interior vertex of valence 3..8 and fills its hole with the triangulation of
 /// the ring maximizing the worst Qe (dynamic program over the ring polygon); kept only if the
 /// worst Qe of the area rises.

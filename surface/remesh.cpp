@@ -170,8 +170,9 @@ private:
     std::size_t count_vertices() const
     {
         std::size_t n = 0;
-        for (auto v : mesh_.vertices())
-            if (!mesh_.status(v).deleted()) ++n;
+        const int vertex_count = static_cast<int>(mesh_.n_vertices());
+        for (int index = 0; index < vertex_count; ++index)
+            if (!mesh_.status(VertexHandle(index)).deleted()) ++n;
         return n;
     }
 
@@ -239,7 +240,9 @@ private:
 
     void update_sizes()
     {
-        for (auto v : mesh_.vertices()) set_size(v);
+        const int vertex_count = static_cast<int>(mesh_.n_vertices());
+        for (int index = 0; index < vertex_count; ++index)
+            if (!mesh_.status(VertexHandle(index)).deleted()) set_size(VertexHandle(index));
     }
 
     double edge_size(EdgeHandle e) const
@@ -255,8 +258,11 @@ private:
         for (int pass = 0; pass < 10; ++pass)
         {
             std::vector<std::pair<double, EdgeHandle>> candidates;
-            for (auto e : mesh_.edges())
+            const int edge_count = static_cast<int>(mesh_.n_edges());
+            for (int index = 0; index < edge_count; ++index)
             {
+                const EdgeHandle e(index);
+                if (mesh_.status(e).deleted()) continue;
                 const double ratio = mesh_.calc_edge_length(e) / edge_size(e);
                 if (ratio > kTooLong) candidates.emplace_back(ratio, e);
             }
@@ -598,7 +604,7 @@ private:
     // old pair's did (when beyond the tolerance).
     bool flip_keeping_tolerance(EdgeHandle e)
     {
-        if (mesh_.status(e).deleted() || ctx_.is_feature(e) || !mesh_.is_flip_ok(e)) return false;
+        if (mesh_.status(e).deleted() || ctx_.is_feature(e) || !flip_topology_ok(mesh_, e)) return false;
         const HalfedgeHandle h0 = mesh_.halfedge_handle(e, 0), h1 = mesh_.halfedge_handle(e, 1);
         const VertexHandle a = mesh_.from_vertex_handle(h0), b = mesh_.to_vertex_handle(h0);
         const VertexHandle c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
@@ -1511,8 +1517,10 @@ private:
         for (int pass = 0; pass < 3; ++pass)
         {
             std::size_t done = 0;
-            for (auto e : mesh_.edges())
+            const int edge_count = static_cast<int>(mesh_.n_edges());  // (a collapse adds no edge)
+            for (int index = 0; index < edge_count; ++index)
             {
+                const EdgeHandle e(index);
                 if (mesh_.status(e).deleted() ||
                     size_quality(mesh_.calc_edge_length(e), options_.refine_reference_size) >= 0.66)
                     continue;
@@ -1545,8 +1553,10 @@ private:
         for (int pass = 0; pass < 3; ++pass)
         {
             std::size_t done = 0;
-            for (auto e : mesh_.edges())
+            const int edge_count = static_cast<int>(mesh_.n_edges());  // (a collapse adds no edge)
+            for (int index = 0; index < edge_count; ++index)
             {
+                const EdgeHandle e(index);
                 if (mesh_.status(e).deleted() || ctx_.is_feature(e) ||
                     size_quality(mesh_.calc_edge_length(e), options_.refine_reference_size) >= 0.66)
                     continue;
@@ -1590,8 +1600,10 @@ private:
     {
         std::vector<char> poor(mesh_.n_vertices(), quality >= 1.0 ? 1 : 0);
         if (quality >= 1.0) return poor;
-        for (auto f : mesh_.faces())
+        const int face_count = static_cast<int>(mesh_.n_faces());
+        for (int index = 0; index < face_count; ++index)
         {
+            const FaceHandle f(index);
             if (mesh_.status(f).deleted()) continue;
             const auto fv = detail::face_vertices(mesh_, f);
             if (triangle_qe(mesh_.point(fv[0]), mesh_.point(fv[1]), mesh_.point(fv[2])) < quality)
@@ -1613,8 +1625,10 @@ private:
         {
             valence_excess.assign(mesh_.n_vertices(), -6);
             std::vector<char> on_boundary(mesh_.n_vertices(), 0);
-            for (auto e : mesh_.edges())
+            const int edge_count = static_cast<int>(mesh_.n_edges());
+            for (int index = 0; index < edge_count; ++index)
             {
+                const EdgeHandle e(index);
                 if (mesh_.status(e).deleted()) continue;
                 const auto h = mesh_.halfedge_handle(e, 0);
                 const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
@@ -1627,8 +1641,13 @@ private:
         }
         auto deviation = [&](VertexHandle v, int delta) { return std::abs(valence_excess[v.idx()] + delta); };
         std::size_t done = 0;
-        for (auto e : mesh_.edges())  // (a flip adds no edge; one deleted when reached is skipped)
+        // (A flip adds no edge; one deleted when reached is skipped. The passes walk the
+        // elements by index: OpenMesh's skipping iterator asks the virtual n_edges() at each
+        // step.)
+        const int edge_count = static_cast<int>(mesh_.n_edges());
+        for (int index = 0; index < edge_count; ++index)
         {
+            const EdgeHandle e(index);
             if (mesh_.status(e).deleted()) continue;
             if (only_at && !has_marked_end(e, *only_at)) continue;
             VertexHandle a, b, c, d;
@@ -1678,8 +1697,10 @@ private:
     {
         ShiftOptions shift;
         shift.smart = smart;
-        for (auto v : mesh_.vertices())
+        const int vertex_count = static_cast<int>(mesh_.n_vertices());  // (a shift adds no vertex)
+        for (int index = 0; index < vertex_count; ++index)
         {
+            const VertexHandle v(index);
             if (mesh_.status(v).deleted()) continue;
             if (only && !is_marked(v, *only)) continue;
             if (shift_vertex(ctx_, v, shift).done())
@@ -1700,8 +1721,12 @@ private:
         std::vector<FaceHandle> bad;
         if (!watching_angles_)
         {
-            for (auto f : mesh_.faces())
+            const int face_count = static_cast<int>(mesh_.n_faces());
+            for (int index = 0; index < face_count; ++index)
+            {
+                const FaceHandle f(index);
                 if (!mesh_.status(f).deleted() && face_angle_below(f, options_.cleanup_angle_deg)) bad.push_back(f);
+            }
             watching_angles_ = true;
         }
         else
