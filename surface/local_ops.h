@@ -36,14 +36,6 @@ struct SurfaceHooks
     std::function<bool(const SurfaceMesh&, VertexHandle v)> allow_remove_vertex;
     std::function<void(const SurfaceMesh&, VertexHandle removed, const std::vector<FaceHandle>& new_faces)>
         on_remove_vertex;
-
-    /// No hook set: nobody outside the remesher keeps handles of the mesh (it may compact it).
-    /// A hook added to this struct must be added here too, or compaction would break its owner.
-    bool empty() const
-    {
-        return !allow_split && !on_split && !allow_collapse && !on_collapse && !allow_flip && !on_flip && !allow_move &&
-               !on_move && !allow_remove_vertex && !on_remove_vertex;
-    }
 };
 
 /// Why an operator did or did not act.

@@ -94,8 +94,7 @@ public:
     Remesher& operator=(const Remesher&) = delete;
 
     Remesher(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model, const SurfaceHooks& hooks)
-        : mesh_(mesh), options_(options), ctx_(mesh, model, with_change_notes(hooks), options.limits),
-          caller_keeps_handles_(!hooks.empty())
+        : mesh_(mesh), options_(options), ctx_(mesh, model, with_change_notes(hooks), options.limits)
     {
         ctx_.limits.max_model_distance = options.max_model_distance;
         ctx_.limits.min_angle_across_crease_deg = options.min_angle_across_crease_deg;
@@ -110,7 +109,6 @@ public:
             collapse_short_edges();
             flip_edges(FlipGoal::Valence);
             shift_vertices(false);
-            compact_if_mostly_deleted();
             ++report_.iterations;
             if (options_.verbosity > 0)
                 std::fprintf(stderr, "remesh: iteration %d: %zu vertices, %zu splits, %zu collapses, %zu flips, %zu shifts\n",
@@ -185,31 +183,6 @@ private:
         for (auto f : mesh_.vf_range(v))
             for (auto e : mesh_.fe_range(f)) edges.push_back(e);
         return edges;
-    }
-
-    // A coarsening pass deletes most of a fine input's elements (stanford-bunny's first
-    // iteration: two thirds), and every later pass would still step over them. Compacting
-    // renumbers the handles: only when no hook keeps any (the coupled remesher's do), and only
-    // in the iterations (the refinement keeps handles across its calls).
-    void compact_if_mostly_deleted()
-    {
-        if (caller_keeps_handles_) return;
-        std::size_t deleted = 0;
-        for (auto e : mesh_.edges())
-            if (mesh_.status(e).deleted()) ++deleted;
-        if (!(4 * deleted > mesh_.n_edges())) return;
-        mesh_.garbage_collection();
-        // The refinement's caches are by handle: renumbered, they would name other elements
-        // (compaction runs before the first refinement, when they are still empty).
-        point_face_.clear();
-        point_proven_in_.clear();
-        face_changed_in_.clear();
-        near_centroid_.clear();
-        near_midpoint_.clear();
-        face_points_.clear();
-        face_points_stale_ = true;
-        watching_angles_ = false;
-        moved_since_angle_scan_.clear();
     }
 
     // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
@@ -1959,8 +1932,8 @@ private:
     RemeshReport report_;
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first snap
     // Per model point (by rank in space order): the output face that last proved it within the tolerance, or was its
-    // closest (invalid: none yet). Cleared by a compaction (only in the iterations, before any
-    // refinement); otherwise faces are garbage-collected at the end of run() only.
+    // closest (invalid: none yet). Faces are garbage-collected at the end of run() only: handles
+    // hold across the whole call.
     std::vector<FaceHandle> point_face_;  // (by rank in space_order_)
     // The refinement rounds, counted over all calls (0: none): the round in which point_face_
     // proved a point near (0: it does not), and the last in which a face's points changed; a
@@ -1998,8 +1971,6 @@ private:
     const double cleanup_angle_margin_cos_ = detail::cos_deg(options_.cleanup_angle_deg + 1.0);  // face_angle_below
     std::vector<FaceHandle> faces_under_angle_;
     std::vector<VertexHandle> moved_since_angle_scan_;
-    // The caller's hooks (not the remesher's own wrappers): their owner may keep handles.
-    const bool caller_keeps_handles_;
 };
 
 }  // namespace

@@ -96,9 +96,8 @@ struct RemeshReport
 };
 
 /// Remeshes `mesh` (classified by detect_features, or carrying the properties of
-/// surface_mesh.h) on `model`. Hooks see every change. With any hook set, handles stay valid
-/// until the final garbage collection at the end of the call; without hooks the mesh may also
-/// be compacted between the first iterations (nobody keeps its handles then).
+/// surface_mesh.h) on `model`. Hooks see every change; handles stay valid until the final
+/// garbage collection at the end of the call.
 RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model,
                     const SurfaceHooks& hooks = {});
 
