@@ -57,6 +57,18 @@ namespace
 {
 constexpr int kLeafSize = 4;
 
+// The squared distance from p to the box [lo, hi] (0 inside).
+double box_distance2(const Vec3d& p, const Vec3d& lo, const Vec3d& hi)
+{
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+        const double below = lo[k] - p[k], above = p[k] - hi[k];
+        const double d = std::max({below, above, 0.0});
+        d2 += d * d;
+    }
+    return d2;
+}
 }
 
 ClosestPointTree ClosestPointTree::from_triangles(std::vector<std::array<Vec3d, 3>> triangles)
@@ -138,7 +150,7 @@ void ClosestPointTree::build(bool lazy)
         if (primitives_.size() < count_) detail::resize_with_room(primitives_, count_);
         if (boxes_.size() < count_) detail::resize_with_room(boxes_, count_);
         if (given_.empty()) return;
-        if (nodes_.capacity() < 2 * count_ + 1) nodes_.reserve(2 * count_ + 1 + count_ / 2);  // a binary tree over n primitives: < 2n nodes
+        detail::reserve_with_room(nodes_, 2 * count_ + 1);  // a binary tree over n primitives: < 2n nodes
         nodes_.push_back(Node{});
         set_node(0, 0, static_cast<int>(given_.size()), scratch_);
         return;
@@ -239,15 +251,7 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p, int hint) const
 bool ClosestPointTree::alone_within(const Vec3d& p, int primitive, double bound_d2) const
 {
     if (nodes_.empty()) return true;
-    auto box_d2 = [&](const Vec3d& lo, const Vec3d& hi) {
-        double d2 = 0.0;
-        for (int k = 0; k < 3; ++k)
-        {
-            const double d = std::max({lo[k] - p[k], p[k] - hi[k], 0.0});
-            d2 += d * d;
-        }
-        return d2;
-    };
+    auto box_d2 = [&](const Vec3d& lo, const Vec3d& hi) { return box_distance2(p, lo, hi); };
     int stack[128];
     int top = 0;
     stack[top++] = 0;
@@ -277,16 +281,7 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
     if (nodes_.empty()) return best;
     assert(lazy_ || primitives_.size() == count_);
     double best_d2 = bound_d2;
-    auto box_d2 = [&](const Vec3d& lo, const Vec3d& hi) {
-        double d2 = 0.0;
-        for (int k = 0; k < 3; ++k)
-        {
-            const double below = lo[k] - p[k], above = p[k] - hi[k];
-            const double d = std::max({below, above, 0.0});
-            d2 += d * d;
-        }
-        return d2;
-    };
+    auto box_d2 = [&](const Vec3d& lo, const Vec3d& hi) { return box_distance2(p, lo, hi); };
     // Depth-first, nearer child first, pruned by the best distance so far. A node's box distance
     // is computed once, when its parent orders the children, and travels with it on the stack.
     struct Pending

@@ -25,21 +25,16 @@ constexpr double kDistanceFlipGain = 0.75;
 // OpenMesh's.
 bool flip_topology_ok(const SurfaceMesh& mesh, EdgeHandle e)
 {
-    const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
-    bool ok = !mesh.is_boundary(h0) && !mesh.is_boundary(h1);
-    if (ok)
-    {
+    const bool ok = [&] {
+        const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+        if (mesh.is_boundary(h0) || mesh.is_boundary(h1)) return false;
         const VertexHandle c = mesh.to_vertex_handle(mesh.next_halfedge_handle(h0));
         const VertexHandle d = mesh.to_vertex_handle(mesh.next_halfedge_handle(h1));
-        ok = c != d;
-        if (ok)
-            for (const VertexHandle w : mesh.vv_range(c))
-                if (w == d)
-                {
-                    ok = false;
-                    break;
-                }
-    }
+        if (c == d) return false;
+        for (const VertexHandle w : mesh.vv_range(c))
+            if (w == d) return false;  // (c and d joined already)
+        return true;
+    }();
     assert(ok == mesh.is_flip_ok(e));
     return ok;
 }

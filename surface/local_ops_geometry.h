@@ -106,8 +106,9 @@ inline double distance_to_triangle(const Vec3d& p, const std::array<Vec3d, 3>& t
 /// Whether the squared distance from p to t, as closest_point_on_triangle measures it, is
 /// certainly above d2: t's bounding box is farther, by a margin far above the rounding of that
 /// measure (relative 1e-8, and 1e-8 of the coordinates' magnitude in distance: the same kind of
-/// margin as ClosestPointTree::search prunes with). The patches' distance tests skip such triangles without
-/// their closest point (measured: most triangles of a 2-ring are this far from a witness).
+/// margin as ClosestPointTree::search prunes with). The patches' distance tests skip such
+/// triangles without their closest point (measured: most triangles of a 2-ring are this far
+/// from a witness).
 inline bool clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double d2)
 {
     double box_d2 = 0.0, magnitude2 = 0.0;

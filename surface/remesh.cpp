@@ -68,7 +68,6 @@ constexpr double kAdaptiveToleranceMargin = 0.8;
 // A point equal to none (NaN coordinates): "not proven near" in the refinement's caches.
 const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
 
-
 // What a change in the repair stages after the polish must keep.
 enum class Keep
 {
@@ -224,7 +223,6 @@ private:
         return 0.5 * (mesh_.property(ctx_.props.vertex_size, mesh_.from_vertex_handle(h)) +
                       mesh_.property(ctx_.props.vertex_size, mesh_.to_vertex_handle(h)));
     }
-
 
     void split_long_edges()
     {
@@ -763,17 +761,15 @@ private:
         // vertices do not reach and the tree's search cost about 4 us a point (measured,
         // cheburashka's first round: 3258 -> 209 searches, the round's proofs 28 -> 13 ms;
         // stanford-bunny 5075 -> 437, 52 -> 29 ms).
-        // (Around a vertex by its outgoing halfedges: OpenMesh's circulators cost a third more
-        // here. Which of the faces proves p near is no matter, their order neither.)
+        // (Which of the faces proves p near is no matter, their order neither.)
         const VertexHandle end = vertex_toward(p, f);
-        const HalfedgeHandle first = mesh_.halfedge_handle(end);
-        HalfedgeHandle h = first;
-        do
-        {
+        FaceHandle found;
+        any_outgoing(end, [&](HalfedgeHandle h) {
             const FaceHandle g = mesh_.face_handle(h);
-            if (g.is_valid() && within_tolerance(g)) return g;
-            h = mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h));
-        } while (h != first);
+            if (g.is_valid() && within_tolerance(g)) found = g;
+            return found.is_valid();
+        });
+        if (found.is_valid()) return found;
         for (auto v : mesh_.fv_range(f))
         {
             if (v == end) continue;  // (its faces were just tried)
@@ -798,19 +794,32 @@ private:
         for (int step = 0; step < kWalkSteps; ++step)
         {
             VertexHandle next;
-            const HalfedgeHandle first = mesh_.halfedge_handle(v);
-            HalfedgeHandle h = first;
-            do
-            {
+            any_outgoing(v, [&](HalfedgeHandle h) {
                 const VertexHandle w = mesh_.to_vertex_handle(h);
                 const double d2 = (mesh_.point(w) - p).sqrnorm();
                 if (d2 < v_d2) v_d2 = d2, next = w;
-                h = mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h));
-            } while (h != first);
+                return false;
+            });
             if (!next.is_valid()) break;
             v = next;
         }
         return v;
+    }
+
+    // visit(h) for the outgoing halfedges h of v in turn, until one returns true (then true).
+    // (By the halfedges themselves: OpenMesh's circulators cost a third more in the
+    // refinement's walks.)
+    template <class Visit>
+    bool any_outgoing(VertexHandle v, Visit visit) const
+    {
+        const HalfedgeHandle first = mesh_.halfedge_handle(v);
+        HalfedgeHandle h = first;
+        do
+        {
+            if (visit(h)) return true;
+            h = mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h));
+        } while (h != first);
+        return false;
     }
 
     // Model point of rank i (model_points_in_space_order) proven within the tolerance of the
@@ -1038,11 +1047,10 @@ private:
         // does; after the last one, bench_surface's Hausdorff column is the check).
         std::vector<VertexHandle> split_vertices;  // of the last round (and ends of its distance flips)
         std::vector<VertexHandle> revisit;         // ends of the last round's candidates not tried
-        // (By rank in space order: the points, and their faces in point_face_, are then read in
-        // memory order in the first round's pass over all of them.)
-        std::vector<std::size_t> far_points(model_points_in_space_order().size());
-        for (std::size_t r = 0; r < far_points.size(); ++r) far_points[r] = r;
-        // After the first round: far_points' hits of the round before (the first has none).
+        // The first round looks at every model point, by rank in space order (the points, and
+        // their faces in point_face_, are then read in memory order); a later round at the points
+        // still far after the round before, whose hits it keeps in far_known.
+        const std::size_t point_count = model_points_in_space_order().size();
         std::vector<FarHit> far_known;
         // The per-element scratch of a round: members, kept zero between rounds (the entries a
         // round set are reset from its lists), so a round pays for what it touches only (the
@@ -1150,8 +1158,7 @@ private:
                 changed.clear();
             }
             split_vertices.clear();
-            std::vector<std::size_t> still_far;  // ranks
-            std::vector<FarHit> still_far_hits;   // their hits of this round
+            std::vector<FarHit> still_far;  // this round's hits of the points still far after it
             std::vector<FarHit> far_hits;
             std::vector<char>& snapped_now = scratch.snapped_now;  // moved by a snap in this round
             // (A split later in the round adds vertices, and an edge it cut ends at one of them.)
@@ -1160,20 +1167,29 @@ private:
             // is near without a search: the closest face can only be nearer. Most points stay near
             // from one call to the next; the others are searched. A far point whose hit of the
             // round before still holds (still_closest) needs neither.
-            std::vector<std::size_t> unproven;
-            unproven.reserve(far_points.size());  // (the first call's first round: all of them, not grown by doubling)
-            for (std::size_t k = 0; k < far_points.size(); ++k)
+            std::vector<std::size_t> unproven;  // ranks
+            // (Reserved: the first call's first round has all of them, not grown by doubling.)
+            unproven.reserve(round == 0 ? point_count : far_known.size());
+            if (round == 0)
             {
-                const std::size_t r = far_points[k];
-                if (k < far_known.size() && still_closest(far_known[k]))
+                for (std::size_t r = 0; r < point_count; ++r)
+                    if (!near_by_face_of(r)) unproven.push_back(r);
+            }
+            else
+            {
+                for (const FarHit& known : far_known)
                 {
-                    FarHit again = far_known[k];
-                    again.measured_in = refine_round_;  // as good as a search of this round
-                    far_hits.push_back(again);
-                    set_point_face(r, again.face, false);
-                    continue;
+                    const std::size_t r = rank_in_space_order_[known.point];
+                    if (still_closest(known))
+                    {
+                        FarHit again = known;
+                        again.measured_in = refine_round_;  // as good as a search of this round
+                        far_hits.push_back(again);
+                        set_point_face(r, again.face, false);
+                        continue;
+                    }
+                    if (!near_by_face_of(r)) unproven.push_back(r);
                 }
-                if (!near_by_face_of(r)) unproven.push_back(r);
             }
             // Consecutive model points are mostly neighbours: the last hit is the hint of the
             // next search, and a point within the tolerance of it is near without a search.
@@ -1222,8 +1238,7 @@ private:
                     if (snap && std::any_of(mesh_.fv_begin(far.face), mesh_.fv_end(far.face),
                                             [&](VertexHandle v) { return snapped_now[v.idx()] != 0; }))
                     {
-                        still_far.push_back(rank_in_space_order_[far.point]);
-                        still_far_hits.push_back(far);
+                        still_far.push_back(far);
                         continue;
                     }
                     const VertexHandle snapped = snap ? snap_toward(far.point, far.face, smooth) : VertexHandle();
@@ -1243,11 +1258,9 @@ private:
                     if (curve_edge.is_valid()) mark_edge(curve_edge, far.distance, 0);
                     else mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
                 }
-                still_far.push_back(rank_in_space_order_[far.point]);
-                still_far_hits.push_back(far);
+                still_far.push_back(far);
             }
-            far_points = std::move(still_far);
-            far_known = std::move(still_far_hits);
+            far_known = std::move(still_far);
             std::vector<std::pair<double, EdgeHandle>> candidates;
             std::sort(marked.begin(), marked.end());  // (the verbose lines in index order)
             for (const EdgeHandle e : marked)
@@ -1430,8 +1443,16 @@ private:
         void grow(std::size_t vertices, std::size_t edges, std::size_t faces)
         {
             if (edge_error.size() < edges)
-                detail::resize_with_room(edge_error, edges, 0.0), detail::resize_with_room(edge_target, edges, std::size_t{0}), detail::resize_with_room(edge_seen, edges, char{0});
-            if (near_change.size() < vertices) detail::resize_with_room(near_change, vertices, char{0}), detail::resize_with_room(snapped_now, vertices, char{0});
+            {
+                detail::resize_with_room(edge_error, edges, 0.0);
+                detail::resize_with_room(edge_target, edges, std::size_t{0});
+                detail::resize_with_room(edge_seen, edges, char{0});
+            }
+            if (near_change.size() < vertices)
+            {
+                detail::resize_with_room(near_change, vertices, char{0});
+                detail::resize_with_room(snapped_now, vertices, char{0});
+            }
             if (face_seen.size() < faces) detail::resize_with_room(face_seen, faces, char{0});
         }
         // The end of a round: the entries it set back to zero (near_change, face_seen and
@@ -1931,10 +1952,10 @@ private:
     std::clock_t cpu_start_ = std::clock();
     RemeshReport report_;
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first snap
-    // Per model point (by rank in space order): the output face that last proved it within the tolerance, or was its
-    // closest (invalid: none yet). Faces are garbage-collected at the end of run() only: handles
-    // hold across the whole call.
-    std::vector<FaceHandle> point_face_;  // (by rank in space_order_)
+    // Per model point, by rank in space order: the output face that last proved it within the
+    // tolerance, or was its closest (invalid: none yet). Faces are garbage-collected at the end
+    // of run() only: handles hold across the whole call.
+    std::vector<FaceHandle> point_face_;
     // The refinement rounds, counted over all calls (0: none): the round in which point_face_
     // proved a point near (0: it does not), and the last in which a face's points changed; a
     // proof holds while its face has not changed since.
