@@ -7,7 +7,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/size_fields.h"
 #include "volume/tet_io.h"
 #include "volume/tet_tables.h"

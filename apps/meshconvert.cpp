@@ -3,7 +3,7 @@
 
 #include "cli.h"
 #include "volume/check.h"
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;

@@ -5,7 +5,7 @@
 
 #include "cli.h"
 #include "volume/check.h"
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/quality_report.h"
 #include "volume/tet_io.h"
 

@@ -14,7 +14,7 @@
 #include "apps/cli.h"
 #include "surface/remesh.h"
 #include "surface/sizing.h"
-#include "surface/surface_errors.h"
+#include "common/errors.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
 
@@ -30,7 +30,7 @@ void write_stats(const std::string& path, const QualityReport& before, const Qua
     const std::string temp = path + ".tmp";
     {
         std::ofstream out(temp);
-        if (!out) throw SurfaceIoError(path + ": cannot open for writing");
+        if (!out) throw IoError(path + ": cannot open for writing");
         auto report = [&](const char* name, const QualityReport& r, bool last) {
             out << "  \"" << name << "\": {\"vertices\": " << r.vertices << ", \"triangles\": " << r.faces
                 << ", \"qe_min\": " << r.qe_min << ", \"qe_mean\": " << r.qe_mean
@@ -49,9 +49,9 @@ void write_stats(const std::string& path, const QualityReport& before, const Qua
         report("before", before, false);
         report("after", after, true);
         out << "}\n";
-        if (!out) throw SurfaceIoError(path + ": write failed");
+        if (!out) throw IoError(path + ": write failed");
     }
-    if (std::rename(temp.c_str(), path.c_str()) != 0) throw SurfaceIoError(path + ": cannot rename into place");
+    if (std::rename(temp.c_str(), path.c_str()) != 0) throw IoError(path + ": cannot rename into place");
 }
 
 }  // namespace
@@ -79,10 +79,10 @@ int main(int argc, char** argv)
         cmd.option("--stats", &stats, "write the before/after figures as JSON");
         cmd.option("-v", &verbosity, "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details)");
         cmd.parse(argc, argv);
-        if (output.empty()) throw SurfaceInputError("missing -o OUT");
+        if (output.empty()) throw InputError("missing -o OUT");
         if ((has_hsiz ? 1 : 0) + (has_sol ? 1 : 0) + (has_hausd ? 1 : 0) > 1)
-            throw SurfaceInputError("give at most one of --hsiz, --sol, --hausd");
-        if (has_hsiz && !(hsiz > 0)) throw SurfaceInputError("--hsiz must be positive");
+            throw InputError("give at most one of --hsiz, --sol, --hausd");
+        if (has_hsiz && !(hsiz > 0)) throw InputError("--hsiz must be positive");
 
         ReadReport read_report;
         SurfaceMesh mesh = read_surface(input, &read_report);

@@ -39,7 +39,7 @@ struct FeatureSet
 /// (FeatureOptions::min_chain_length_fraction); open-boundary edges; corners where three or more
 /// feature lines (ridges or boundary) meet, where a feature line ends, or where it turns by more
 /// than corner_angle_deg. Inconsistently oriented neighbours are compared with one normal flipped.
-/// Throws hdi::InputError for a triangle index out of range.
+/// Throws InputError for a triangle index out of range.
 FeatureSet detect_features(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
                            const FeatureOptions& options = {});
 

@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 
-#include "hdi/errors.h"
+#include "common/errors.h"
 #include "hdi/knn.h"
 
 namespace hdimesh::hdi

@@ -87,7 +87,7 @@ public:
     /// (options.normal_weighting), one normal per smooth side at a ridge node. `features` are used
     /// as given (detect_features() or read from the input; empty for none); the surface's
     /// open-boundary edges are always added, and every vertex where feature lines branch or end
-    /// becomes a corner. Throws hdi::InputError for bad indices or options.
+    /// becomes a corner. Throws InputError for bad indices or options.
     HdiSurface(std::vector<Vec3> points, std::vector<Triangle3> triangles, const FeatureSet& features,
                const HdiOptions& options = {});
 

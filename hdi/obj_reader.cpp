@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "hdi/errors.h"
+#include "common/errors.h"
 
 namespace hdimesh::hdi
 {

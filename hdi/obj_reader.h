@@ -18,7 +18,7 @@ struct TriangleSurface
     std::vector<Triangle3> triangles;
 };
 
-/// Throws hdi::IoError when the file cannot be read, hdi::InputError naming the file and line for
+/// Throws IoError when the file cannot be read, InputError naming the file and line for
 /// a malformed vertex or face (negative indices count from the end, as OBJ allows).
 TriangleSurface read_obj(const std::string& path);
 

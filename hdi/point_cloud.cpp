@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "hdi/errors.h"
+#include "common/errors.h"
 
 namespace hdimesh::hdi
 {

@@ -23,7 +23,7 @@ enum class NormalWeighting
 Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// One unit normal per point from the triangles around it (zero for a point no usable
-/// triangle touches). Throws hdi::InputError naming the triangle if an index is out of range.
+/// triangle touches). Throws InputError naming the triangle if an index is out of range.
 std::vector<Vec3> vertex_normals(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
                                  NormalWeighting weighting = NormalWeighting::Angle);
 
@@ -36,7 +36,7 @@ struct BoundingBox
 
 BoundingBox bounding_box(const std::vector<Vec3>& points);
 
-/// Throws hdi::InputError naming the first triangle whose index is outside [0, point_count).
+/// Throws InputError naming the first triangle whose index is outside [0, point_count).
 void check_triangle_indices(const std::vector<Triangle3>& triangles, int point_count);
 
 }  // namespace hdimesh::hdi

@@ -18,7 +18,7 @@
 #include "surface/hdi_projection.h"
 #include "surface/local_ops_geometry.h"
 #include "surface/point_grid.h"
-#include "surface/surface_errors.h"
+#include "common/errors.h"
 #include "surface/surface_model.h"
 #include "surface/surface_quality.h"
 #include "surface/vector_room.h"
@@ -1998,7 +1998,7 @@ private:
 
 RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model, const SurfaceHooks& hooks)
 {
-    if (!options.size) throw SurfaceInputError("remesh: no size function given");
+    if (!options.size) throw InputError("remesh: no size function given");
     Remesher remesher(mesh, options, model, hooks);
     return remesher.run();
 }
@@ -2061,7 +2061,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     if (!settings.input_sizes.empty())
     {
         if (settings.input_sizes.size() != mesh.n_vertices())
-            throw SurfaceInputError("remesh_surface: " + std::to_string(settings.input_sizes.size()) +
+            throw InputError("remesh_surface: " + std::to_string(settings.input_sizes.size()) +
                                     " sizes for " + std::to_string(mesh.n_vertices()) + " vertices");
         std::vector<double> graded = settings.input_sizes;
         bound_and_grade(mesh, graded, settings.sizing);

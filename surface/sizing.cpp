@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-#include "surface/surface_errors.h"
+#include "common/errors.h"
 
 namespace hdimesh::surface
 {
@@ -133,7 +133,7 @@ void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const
 std::vector<double> read_medit_sol(const std::string& path, std::size_t vertices)
 {
     std::ifstream in(path);
-    if (!in) throw SurfaceIoError(path + ": cannot open");
+    if (!in) throw IoError(path + ": cannot open");
     std::vector<std::string> tokens;
     std::vector<int> token_line;
     std::string line;
@@ -153,7 +153,7 @@ std::vector<double> read_medit_sol(const std::string& path, std::size_t vertices
     }
     auto fail = [&](std::size_t token, const std::string& what) {
         const int at = token < token_line.size() ? token_line[token] : line_number;
-        throw SurfaceInputError(path + ":" + std::to_string(at) + ": " + what);
+        throw InputError(path + ":" + std::to_string(at) + ": " + what);
     };
     auto number = [&](std::size_t token) {
         if (token >= tokens.size()) fail(token, "unexpected end of file");
@@ -187,7 +187,7 @@ std::vector<double> read_medit_sol(const std::string& path, std::size_t vertices
         }
         return sizes;
     }
-    throw SurfaceInputError(path + ": no SolAtVertices section");
+    throw InputError(path + ": no SolAtVertices section");
 }
 
 }  // namespace hdimesh::surface

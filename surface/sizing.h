@@ -53,7 +53,7 @@ void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const
 double mean_edge_length(const SurfaceMesh& mesh);
 
 /// Reads a Medit .sol file with one scalar per vertex (SolAtVertices, type 1); throws
-/// SurfaceInputError naming the file and line when malformed or when the count is not `vertices`.
+/// InputError naming the file and line when malformed or when the count is not `vertices`.
 std::vector<double> read_medit_sol(const std::string& path, std::size_t vertices);
 
 }  // namespace hdimesh::surface

@@ -10,7 +10,7 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 
-#include "surface/surface_errors.h"
+#include "common/errors.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -39,7 +39,7 @@ struct Tokens
     explicit Tokens(const std::string& file) : path(file)
     {
         std::ifstream in(file);
-        if (!in) throw SurfaceIoError(file + ": cannot open for reading");
+        if (!in) throw IoError(file + ": cannot open for reading");
         std::string line;
         int number = 0;
         while (std::getline(in, line))
@@ -60,7 +60,7 @@ struct Tokens
     int line() const { return next < lines.size() ? lines[next] : (lines.empty() ? 0 : lines.back()); }
     [[noreturn]] void fail(const std::string& what) const
     {
-        throw SurfaceInputError(path + ":" + std::to_string(line()) + ": " + what);
+        throw InputError(path + ":" + std::to_string(line()) + ": " + what);
     }
     const std::string& word()
     {
@@ -103,12 +103,12 @@ void check_index(Tokens& t, long index, std::size_t count)
 TriangleSoup read_obj(const std::string& path)
 {
     std::ifstream in(path);
-    if (!in) throw SurfaceIoError(path + ": cannot open for reading");
+    if (!in) throw IoError(path + ": cannot open for reading");
     TriangleSoup soup;
     std::string line;
     int number = 0;
     auto fail = [&](const std::string& what) {
-        throw SurfaceInputError(path + ":" + std::to_string(number) + ": " + what);
+        throw InputError(path + ":" + std::to_string(number) + ": " + what);
     };
     while (std::getline(in, line))
     {
@@ -259,11 +259,11 @@ TriangleSoup read_with_openmesh(const std::string& path)
 {
     {
         std::ifstream probe(path);
-        if (!probe) throw SurfaceIoError(path + ": cannot open for reading");
+        if (!probe) throw IoError(path + ": cannot open for reading");
     }
     OpenMesh::TriMesh_ArrayKernelT<SurfaceTraits> mesh;
     OpenMesh::IO::Options options;
-    if (!OpenMesh::IO::read_mesh(mesh, path, options)) throw SurfaceInputError(path + ": cannot parse as a surface mesh");
+    if (!OpenMesh::IO::read_mesh(mesh, path, options)) throw InputError(path + ": cannot parse as a surface mesh");
     TriangleSoup soup;
     for (auto v : mesh.vertices()) soup.points.push_back(mesh.point(v));
     for (auto f : mesh.faces())
@@ -290,7 +290,7 @@ std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& c
         }
     for (const auto& [edge, faces] : faces_of_edge)
         if (faces.size() > 2)
-            throw SurfaceInputError(source + ": non-manifold edge between vertices " + std::to_string(edge.first + 1) +
+            throw InputError(source + ": non-manifold edge between vertices " + std::to_string(edge.first + 1) +
                                     " and " + std::to_string(edge.second + 1) + " (" + std::to_string(faces.size()) +
                                     " triangles share it)");
     auto has_directed = [&](int f, int a, int b) {
@@ -323,7 +323,7 @@ std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& c
                     if (component[g] >= 0)
                     {
                         if (same_direction)
-                            throw SurfaceInputError(source + ": non-orientable surface (at triangle " +
+                            throw InputError(source + ": non-orientable surface (at triangle " +
                                                     std::to_string(g + 1) + ")");
                         continue;
                     }
@@ -398,7 +398,7 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
         clean.triangles.push_back(t);
         clean.refs.push_back(soup.refs[f]);
     }
-    if (clean.triangles.empty()) throw SurfaceInputError(source + ": no triangles");
+    if (clean.triangles.empty()) throw InputError(source + ": no triangles");
     // Compact the vertices to those used.
     std::vector<int> old2new_used(soup.points.size(), -1);
     for (auto& t : clean.triangles)
@@ -424,7 +424,7 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
         const auto& t = clean.triangles[f];
         const FaceHandle fh = mesh.add_face(handles[t[0]], handles[t[1]], handles[t[2]]);
         if (!fh.is_valid())
-            throw SurfaceInputError(source + ": triangle " + std::to_string(f + 1) + " (vertices " +
+            throw InputError(source + ": triangle " + std::to_string(f + 1) + " (vertices " +
                                     std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
                                     std::to_string(t[2] + 1) + ") makes a non-manifold vertex");
         mesh.property(props.face_ref, fh) = clean.refs[f];
@@ -458,7 +458,7 @@ SurfaceMesh read_surface(const std::string& path, ReadReport* report)
     else if (ext == "off") soup = read_off(path);
     else if (ext == "mesh") soup = read_medit(path);
     else if (ext == "stl" || ext == "ply") soup = read_with_openmesh(path);
-    else throw SurfaceInputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
+    else throw InputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
     return build_surface(std::move(soup), path, report);
 }
 
@@ -468,7 +468,7 @@ namespace
 void write_medit(const SurfaceMesh& mesh, const std::string& path)
 {
     std::ofstream out(path);
-    if (!out) throw SurfaceIoError(path + ": cannot open for writing");
+    if (!out) throw IoError(path + ": cannot open for writing");
     out.precision(17);
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
     OpenMesh::EPropHandleT<int> edge_curve;
@@ -519,7 +519,7 @@ void write_medit(const SurfaceMesh& mesh, const std::string& path)
     }
     out << "End\n";
     out.flush();
-    if (!out) throw SurfaceIoError(path + ": write failed");
+    if (!out) throw IoError(path + ": write failed");
 }
 
 }  // namespace
@@ -528,7 +528,7 @@ void write_surface(const SurfaceMesh& mesh, const std::string& path)
 {
     const std::string ext = lower_extension(path);
     if (ext != "obj" && ext != "off" && ext != "stl" && ext != "ply" && ext != "mesh")
-        throw SurfaceInputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
+        throw InputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
     // Same folder (rename stays on one file system), same extension (OpenMesh picks the writer by it).
     const std::string temp = path + ".tmp" + std::to_string(::getpid()) + "." + ext;
     if (ext == "mesh")
@@ -537,18 +537,18 @@ void write_surface(const SurfaceMesh& mesh, const std::string& path)
     {
         OpenMesh::IO::Options options;
         std::ofstream probe(temp);
-        if (!probe) throw SurfaceIoError(path + ": cannot open for writing");
+        if (!probe) throw IoError(path + ": cannot open for writing");
         probe.close();
         if (!OpenMesh::IO::write_mesh(mesh, temp, options, 17))
         {
             std::remove(temp.c_str());
-            throw SurfaceIoError(path + ": write failed");
+            throw IoError(path + ": write failed");
         }
     }
     if (std::rename(temp.c_str(), path.c_str()) != 0)
     {
         std::remove(temp.c_str());
-        throw SurfaceIoError(path + ": cannot rename the temporary file into place");
+        throw IoError(path + ": cannot rename the temporary file into place");
     }
 }
 

@@ -4,7 +4,7 @@
 // refs; written with Edges/Ridges/Corners for the features). Reading repairs what a user would
 // expect (merges duplicate vertices, drops degenerate and repeated faces, makes orientation
 // consistent and closed components outward) and reports it; what cannot be repaired (a
-// non-manifold edge or vertex) is a SurfaceInputError naming the file and the element.
+// non-manifold edge or vertex) is a InputError naming the file and the element.
 // Writing goes to a temporary file in the same folder, then renames.
 
 #include <array>
@@ -40,11 +40,11 @@ struct TriangleSoup
 /// messages.
 SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadReport* report = nullptr);
 
-/// Reads by extension (.obj .off .stl .ply .mesh, case-insensitive). Throws SurfaceIoError
-/// (cannot open) or SurfaceInputError (malformed, unrepairable, empty).
+/// Reads by extension (.obj .off .stl .ply .mesh, case-insensitive). Throws IoError
+/// (cannot open) or InputError (malformed, unrepairable, empty).
 SurfaceMesh read_surface(const std::string& path, ReadReport* report = nullptr);
 
-/// Writes by extension, atomically. Throws SurfaceIoError.
+/// Writes by extension, atomically. Throws IoError.
 void write_surface(const SurfaceMesh& mesh, const std::string& path);
 
 }  // namespace hdimesh::surface

@@ -2,9 +2,12 @@
 // The surface mesh type of hdimesh and the names of the properties every surface algorithm
 // shares (vertex class, feature curve, size, refs). One header so that the names exist once.
 
+#include <cassert>
 #include <cstdint>
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include "common/classification.h"
 
 namespace hdimesh::surface
 {
@@ -46,6 +49,35 @@ inline const char* to_string(VertexClass c)
     case VertexClass::Corner: return "corner";
     }
     return "?";
+}
+
+/// The shared classification of a surface vertex of this class (common/classification.h):
+/// smooth on a surface, ridge and boundary on a curve (the boundary one open), a corner.
+inline Classification to_classification(VertexClass c, int id = kNoModelEntity)
+{
+    switch (c)
+    {
+    case VertexClass::Smooth: return {Dimension::Surface, id, false};
+    case VertexClass::Ridge: return {Dimension::Curve, id, false};
+    case VertexClass::Boundary: return {Dimension::Curve, id, true};
+    case VertexClass::Corner: return {Dimension::Corner, id, false};
+    }
+    return {Dimension::Surface, id, false};
+}
+
+/// The class of a surface vertex that lies on `c`. A volume classification has no surface
+/// vertex; it is reported as Smooth only to keep the function total (an assert guards it).
+inline VertexClass to_vertex_class(const Classification& c)
+{
+    switch (c.dimension)
+    {
+    case Dimension::Corner: return VertexClass::Corner;
+    case Dimension::Curve: return c.open_boundary ? VertexClass::Boundary : VertexClass::Ridge;
+    case Dimension::Surface: return VertexClass::Smooth;
+    case Dimension::Volume: break;
+    }
+    assert(false && "a surface vertex never lies in a volume");
+    return VertexClass::Smooth;
 }
 
 /// No feature curve (smooth vertex or edge; corners belong to several curves, so they have none).

@@ -10,7 +10,7 @@
 
 #include <Eigen/Dense>
 
-#include "surface/surface_errors.h"
+#include "common/errors.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -151,11 +151,11 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     {
         for (auto v : input.all_vertices())
             if (input.status(v).deleted())
-                throw SurfaceInputError("SurfaceModel: the input mesh has deleted vertices (e.g. vertex " +
+                throw InputError("SurfaceModel: the input mesh has deleted vertices (e.g. vertex " +
                                         std::to_string(v.idx()) + "): garbage-collect it first");
         for (auto f : input.all_faces())
             if (input.status(f).deleted())
-                throw SurfaceInputError("SurfaceModel: the input mesh has deleted faces (e.g. face " +
+                throw InputError("SurfaceModel: the input mesh has deleted faces (e.g. face " +
                                         std::to_string(f.idx()) + "): garbage-collect it first");
     }
     // Read-only look-up: an unclassified input is all smooth, without curves.

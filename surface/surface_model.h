@@ -19,7 +19,7 @@ class SurfaceModel final : public Projector
 {
 public:
     /// `input` must carry the feature classification (detect_features) and no deleted elements
-    /// (SurfaceInputError otherwise). The model copies the geometry it needs; `input` may be
+    /// (InputError otherwise). The model copies the geometry it needs; `input` may be
     /// modified or destroyed afterwards.
     explicit SurfaceModel(const SurfaceMesh& input);
 

@@ -12,7 +12,7 @@
 
 #include "fixtures.h"
 #include "volume/check.h"
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;

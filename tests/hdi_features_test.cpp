@@ -10,13 +10,15 @@
 #include <set>
 #include <vector>
 
-#include "hdi/errors.h"
+#include "common/errors.h"
 #include "hdi/features.h"
 #include "hdi/hdi_surface.h"
 #include "hdi/obj_reader.h"
 #include "tests/fixtures.h"
 
 using namespace hdimesh::hdi;
+using hdimesh::InputError;
+using hdimesh::IoError;
 
 namespace
 {

@@ -14,7 +14,7 @@
 
 #include "fixtures.h"
 #include "volume/check.h"
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/quality_report.h"
 #include "volume/size_fields.h"
 #include "volume/tet_io.h"

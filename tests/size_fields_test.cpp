@@ -13,7 +13,7 @@
 #include "fixtures.h"
 #include "volume/boundary.h"
 #include "volume/check.h"
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/size_fields.h"
 
 using namespace hdimesh;

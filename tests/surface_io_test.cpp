@@ -12,11 +12,13 @@
 #include <unistd.h>
 
 #include "surface/remesh.h"
-#include "surface/surface_errors.h"
+#include "common/errors.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
 
 using namespace hdimesh::surface;
+using hdimesh::InputError;
+using hdimesh::IoError;
 
 namespace
 {
@@ -133,7 +135,7 @@ TEST_CASE("a non-manifold edge is a clear error naming the edge")
         read_surface(path);
         FAIL("no error");
     }
-    catch (const SurfaceInputError& e)
+    catch (const InputError& e)
     {
         const std::string message = e.what();
         CHECK(message.find(path) != std::string::npos);
@@ -144,13 +146,13 @@ TEST_CASE("a non-manifold edge is a clear error naming the edge")
 TEST_CASE("malformed and missing files are errors naming the file and line")
 {
     const std::string bad = write_text("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n");
-    CHECK_THROWS_WITH_AS(read_surface(bad), (bad + ":3: a vertex needs three coordinates").c_str(), SurfaceInputError);
+    CHECK_THROWS_WITH_AS(read_surface(bad), (bad + ":3: a vertex needs three coordinates").c_str(), InputError);
     const std::string range = write_text("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
-    CHECK_THROWS_AS(read_surface(range), SurfaceInputError);
-    CHECK_THROWS_AS(read_surface(temp_path("does-not-exist.obj")), SurfaceIoError);
-    CHECK_THROWS_AS(read_surface(temp_path("what.xyz")), SurfaceInputError);
+    CHECK_THROWS_AS(read_surface(range), InputError);
+    CHECK_THROWS_AS(read_surface(temp_path("does-not-exist.obj")), IoError);
+    CHECK_THROWS_AS(read_surface(temp_path("what.xyz")), InputError);
     const std::string medit = write_text("bad.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 0\nTriangles\n1\n1 2 3 0\nEnd\n");
-    CHECK_THROWS_AS(read_surface(medit), SurfaceInputError);
+    CHECK_THROWS_AS(read_surface(medit), InputError);
 }
 
 TEST_CASE("a multi-component input keeps its components; an open input keeps its boundary")

@@ -16,9 +16,9 @@
 #include <string>
 
 #include "fixtures.h"
-#include "volume/atomic_file.h"
+#include "common/atomic_file.h"
 #include "volume/check.h"
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;

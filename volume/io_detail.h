@@ -18,7 +18,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/tet_io.h"
 #include "volume/tet_mesh.h"
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/tet_tables.h"
 
 namespace hdimesh

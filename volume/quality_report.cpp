@@ -7,9 +7,9 @@
 #include <sstream>
 #include <vector>
 
-#include "volume/atomic_file.h"
+#include "common/atomic_file.h"
 #include "volume/boundary.h"
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/tet_tables.h"
 
 namespace hdimesh

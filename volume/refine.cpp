@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "volume/errors.h"
+#include "common/errors.h"
 #include "volume/refine_patterns.h"
 #include "volume/tet_tables.h"
 

@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "volume/boundary.h"
-#include "volume/errors.h"
+#include "common/errors.h"
 
 namespace hdimesh
 {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "volume/atomic_file.h"
+#include "common/atomic_file.h"
 #include "volume/io_detail.h"
 
 namespace hdimesh

@@ -12,8 +12,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "volume/atomic_file.h"
-#include "volume/errors.h"
+#include "common/atomic_file.h"
+#include "common/errors.h"
 #include "volume/io_detail.h"
 #include "volume/tet_tables.h"
 

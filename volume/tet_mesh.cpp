@@ -20,6 +20,30 @@ const char* to_string(VertexClass c)
     return "?";
 }
 
+Classification to_classification(VertexClass c, int id)
+{
+    switch (c)
+    {
+    case VertexClass::Interior: return {Dimension::Volume, id, false};
+    case VertexClass::Surface: return {Dimension::Surface, id, false};
+    case VertexClass::Ridge: return {Dimension::Curve, id, false};
+    case VertexClass::Corner: return {Dimension::Corner, id, false};
+    }
+    return {};
+}
+
+VertexClass to_vertex_class(const Classification& c)
+{
+    switch (c.dimension)
+    {
+    case Dimension::Volume: return VertexClass::Interior;
+    case Dimension::Surface: return VertexClass::Surface;
+    case Dimension::Curve: return VertexClass::Ridge;
+    case Dimension::Corner: return VertexClass::Corner;
+    }
+    return VertexClass::Interior;
+}
+
 int TetMesh::add_vertex(const Vec3& p, int ref, VertexClass cls)
 {
     points.push_back(p);

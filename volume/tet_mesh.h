@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/classification.h"
 #include "volume/geometry.h"
 
 namespace hdimesh
@@ -30,6 +31,12 @@ enum class VertexClass : std::uint8_t
 };
 
 const char* to_string(VertexClass c);
+
+/// The shared classification of a vertex of this class (common/classification.h); `id` is the
+/// curve, surface or region it lies on where the caller knows it.
+Classification to_classification(VertexClass c, int id = kNoModelEntity);
+/// The class of a tet-mesh vertex that lies on `c` (an open-boundary curve is a Ridge here).
+VertexClass to_vertex_class(const Classification& c);
 
 inline constexpr int kNoTet = -1;    ///< neighbour across a boundary face
 inline constexpr int kDeadTet = -1;  ///< tets[t][0] of a killed tet

@@ -1,4 +1,4 @@
-#include "volume/atomic_file.h"
+#include "common/atomic_file.h"
 
 #include <atomic>
 #include <cerrno>
@@ -9,7 +9,7 @@
 #include <system_error>
 #include <unistd.h>
 
-#include "volume/errors.h"
+#include "common/errors.h"
 
 namespace hdimesh
 {
