@@ -14,8 +14,10 @@ shift
 cases=AC
 [[ "${1:-}" == "--cases" && -n "${2:-}" ]] && cases=$2
 jobs=$(nproc)
-top=$PWD/build-bitwise
-mkdir -p "$top"
+# HDIMESH_BITWISE_DIR: where BASE's sources, build and outputs are kept (shared by worktrees)
+top=${HDIMESH_BITWISE_DIR:-$PWD/build-bitwise}
+here=$PWD/build-bitwise
+mkdir -p "$top" "$here"
 
 build() { # build SRC DIR
     cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DHDIMESH_BUILD_TESTS=OFF > /dev/null
@@ -51,13 +53,13 @@ if [[ ! -f "$out_base/done" ]]; then
 fi
 [[ "${HDIMESH_BITWISE_BASE_ONLY:-0}" == 1 ]] && { echo "base outputs in $out_base"; exit 0; }
 echo "building and running the working tree..."
-mkdir -p "$top/build-head"
-build "$PWD" "$top/build-head"
-outputs "$top/build-head" "$top/out-head"
+mkdir -p "$here/build-head"
+build "$PWD" "$here/build-head"
+outputs "$here/build-head" "$here/out-head"
 
 status=0
 for f in $(cd "$out_base" && find . -type f ! -name bench_surface.txt ! -name done | sort); do
-    if ! cmp -s "$out_base/$f" "$top/out-head/$f"; then
+    if ! cmp -s "$out_base/$f" "$here/out-head/$f"; then
         echo "DIFFERS: ${f#./}"
         status=1
     fi
