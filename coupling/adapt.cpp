@@ -1,15 +1,14 @@
 #include "coupling/adapt.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <sstream>
 
-#include <time.h>
 #include <unistd.h>
 
+#include "common/stage_timer.h"
 #include "volume/reorder.h"
 
 namespace hdimesh::coupling
@@ -17,43 +16,6 @@ namespace hdimesh::coupling
 
 namespace
 {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double thread_cpu_seconds()
-{
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-/// Wall and CPU time of one stage, added to the report's two fields when it stops.
-class StageTimer
-{
-public:
-    StageTimer(double& wall, double& cpu)
-        : wall_(wall), cpu_(cpu), wall_start_(Clock::now()), cpu_start_(thread_cpu_seconds())
-    {
-    }
-    ~StageTimer()
-    {
-        wall_ += seconds_since(wall_start_);
-        cpu_ += thread_cpu_seconds() - cpu_start_;
-    }
-    StageTimer(const StageTimer&) = delete;
-    StageTimer& operator=(const StageTimer&) = delete;
-
-private:
-    double& wall_;
-    double& cpu_;
-    Clock::time_point wall_start_;
-    double cpu_start_;
-};
 
 double min_quality(const TetMesh& mesh)
 {
@@ -80,8 +42,7 @@ const char* kPassHeader =
 AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& options)
 {
     AdaptReport report;
-    const auto start = Clock::now();
-    const double cpu_start = thread_cpu_seconds();
+    const Stopwatch clock;
     if (!mesh.has_adjacency()) mesh.build_adjacency();
 
     std::unique_ptr<BoundaryProjector> projector;
@@ -98,7 +59,7 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     {
         AdaptPassReport row;
         row.pass = pass;
-        const auto pass_start = Clock::now();
+        const Stopwatch pass_clock;
 
         RefinePassResult refined;
         {
@@ -131,7 +92,7 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
 
         row.tets = mesh.num_live_tets();
         row.vertices = mesh.num_vertices();
-        row.seconds = seconds_since(pass_start);
+        row.seconds = pass_clock.wall_seconds();
         report.passes.push_back(row);
         if (options.verbosity >= 2) std::cout << format_pass_row(row) << std::flush;
         if (options.verbosity >= 1 && isatty(STDERR_FILENO))
@@ -162,8 +123,8 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
         }
     }
     if (!mesh.has_adjacency()) mesh.build_adjacency();
-    report.seconds_total = seconds_since(start);
-    report.cpu_seconds_total = thread_cpu_seconds() - cpu_start;
+    report.seconds_total = clock.wall_seconds();
+    report.cpu_seconds_total = clock.cpu_seconds();
     return report;
 }
 

@@ -6,25 +6,10 @@
 #include <utility>
 #include <vector>
 
+#include "common/morton.h"
+
 namespace hdimesh
 {
-
-namespace
-{
-
-/// Spreads the 21 low bits of x to every third bit (Morton code helper).
-std::uint64_t spread_bits(std::uint64_t x)
-{
-    x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffull;
-    x = (x | x << 16) & 0x1f0000ff0000ffull;
-    x = (x | x << 8) & 0x100f00f00f00f00full;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-}
-
-}  // namespace
 
 CompactionMaps renumber_spatially(TetMesh& mesh)
 {
@@ -45,9 +30,9 @@ CompactionMaps renumber_spatially(TetMesh& mesh)
     for (int v = 0; v < nv; ++v)
     {
         const Vec3 cell = (mesh.points[v] - low) * scale;
-        const std::uint64_t code = spread_bits(static_cast<std::uint64_t>(cell.x())) |
-                                   spread_bits(static_cast<std::uint64_t>(cell.y())) << 1 |
-                                   spread_bits(static_cast<std::uint64_t>(cell.z())) << 2;
+        const std::uint64_t code = morton_key(static_cast<std::uint64_t>(cell.x()),
+                                              static_cast<std::uint64_t>(cell.y()),
+                                              static_cast<std::uint64_t>(cell.z()));
         keyed[v] = {code, v};
     }
     std::sort(keyed.begin(), keyed.end());
