@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# All tests: installs what is missing, builds Release and runs CTest, then builds the tests with
-# AddressSanitizer + UndefinedBehaviorSanitizer and runs CTest again.
+# All tests: installs what is missing, checks the formatting, builds Release and runs CTest, then
+# runs CTest again on a Release build with assertions compiled in (the incremental caches'
+# cross-checks) and on an AddressSanitizer + UndefinedBehaviorSanitizer build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -11,6 +12,12 @@ echo "== Release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs"
+
+echo "== Release build with assertions, and tests"
+cmake -S . -B build-assert -DCMAKE_BUILD_TYPE=Release -DHDIMESH_ASSERTS=ON \
+    -DHDIMESH_BUILD_BENCH=OFF > /dev/null
+cmake --build build-assert -j"$jobs"
+ctest --test-dir build-assert --output-on-failure -j"$jobs"
 
 echo "== ASan+UBSan build and tests"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHDIMESH_SANITIZE=ON \

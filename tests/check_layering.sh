@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Fails when a module includes what the layering forbids (docs/architecture.md):
+#   common/   std only                       hdi/     common/, Eigen, FLANN (in hdi/knn.cpp only)
+#   volume/   common/, Eigen                 surface/ common/, hdi/, OpenMesh, Eigen
+#   coupling/ every module                   apps/    every module, through the library API
+# Prints one line per forbidden include (file:line: the include) and exits 1 when there is any.
+#   tests/check_layering.sh SOURCE_DIR
+set -uo pipefail
+root=${1:?usage: check_layering.sh SOURCE_DIR}
+cd "$root" || exit 2
+
+allowed_modules() {
+    case $1 in
+        common) echo "common" ;;
+        hdi) echo "common hdi" ;;
+        volume) echo "common volume" ;;
+        surface) echo "common hdi surface" ;;
+        coupling) echo "common hdi volume surface coupling" ;;
+    esac
+}
+allowed_libraries() {  # third-party include prefixes a module may use
+    case $1 in
+        common) echo "" ;;
+        hdi) echo "Eigen flann" ;;
+        volume) echo "Eigen" ;;
+        surface) echo "Eigen OpenMesh" ;;
+        coupling) echo "Eigen OpenMesh" ;;
+    esac
+}
+
+bad=0
+for module in common hdi volume surface coupling; do
+    [[ -d $module ]] || continue
+    modules=" $(allowed_modules "$module") "
+    libraries=" $(allowed_libraries "$module") "
+    while IFS=: read -r file line text; do
+        target=$(sed -E 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]([^>"]*)[>"].*/\1/' <<< "$text")
+        first=${target%%/*}
+        [[ $first == "$target" ]] && continue  # a system header (<vector>) or a local one
+        case $first in
+            common|hdi|volume|surface|coupling|apps)
+                [[ $modules == *" $first "* ]] && continue ;;
+            Eigen|flann|OpenMesh)
+                if [[ $libraries == *" $first "* ]]; then
+                    [[ $first == flann && $file != hdi/knn.cpp ]] || continue
+                fi ;;
+            *) continue ;;  # other system headers (sys/, ...)
+        esac
+        echo "$file:$line: $module/ may not include $target"
+        bad=1
+    done < <(grep -rnE '^[[:space:]]*#[[:space:]]*include' "$module" --include='*.h' --include='*.cpp' --include='*.inc' \
+             | grep -v '^[^:]*/tools/')
+done
+exit $bad
