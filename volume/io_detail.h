@@ -22,7 +22,7 @@
 #include "volume/tet_io.h"
 #include "volume/tet_mesh.h"
 
-namespace hdimesh::io_detail
+namespace hdimesh::volume::io_detail
 {
 
 /// Reads the whole file. IoError when it cannot be opened or read.
@@ -264,4 +264,4 @@ inline constexpr int kDimension = 3, kVertices = 4, kEdges = 5, kTriangles = 6,
                      kNormals = 60, kTangentAtVertices = 61, kSolAtVertices = 62;
 }
 
-}  // namespace hdimesh::io_detail
+}  // namespace hdimesh::volume::io_detail

@@ -16,7 +16,7 @@
 
 #include "volume/io_detail.h"
 
-namespace hdimesh::io_detail
+namespace hdimesh::volume::io_detail
 {
 
 namespace
@@ -512,4 +512,4 @@ void write_medit_binary(const TetMesh& mesh, std::ostream& out)
     w.flush();
 }
 
-}  // namespace hdimesh::io_detail
+}  // namespace hdimesh::volume::io_detail

@@ -13,7 +13,7 @@
 #include "volume/tet_tables.h"
 #include "volume/tet_topology.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -443,4 +443,4 @@ OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field, const Optimi
     return optimizer.finish();
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

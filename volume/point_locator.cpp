@@ -9,7 +9,7 @@
 #include "common/errors.h"
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -370,4 +370,4 @@ BoundaryPoint TetLocator::nearest_boundary_point(const Vec3& p) const
     return best;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

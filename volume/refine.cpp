@@ -10,7 +10,7 @@
 #include "volume/refine_patterns.h"
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int b)
@@ -842,4 +842,4 @@ RefineResult refine(TetMesh& mesh, const SizeField& field, const RefineOptions& 
     return result;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

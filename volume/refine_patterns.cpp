@@ -6,7 +6,7 @@
 
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -119,4 +119,4 @@ int paper_pattern_code(int mask, int diagonals)
     return code;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -15,7 +15,9 @@
 
 #include <cstdint>
 
-namespace hdimesh
+#include "volume/namespace.h"
+
+namespace hdimesh::volume
 {
 
 inline constexpr int kPatternSteinerPoint = 10;
@@ -65,4 +67,4 @@ inline constexpr int kPaperFaceToOurs[4] = {1, 0, 2, 3};
 /// configuration.
 int paper_pattern_code(int mask, int diagonals);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

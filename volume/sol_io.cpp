@@ -9,7 +9,7 @@
 #include "common/atomic_file.h"
 #include "volume/io_detail.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -172,4 +172,4 @@ void write_sol(const std::vector<double>& values, const std::string& path)
     });
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -17,7 +17,7 @@
 #include "volume/io_detail.h"
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace io_detail
@@ -374,4 +374,4 @@ void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions
     });
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -34,7 +34,7 @@
 
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 enum class MeshFormat
@@ -73,4 +73,4 @@ void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions
 std::vector<double> read_sol(const std::string& path, int expected_vertices = -1);
 void write_sol(const std::vector<double>& values, const std::string& path);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

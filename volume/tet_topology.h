@@ -10,7 +10,7 @@
 #include "volume/size_field.h"
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// Local index (0..3) of vertex v in tet t, or -1. Inline: every walk asks it per tet.
@@ -136,4 +136,4 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
                               const std::vector<int>& removed,
                               const std::vector<TetVertices>& added, int ref);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

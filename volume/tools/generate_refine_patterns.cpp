@@ -45,10 +45,10 @@
 namespace
 {
 
-using hdimesh::tet::kEdgeOfVertices;
-using hdimesh::tet::kEdgeVertices;
-using hdimesh::tet::kFaceEdges;
-using hdimesh::tet::kFaceVertices;
+using hdimesh::volume::tet::kEdgeOfVertices;
+using hdimesh::volume::tet::kEdgeVertices;
+using hdimesh::volume::tet::kFaceEdges;
+using hdimesh::volume::tet::kFaceVertices;
 
 using IPoint = std::array<std::int64_t, 3>;
 using LocalTet = std::array<int, 4>;
