@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/errors.h"
+#include "common/sol_io.h"
 #include "volume/size_fields.h"
 #include "volume/tet_io.h"
 #include "volume/tet_tables.h"
@@ -239,13 +240,16 @@ std::shared_ptr<const SizeField> SizeFlags::make(const TetMesh& input) const
     }
     else
     {
-        vertex_sizes = sol.empty() ? mean_incident_edge_length(input)
-                                   : read_sol(sol, input.num_vertices());
-        for (std::size_t v = 0; v < vertex_sizes.size(); ++v)
-            if (!(vertex_sizes[v] > 0))
-                throw InputError((sol.empty() ? std::string("input mesh") : sol) +
-                                 ": size at vertex " + std::to_string(v + 1) +
-                                 " is not positive");
+        if (!sol.empty())
+            vertex_sizes = read_sol_sizes(sol, input.num_vertices());
+        else
+        {
+            vertex_sizes = mean_incident_edge_length(input);
+            for (std::size_t v = 0; v < vertex_sizes.size(); ++v)
+                if (!(vertex_sizes[v] > 0))
+                    throw InputError("input mesh: size at vertex " + std::to_string(v + 1) +
+                                     " is not positive");
+        }
         at_vertices = true;
     }
 

@@ -15,6 +15,7 @@
 #include "surface/remesh.h"
 #include "surface/sizing.h"
 #include "common/errors.h"
+#include "common/sol_io.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
 
@@ -100,7 +101,7 @@ int main(int argc, char** argv)
         settings.iterations = iterations;
         settings.use_hdi = use_hdi;
         settings.verbosity = verbosity > 1 ? verbosity - 1 : 0;
-        if (has_sol) settings.input_sizes = read_medit_sol(sol, mesh.n_vertices());
+        if (has_sol) settings.input_sizes = read_sol_sizes(sol, static_cast<int>(mesh.n_vertices()));
         if (!has_hsiz && !has_sol && !has_hausd && !has_hmax) settings.sizing.hmax = 2.0 * mean_edge_length(mesh);
 
         const auto start = std::chrono::steady_clock::now();

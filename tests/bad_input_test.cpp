@@ -279,7 +279,7 @@ TEST_CASE(".sol: wrong count, unsupported types, truncation")
         return std::string();
     };
     const std::string head = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n";
-    check_message(sol_error("count.sol", head + "2\n1 1\n0.5\n0.5\nEnd\n", 3), "count.sol", ": ",
+    check_message(sol_error("count.sol", head + "2\n1 1\n0.5\n0.5\nEnd\n", 3), "count.sol", ":4:",
                   "has 2 values but the mesh has 3 vertices");
     check_message(sol_error("tensor.sol", head + "2\n1 3\n1 0 0 1 0 1\nEnd\n", -1), "tensor.sol", ":5:",
                   "only scalar");
