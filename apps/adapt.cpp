@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "cli.h"
+#include "size_flags.h"
 #include "coupling/adapt.h"
 #include "volume/check.h"
 #include "common/errors.h"
@@ -10,6 +10,7 @@
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
+using namespace hdimesh::volume;
 
 int main(int argc, char** argv)
 {

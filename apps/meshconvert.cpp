@@ -4,9 +4,11 @@
 #include "cli.h"
 #include "volume/check.h"
 #include "common/errors.h"
+#include "common/sol_io.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
+using namespace hdimesh::volume;
 
 int main(int argc, char** argv)
 {
