@@ -33,6 +33,46 @@ bool is_unsupported_element_keyword(std::string_view keyword)
            keyword == "Pyramids" || keyword == "RequiredQuadrilaterals";
 }
 
+/// The sections that list indices into another array, in both encodings.
+enum class IndexTarget
+{
+    Vertices,
+    Edges,
+    Triangles,
+    Tetrahedra,
+};
+
+struct IndexSection
+{
+    std::string_view keyword;
+    int code;  ///< libMeshb
+    std::vector<int> TetMesh::*list;
+    IndexTarget target;
+};
+
+constexpr IndexSection kIndexSections[] = {
+    {"Ridges", gmf::kRidges, &TetMesh::ridges, IndexTarget::Edges},
+    {"Corners", gmf::kCorners, &TetMesh::corners, IndexTarget::Vertices},
+    {"RequiredVertices", gmf::kRequiredVertices, &TetMesh::required_vertices, IndexTarget::Vertices},
+    {"RequiredEdges", gmf::kRequiredEdges, &TetMesh::required_edges, IndexTarget::Edges},
+    {"RequiredTriangles", gmf::kRequiredTriangles, &TetMesh::required_triangles, IndexTarget::Triangles},
+    {"RequiredTetrahedra", gmf::kRequiredTetrahedra, &TetMesh::required_tets, IndexTarget::Tetrahedra},
+};
+
+const IndexSection* find_index_section(std::string_view keyword)
+{
+    for (const IndexSection& section : kIndexSections)
+        if (section.keyword == keyword) return &section;
+    return nullptr;
+}
+
+const IndexSection* find_index_section(int code)
+{
+    for (const IndexSection& section : kIndexSections)
+        if (section.code == code) return &section;
+    return nullptr;
+}
+
 class MeditAsciiReader
 {
 public:
@@ -56,22 +96,8 @@ private:
             read_elements(mesh_.triangles, mesh_.triangle_refs, "Triangles");
         else if (keyword == "Tetrahedra")
             read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra");
-        else if (keyword == "Ridges")
-            read_index_list(mesh_.ridges, "Ridges", edges_known(), mesh_.edges.size());
-        else if (keyword == "Corners")
-            read_index_list(mesh_.corners, "Corners", vertices_known(), mesh_.points.size());
-        else if (keyword == "RequiredVertices")
-            read_index_list(mesh_.required_vertices, "RequiredVertices", vertices_known(),
-                            mesh_.points.size());
-        else if (keyword == "RequiredEdges")
-            read_index_list(mesh_.required_edges, "RequiredEdges", edges_known(),
-                            mesh_.edges.size());
-        else if (keyword == "RequiredTriangles")
-            read_index_list(mesh_.required_triangles, "RequiredTriangles", triangles_known(),
-                            mesh_.triangles.size());
-        else if (keyword == "RequiredTetrahedra")
-            read_index_list(mesh_.required_tets, "RequiredTetrahedra", tets_known(),
-                            mesh_.tets.size());
+        else if (const IndexSection* section = find_index_section(keyword))
+            read_index_list(*section);
         else if (const int per_item = skipped_tokens_per_item(keyword))
         {
             const std::size_t n = in_.count("item count", 2 * per_item);
@@ -88,11 +114,6 @@ private:
             return false;
         return true;
     }
-
-    bool vertices_known() const { return seen_vertices_; }
-    bool edges_known() const { return seen_edges_; }
-    bool triangles_known() const { return seen_triangles_; }
-    bool tets_known() const { return seen_tets_; }
 
     void once(bool& seen, const char* keyword)
     {
@@ -141,15 +162,42 @@ private:
         }
     }
 
-    void read_index_list(std::vector<int>& items, const char* keyword, bool target_known,
-                         std::size_t target_size)
+    void read_index_list(const IndexSection& section)
     {
-        const std::size_t n = in_.count(keyword, 2);
-        if (n > static_cast<std::size_t>(INT_MAX)) in_.fail(std::string("too many ") + keyword);
-        const long long max_index = target_known ? static_cast<long long>(target_size) : INT_MAX;
+        const std::string keyword(section.keyword);
+        const std::size_t n = in_.count(keyword.c_str(), 2);
+        if (n > static_cast<std::size_t>(INT_MAX)) in_.fail("too many " + keyword);
+        const long long max_index = target_known(section.target)
+                                        ? static_cast<long long>(target_size(section.target))
+                                        : INT_MAX;
+        std::vector<int>& items = mesh_.*section.list;
         items.reserve(items.size() + n);
         for (std::size_t i = 0; i < n; ++i)
             items.push_back(static_cast<int>(in_.integer_in("index", 1, max_index)) - 1);
+    }
+
+    bool target_known(IndexTarget target) const
+    {
+        switch (target)
+        {
+            case IndexTarget::Vertices: return seen_vertices_;
+            case IndexTarget::Edges: return seen_edges_;
+            case IndexTarget::Triangles: return seen_triangles_;
+            case IndexTarget::Tetrahedra: return seen_tets_;
+        }
+        return false;
+    }
+
+    std::size_t target_size(IndexTarget target) const
+    {
+        switch (target)
+        {
+            case IndexTarget::Vertices: return mesh_.points.size();
+            case IndexTarget::Edges: return mesh_.edges.size();
+            case IndexTarget::Triangles: return mesh_.triangles.size();
+            case IndexTarget::Tetrahedra: return mesh_.tets.size();
+        }
+        return 0;
     }
 
     TextReader in_;
@@ -190,18 +238,6 @@ private:
                 read_elements(mesh_.triangles, mesh_.triangle_refs, "Triangles");
                 break;
             case gmf::kTetrahedra: read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra"); break;
-            case gmf::kRidges: read_index_list(mesh_.ridges, "Ridges"); break;
-            case gmf::kCorners: read_index_list(mesh_.corners, "Corners"); break;
-            case gmf::kRequiredVertices:
-                read_index_list(mesh_.required_vertices, "RequiredVertices");
-                break;
-            case gmf::kRequiredEdges: read_index_list(mesh_.required_edges, "RequiredEdges"); break;
-            case gmf::kRequiredTriangles:
-                read_index_list(mesh_.required_triangles, "RequiredTriangles");
-                break;
-            case gmf::kRequiredTetrahedra:
-                read_index_list(mesh_.required_tets, "RequiredTetrahedra");
-                break;
             case gmf::kNormals:
             case gmf::kTangents:
             case gmf::kNormalAtVertices:
@@ -224,8 +260,11 @@ private:
                              " quadrilaterals/prisms/pyramids/hexahedra are not supported");
                 break;
             default:
-                in_.fail("unsupported keyword code " + std::to_string(keyword.code) +
-                         " (libMeshb numbering)");
+                if (const IndexSection* section = find_index_section(keyword.code))
+                    read_index_list(*section);
+                else
+                    in_.fail("unsupported keyword code " + std::to_string(keyword.code) +
+                             " (libMeshb numbering)");
         }
     }
 
@@ -257,9 +296,11 @@ private:
         }
     }
 
-    void read_index_list(std::vector<int>& items, const char* keyword)
+    void read_index_list(const IndexSection& section)
     {
-        const long long n = file_.count(keyword, file_.int_bytes());
+        const std::string keyword(section.keyword);
+        const long long n = file_.count(keyword.c_str(), file_.int_bytes());
+        std::vector<int>& items = mesh_.*section.list;
         items.reserve(items.size() + n);
         for (long long i = 0; i < n; ++i)
             items.push_back(static_cast<int>(file_.integer("index", 1, INT_MAX)) - 1);
