@@ -6,16 +6,16 @@
 // bounding-box diagonal and hmax = the input's mean edge length × 2 (so a default run never
 // coarsens beyond twice the input's resolution and never ignores the model's scale).
 
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 
 #include "apps/cli.h"
-#include "surface/remesh.h"
-#include "surface/sizing.h"
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "common/sol_io.h"
+#include "common/stage_timer.h"
+#include "surface/remesh.h"
+#include "surface/sizing.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
 
@@ -98,9 +98,9 @@ int main(int argc, char** argv)
         if (has_sol) settings.input_sizes = read_sol_sizes(size.sol, static_cast<int>(mesh.n_vertices()));
         if (!has_hsiz && !has_sol && !has_hausd && !size.hmax_set) settings.sizing.hmax = 2.0 * mean_edge_length(mesh);
 
-        const auto start = std::chrono::steady_clock::now();
+        const WallStopwatch stopwatch;
         const SurfaceRemeshResult result = remesh_surface(mesh, settings);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds = stopwatch.seconds();
         write_surface(mesh, output);
 
         if (verbosity > 0 || !stats.empty())
