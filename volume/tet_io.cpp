@@ -95,8 +95,8 @@ void finish_read(TetMesh& mesh, const std::string& path)
         }
     }
 
-    // readers grow some arrays by push_back: give the slack back (the container's bytes per
-    // tet is a benchmarked figure, and a read mesh is usually kept for a whole run)
+    // readers grow some arrays by push_back: give the slack back (a read mesh is usually kept
+    // for a whole run)
     mesh.points.shrink_to_fit();
     mesh.vertex_refs.shrink_to_fit();
     mesh.tets.shrink_to_fit();

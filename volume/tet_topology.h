@@ -48,7 +48,7 @@ std::vector<int> vertex_to_tet(const TetMesh& mesh);
 /// The sorted vertex triple of face f of tet t.
 std::array<int, 3> sorted_face(const TetMesh& mesh, int t, int f);
 
-/// What the optimization operators may not touch (issue 4: the boundary stays fixed).
+/// What the optimization operators may not touch (the boundary stays fixed).
 class MeshConstraints
 {
 public:
