@@ -48,6 +48,11 @@ void CommandLine::flag(const std::string& name, bool* target, const std::string&
     options_.push_back({name, help, "", [target](const std::string&) { *target = true; }});
 }
 
+void CommandLine::flags(const std::vector<Flag>& table)
+{
+    for (const Flag& f : table) flag(f.name, f.target, f.help);
+}
+
 void CommandLine::option(const std::string& name, double* target, const std::string& help,
                          bool* was_set)
 {

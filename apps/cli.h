@@ -28,6 +28,14 @@ public:
                     bool required = true);
     /// A flag without value ("--check").
     void flag(const std::string& name, bool* target, const std::string& help);
+    struct Flag
+    {
+        std::string name;
+        bool* target;
+        std::string help;
+    };
+    /// A tool's switches as one table.
+    void flags(const std::vector<Flag>& table);
     /// Options with one value ("--hmin 0.01"). `was_set`, if given, tells whether it appeared.
     void option(const std::string& name, double* target, const std::string& help,
                 bool* was_set = nullptr);

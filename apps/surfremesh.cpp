@@ -66,8 +66,10 @@ int main(int argc, char** argv)
         size.add_to(cmd, true);
         cmd.option("--hausd", &hausd, "geometric tolerance: curvature-adaptive size (default 0.002*diag)", &has_hausd);
         cmd.option("--ridge-angle", &ridge_angle, "ridge detection angle in degrees (default 45)");
-        cmd.flag("--hdi", &use_hdi, "smooth vertices on the HDI model instead of the input facets (experimental)");
-        cmd.flag("--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)");
+        cmd.flags({
+            {"--hdi", &use_hdi, "smooth vertices on the HDI model instead of the input facets (experimental)"},
+            {"--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)"},
+        });
         cmd.option("--iterations", &iterations, "remeshing iterations (default 8)");
         cmd.option("--stats", &stats, "write the before/after figures as JSON");
         cmd.option("-v", &verbosity, "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details)");
