@@ -1,11 +1,12 @@
 // adapt: adapts a tet mesh and its boundary to a size field (parse -> read -> adapt -> write).
+#include "coupling/adapt.h"
+
 #include <cstdio>
 #include <iostream>
 
-#include "size_flags.h"
-#include "coupling/adapt.h"
-#include "volume/check.h"
 #include "common/errors.h"
+#include "size_flags.h"
+#include "volume/check.h"
 #include "volume/quality_report.h"
 #include "volume/tet_io.h"
 

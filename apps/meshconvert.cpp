@@ -2,9 +2,9 @@
 #include <iostream>
 
 #include "cli.h"
-#include "volume/check.h"
 #include "common/errors.h"
 #include "common/sol_io.h"
+#include "volume/check.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
@@ -26,7 +26,8 @@ int main(int argc, char** argv)
             {"--no-check", &no_check, "write even if the mesh checker finds violations"},
             {"--verbose", &verbose, "print the counts read"},
         });
-        cl.option("--sol", &sol_path, "a .sol/.solb on the input's vertices, written as .vtu point data \"size\"");
+        cl.option("--sol", &sol_path,
+                  "a .sol/.solb on the input's vertices, written as .vtu point data \"size\"");
         cl.parse(argc, argv);
         if (msh_version != "2.2" && msh_version != "4.1")
             throw InputError("--msh-version expects 2.2 or 4.1, got '" + msh_version + "'");

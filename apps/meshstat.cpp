@@ -3,9 +3,9 @@
 #include <iostream>
 #include <string>
 
+#include "common/errors.h"
 #include "size_flags.h"
 #include "volume/check.h"
-#include "common/errors.h"
 #include "volume/quality_report.h"
 #include "volume/tet_io.h"
 

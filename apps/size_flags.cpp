@@ -18,11 +18,11 @@ using volume::benchmark_case;
 using volume::BenchmarkSize;
 using volume::ClampedSize;
 using volume::ConstantSize;
+using volume::grade_vertex_sizes;
+using volume::sample_vertex_sizes;
 using volume::SizeField;
 using volume::TetMesh;
 using volume::Vec3;
-using volume::grade_vertex_sizes;
-using volume::sample_vertex_sizes;
 namespace tet = volume::tet;
 
 namespace
@@ -119,9 +119,10 @@ std::shared_ptr<const SizeField> SizeFlags::make(const TetMesh& input) const
     if (at_vertices || hgrad > 0)
     {
         auto background = std::make_shared<BackgroundMeshSize>(input, vertex_sizes);
-        field = field ? std::shared_ptr<const SizeField>(
-                            std::make_shared<MinimumSize>(field, background))
-                      : background;
+        field =
+            field
+                ? std::shared_ptr<const SizeField>(std::make_shared<MinimumSize>(field, background))
+                : background;
     }
     if (hmin > 0 || hmax > 0)
         field = std::make_shared<ClampedSize>(

@@ -180,7 +180,8 @@ void TextReader::fail(const std::string& message) const
 
 // --- BinaryReader
 
-void BinaryReader::require(unsigned long long items, std::size_t bytes_per_item, const char* what) const
+void BinaryReader::require(unsigned long long items, std::size_t bytes_per_item,
+                           const char* what) const
 {
     const std::size_t left = pos_ <= data_.size() ? data_.size() - pos_ : 0;
     if (items > left / std::max<std::size_t>(bytes_per_item, 1))

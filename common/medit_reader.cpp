@@ -64,9 +64,9 @@ BinaryFile::Keyword BinaryFile::keyword()
     const int code = in_.get<std::int32_t>("keyword code");
     // End carries a (zero) position too, as libMeshb and meshio write it: requiring it catches
     // files cut inside the last keyword
-    const long long next =
-        position_bytes_ == 8 ? in_.integer_in<std::int64_t>("next keyword position", 0, LLONG_MAX)
-                             : in_.integer_in<std::int32_t>("next keyword position", 0, INT_MAX);
+    const long long next = position_bytes_ == 8
+                               ? in_.integer_in<std::int64_t>("next keyword position", 0, LLONG_MAX)
+                               : in_.integer_in<std::int32_t>("next keyword position", 0, INT_MAX);
     return {code, next};
 }
 

@@ -25,15 +25,14 @@ namespace hdimesh::medit
 /// libMeshb keyword codes (libmeshb7.h order).
 namespace gmf
 {
-inline constexpr int kDimension = 3, kVertices = 4, kEdges = 5, kTriangles = 6,
-                     kQuadrilaterals = 7, kTetrahedra = 8, kPrisms = 9, kHexahedra = 10,
+inline constexpr int kDimension = 3, kVertices = 4, kEdges = 5, kTriangles = 6, kQuadrilaterals = 7,
+                     kTetrahedra = 8, kPrisms = 9, kHexahedra = 10,
                      // libMeshb reserves 12; Mmg stores RequiredTetrahedra there, so do we.
     kRequiredTetrahedra = 12, kCorners = 13, kRidges = 14, kRequiredVertices = 15,
                      kRequiredEdges = 16, kRequiredTriangles = 17, kRequiredQuadrilaterals = 18,
-                     kPyramids = 49,
-                     kTangentAtEdgeVertices = 19, kNormalAtVertices = 20,
-                     kNormalAtTriangleVertices = 21, kEnd = 54, kTangents = 59,
-                     kNormals = 60, kTangentAtVertices = 61, kSolAtVertices = 62;
+                     kPyramids = 49, kTangentAtEdgeVertices = 19, kNormalAtVertices = 20,
+                     kNormalAtTriangleVertices = 21, kEnd = 54, kTangents = 59, kNormals = 60,
+                     kTangentAtVertices = 61, kSolAtVertices = 62;
 }
 
 enum class EndKeyword

@@ -37,26 +37,29 @@ std::vector<double> read_sol_ascii(const std::string& path, const std::string& d
     TextReader in(path, data, '#');
     std::vector<double> values;
     bool seen_solution = false;
-    medit::read_ascii_keywords(
-        in, medit::EndKeyword::Required, "solution file", [&](std::string_view keyword) {
-            if (keyword != "SolAtVertices") return false;
-            if (seen_solution) in.fail("second SolAtVertices section");
-            seen_solution = true;
-            const std::size_t n = in.count("SolAtVertices count", 2);
-            if (wrong_count(n, expected_vertices)) in.fail(count_mismatch(n, expected_vertices));
-            if (in.integer("number of solution types") != 1)
-                in.fail("only one solution per vertex is supported");
-            if (in.integer("solution type") != 1)
-                in.fail("only scalar solutions (type 1) are supported");
-            values.resize(n);
-            for (double& v : values) v = in.real("solution value");
-            return true;
-        });
+    medit::read_ascii_keywords(in, medit::EndKeyword::Required, "solution file",
+                               [&](std::string_view keyword)
+                               {
+                                   if (keyword != "SolAtVertices") return false;
+                                   if (seen_solution) in.fail("second SolAtVertices section");
+                                   seen_solution = true;
+                                   const std::size_t n = in.count("SolAtVertices count", 2);
+                                   if (wrong_count(n, expected_vertices))
+                                       in.fail(count_mismatch(n, expected_vertices));
+                                   if (in.integer("number of solution types") != 1)
+                                       in.fail("only one solution per vertex is supported");
+                                   if (in.integer("solution type") != 1)
+                                       in.fail("only scalar solutions (type 1) are supported");
+                                   values.resize(n);
+                                   for (double& v : values) v = in.real("solution value");
+                                   return true;
+                               });
     if (!seen_solution) io::throw_input(path, "no SolAtVertices section");
     return values;
 }
 
-std::vector<double> read_solb(const std::string& path, const std::string& data, int expected_vertices)
+std::vector<double> read_solb(const std::string& path, const std::string& data,
+                              int expected_vertices)
 {
     BinaryReader in(path, data, 0, false);
     medit::BinaryFile file(in);
@@ -127,32 +130,38 @@ void write_sol(const std::vector<double>& values, const std::string& path)
     const std::string ext = sol_extension(path);
     if (values.size() > static_cast<std::size_t>(INT_MAX))
         throw InputError(path + ": too many values for a solution file");
-    write_file_atomically(path, [&](std::ostream& out) {
-        TextWriter w(out);
-        if (ext == ".sol")
+    write_file_atomically(
+        path,
+        [&](std::ostream& out)
         {
-            w.text("MeshVersionFormatted 2\n\nDimension 3\n\nSolAtVertices\n")
-                .integer(static_cast<long long>(values.size()))
-                .text("\n1 1\n");
-            for (double v : values) w.real(v).character('\n');
-            w.text("\nEnd\n");
-        }
-        else
-        {
-            // version 2: int32 positions, float64 values
-            w.raw(std::int32_t{1}).raw(std::int32_t{2});
-            // each block: code, absolute position of the next block, payload
-            const std::size_t after_dimension = w.offset() + 4 + 4 + 4;
-            w.raw(std::int32_t{gmf::kDimension}).raw(static_cast<std::int32_t>(after_dimension));
-            w.raw(std::int32_t{3});
-            const std::size_t next = w.offset() + 4 + 4 + 4 + 8 + 8 * values.size();
-            w.raw(std::int32_t{gmf::kSolAtVertices}).raw(static_cast<std::int32_t>(next));
-            w.raw(static_cast<std::int32_t>(values.size())).raw(std::int32_t{1}).raw(std::int32_t{1});
-            w.bytes(values.data(), values.size() * sizeof(double));
-            w.raw(std::int32_t{gmf::kEnd}).raw(std::int32_t{0});
-        }
-        w.flush();
-    });
+            TextWriter w(out);
+            if (ext == ".sol")
+            {
+                w.text("MeshVersionFormatted 2\n\nDimension 3\n\nSolAtVertices\n")
+                    .integer(static_cast<long long>(values.size()))
+                    .text("\n1 1\n");
+                for (double v : values) w.real(v).character('\n');
+                w.text("\nEnd\n");
+            }
+            else
+            {
+                // version 2: int32 positions, float64 values
+                w.raw(std::int32_t{1}).raw(std::int32_t{2});
+                // each block: code, absolute position of the next block, payload
+                const std::size_t after_dimension = w.offset() + 4 + 4 + 4;
+                w.raw(std::int32_t{gmf::kDimension})
+                    .raw(static_cast<std::int32_t>(after_dimension));
+                w.raw(std::int32_t{3});
+                const std::size_t next = w.offset() + 4 + 4 + 4 + 8 + 8 * values.size();
+                w.raw(std::int32_t{gmf::kSolAtVertices}).raw(static_cast<std::int32_t>(next));
+                w.raw(static_cast<std::int32_t>(values.size()))
+                    .raw(std::int32_t{1})
+                    .raw(std::int32_t{1});
+                w.bytes(values.data(), values.size() * sizeof(double));
+                w.raw(std::int32_t{gmf::kEnd}).raw(std::int32_t{0});
+            }
+            w.flush();
+        });
 }
 
 }  // namespace hdimesh

@@ -65,7 +65,8 @@ struct AdaptReport
 /// along a space-filling curve (volume/reorder.h); refs, boundary triangles, feature edges,
 /// corners and vertex classes are carried. A solver that needs to transfer fields maps them
 /// by position (e.g. volume/point_locator.h on the old mesh), not by id.
-AdaptReport adapt(volume::TetMesh& mesh, const volume::SizeField& field, const AdaptOptions& options = {});
+AdaptReport adapt(volume::TetMesh& mesh, const volume::SizeField& field,
+                  const AdaptOptions& options = {});
 
 /// The time split and the size verdict, preceded by the per-pass table when with_passes.
 std::string format_adapt_report(const AdaptReport& report, bool with_passes = true);

@@ -1,9 +1,9 @@
 #pragma once
 // The target edge length of the surface remesher: uniform (--hsiz), given at the input
-// vertices (--sol, read by common/sol_io.h), or curvature-adaptive from a geometric tolerance (--hausd, Mmg semantics:
-// a triangle of side h on a surface of curvature k strays about h²k/6 from it; with a margin
-// for the curvature estimate, h = √(3·hausd/k)),
-// bounded by hmin/hmax and graded by hgrad.
+// vertices (--sol, read by common/sol_io.h), or curvature-adaptive from a geometric tolerance
+// (--hausd, Mmg semantics: a triangle of side h on a surface of curvature k strays about h²k/6 from
+// it; with a margin for the curvature estimate, h = √(3·hausd/k)), bounded by hmin/hmax and graded
+// by hgrad.
 
 #include <string>
 #include <vector>

@@ -1,14 +1,14 @@
 #include "surface/surface_io.h"
 
+#include <unistd.h>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
 #include <algorithm>
 #include <climits>
 #include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <unistd.h>
-
-#include <OpenMesh/Core/IO/MeshIO.hh>
 
 #include "common/buffer_io.h"
 #include "common/errors.h"
@@ -130,12 +130,19 @@ int skipped_medit_tokens_per_item(std::string_view keyword)
         const char* keyword;
         int tokens;
     };
-    static constexpr Width kWidths[] = {
-        {"Edges", 3},           {"Quadrilaterals", 5},    {"Tetrahedra", 5},
-        {"Hexahedra", 9},       {"Ridges", 1},            {"Corners", 1},
-        {"RequiredVertices", 1}, {"RequiredEdges", 1},    {"RequiredTriangles", 1},
-        {"Normals", 3},         {"NormalAtVertices", 2}, {"Tangents", 3},
-        {"TangentAtVertices", 2}};
+    static constexpr Width kWidths[] = {{"Edges", 3},
+                                        {"Quadrilaterals", 5},
+                                        {"Tetrahedra", 5},
+                                        {"Hexahedra", 9},
+                                        {"Ridges", 1},
+                                        {"Corners", 1},
+                                        {"RequiredVertices", 1},
+                                        {"RequiredEdges", 1},
+                                        {"RequiredTriangles", 1},
+                                        {"Normals", 3},
+                                        {"NormalAtVertices", 2},
+                                        {"Tangents", 3},
+                                        {"TangentAtVertices", 2}};
     for (const Width& w : kWidths)
         if (keyword == w.keyword) return w.tokens;
     return 0;
@@ -147,45 +154,48 @@ TriangleSoup read_medit(const std::string& path)
     io::TextReader in(path, data, '#');
     TriangleSoup soup;
     bool has_vertices = false;
-    medit::read_ascii_keywords(in, medit::EndKeyword::Optional, nullptr, [&](std::string_view keyword) {
-        if (keyword == "Vertices")
+    medit::read_ascii_keywords(
+        in, medit::EndKeyword::Optional, nullptr,
+        [&](std::string_view keyword)
         {
-            const std::size_t n = in.count("Vertices count", 8);
-            for (std::size_t i = 0; i < n; ++i)
+            if (keyword == "Vertices")
             {
-                Vec3d p;
-                for (int k = 0; k < 3; ++k) p[k] = in.real("vertex coordinate");
-                in.integer("vertex ref");
-                soup.points.push_back(p);
-            }
-            has_vertices = true;
-        }
-        else if (keyword == "Triangles")
-        {
-            if (!has_vertices) in.fail("Triangles before Vertices");
-            const std::size_t n = in.count("Triangles count", 8);
-            for (std::size_t i = 0; i < n; ++i)
-            {
-                std::array<int, 3> tri;
-                for (int k = 0; k < 3; ++k)
+                const std::size_t n = in.count("Vertices count", 8);
+                for (std::size_t i = 0; i < n; ++i)
                 {
-                    const long long idx = in.integer("vertex index") - 1;
-                    check_index(in, idx, soup.points.size());
-                    tri[k] = static_cast<int>(idx);
+                    Vec3d p;
+                    for (int k = 0; k < 3; ++k) p[k] = in.real("vertex coordinate");
+                    in.integer("vertex ref");
+                    soup.points.push_back(p);
                 }
-                soup.triangles.push_back(tri);
-                soup.refs.push_back(static_cast<int>(in.integer_in("ref", INT_MIN, INT_MAX)));
+                has_vertices = true;
             }
-        }
-        else if (const int width = skipped_medit_tokens_per_item(keyword))
-        {
-            const std::size_t n = in.count("item count", 2 * width);
-            for (std::size_t i = 0; i < n * width; ++i) in.real(std::string(keyword).c_str());
-        }
-        else
-            return false;
-        return true;
-    });
+            else if (keyword == "Triangles")
+            {
+                if (!has_vertices) in.fail("Triangles before Vertices");
+                const std::size_t n = in.count("Triangles count", 8);
+                for (std::size_t i = 0; i < n; ++i)
+                {
+                    std::array<int, 3> tri;
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        const long long idx = in.integer("vertex index") - 1;
+                        check_index(in, idx, soup.points.size());
+                        tri[k] = static_cast<int>(idx);
+                    }
+                    soup.triangles.push_back(tri);
+                    soup.refs.push_back(static_cast<int>(in.integer_in("ref", INT_MIN, INT_MAX)));
+                }
+            }
+            else if (const int width = skipped_medit_tokens_per_item(keyword))
+            {
+                const std::size_t n = in.count("item count", 2 * width);
+                for (std::size_t i = 0; i < n * width; ++i) in.real(std::string(keyword).c_str());
+            }
+            else
+                return false;
+            return true;
+        });
     return soup;
 }
 

@@ -53,10 +53,13 @@ struct IndexSection
 constexpr IndexSection kIndexSections[] = {
     {"Ridges", gmf::kRidges, &TetMesh::ridges, IndexTarget::Edges},
     {"Corners", gmf::kCorners, &TetMesh::corners, IndexTarget::Vertices},
-    {"RequiredVertices", gmf::kRequiredVertices, &TetMesh::required_vertices, IndexTarget::Vertices},
+    {"RequiredVertices", gmf::kRequiredVertices, &TetMesh::required_vertices,
+     IndexTarget::Vertices},
     {"RequiredEdges", gmf::kRequiredEdges, &TetMesh::required_edges, IndexTarget::Edges},
-    {"RequiredTriangles", gmf::kRequiredTriangles, &TetMesh::required_triangles, IndexTarget::Triangles},
-    {"RequiredTetrahedra", gmf::kRequiredTetrahedra, &TetMesh::required_tets, IndexTarget::Tetrahedra},
+    {"RequiredTriangles", gmf::kRequiredTriangles, &TetMesh::required_triangles,
+     IndexTarget::Triangles},
+    {"RequiredTetrahedra", gmf::kRequiredTetrahedra, &TetMesh::required_tets,
+     IndexTarget::Tetrahedra},
 };
 
 const IndexSection* find_index_section(std::string_view keyword)
@@ -81,7 +84,8 @@ public:
     TetMesh read()
     {
         medit::read_ascii_keywords(in_, medit::EndKeyword::Required, nullptr,
-                                   [this](std::string_view keyword) { return read_section(keyword); });
+                                   [this](std::string_view keyword)
+                                   { return read_section(keyword); });
         return std::move(mesh_);
     }
 
@@ -180,10 +184,14 @@ private:
     {
         switch (target)
         {
-            case IndexTarget::Vertices: return seen_vertices_;
-            case IndexTarget::Edges: return seen_edges_;
-            case IndexTarget::Triangles: return seen_triangles_;
-            case IndexTarget::Tetrahedra: return seen_tets_;
+            case IndexTarget::Vertices:
+                return seen_vertices_;
+            case IndexTarget::Edges:
+                return seen_edges_;
+            case IndexTarget::Triangles:
+                return seen_triangles_;
+            case IndexTarget::Tetrahedra:
+                return seen_tets_;
         }
         return false;
     }
@@ -192,10 +200,14 @@ private:
     {
         switch (target)
         {
-            case IndexTarget::Vertices: return mesh_.points.size();
-            case IndexTarget::Edges: return mesh_.edges.size();
-            case IndexTarget::Triangles: return mesh_.triangles.size();
-            case IndexTarget::Tetrahedra: return mesh_.tets.size();
+            case IndexTarget::Vertices:
+                return mesh_.points.size();
+            case IndexTarget::Edges:
+                return mesh_.edges.size();
+            case IndexTarget::Triangles:
+                return mesh_.triangles.size();
+            case IndexTarget::Tetrahedra:
+                return mesh_.tets.size();
         }
         return 0;
     }
@@ -231,13 +243,21 @@ private:
     {
         switch (keyword.code)
         {
-            case gmf::kDimension: file_.dimension(); break;
-            case gmf::kVertices: read_vertices(); break;
-            case gmf::kEdges: read_elements(mesh_.edges, mesh_.edge_refs, "Edges"); break;
+            case gmf::kDimension:
+                file_.dimension();
+                break;
+            case gmf::kVertices:
+                read_vertices();
+                break;
+            case gmf::kEdges:
+                read_elements(mesh_.edges, mesh_.edge_refs, "Edges");
+                break;
             case gmf::kTriangles:
                 read_elements(mesh_.triangles, mesh_.triangle_refs, "Triangles");
                 break;
-            case gmf::kTetrahedra: read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra"); break;
+            case gmf::kTetrahedra:
+                read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra");
+                break;
             case gmf::kNormals:
             case gmf::kTangents:
             case gmf::kNormalAtVertices:

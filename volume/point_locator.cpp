@@ -29,12 +29,14 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
                                std::array<double, 3>& w)
 {
     // the answer at vertex k, or at x + v * along on the edge from vertex i to vertex j
-    auto at_vertex = [&w](const Vec3& x, int k) {
+    auto at_vertex = [&w](const Vec3& x, int k)
+    {
         w = {0, 0, 0};
         w[k] = 1;
         return x;
     };
-    auto on_edge = [&w](const Vec3& x, const Vec3& along, double v, int i, int j) -> Vec3 {
+    auto on_edge = [&w](const Vec3& x, const Vec3& along, double v, int i, int j) -> Vec3
+    {
         w = {0, 0, 0};
         w[i] = 1 - v;
         w[j] = v;

@@ -348,7 +348,6 @@ std::string prove(const Configuration& config, const std::vector<LocalTet>& tets
     return {};
 }
 
-
 /// The rule of method.md: a configuration has no tetrahedralization iff it has quads and every
 /// midpoint on a quad is the end of exactly one diagonal.
 bool schonhardt_by_rule(int mask, int diagonals)
@@ -399,7 +398,6 @@ struct Entry
     std::vector<LocalTet> tets;
     std::vector<LocalTriangle> boundary;
 };
-
 
 /// One table row of local tets or triangles: "    {a, b, c, d}, {..},", no line end.
 template <std::size_t N>
@@ -492,7 +490,8 @@ int main(int argc, char** argv)
             for (int f = 0; f < 4; ++f)
                 for (const auto& t : face_triangles(mask, diagonals, f)) config.boundary.push_back(t);
 
-            Entry entry{mask, diagonals, hdimesh::volume::paper_pattern_code(mask, diagonals), false, {}, config.boundary};
+            const int code = hdimesh::volume::paper_pattern_code(mask, diagonals);
+            Entry entry{mask, diagonals, code, false, {}, config.boundary};
             entry.tets = Tetrahedralizer(config, false).solve();
             if (entry.tets.empty())
             {
