@@ -3,9 +3,9 @@
 // reader and writer of both meshes shares (Medit, Gmsh, VTU, .sol). A text tokenizer that
 // tracks line numbers, a bounds-checked binary cursor on the same buffer, a buffered writer.
 //
-// Why one buffer: parsing from memory with std::from_chars is 5-10x faster than iostream >>,
+// Why one buffer: parsing from memory with std::from_chars skips iostream's per-token work,
 // Gmsh binary files interleave text lines and binary blocks, and bounding every count read from
-// a header by the bytes left in the buffer makes corrupted headers harmless (no 10^18 reserve).
+// a header by the bytes left in the buffer makes corrupted headers harmless (no huge reserve).
 
 #include <charconv>
 #include <cstdint>
