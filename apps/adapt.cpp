@@ -1,15 +1,17 @@
 // adapt: adapts a tet mesh and its boundary to a size field (parse -> read -> adapt -> write).
+#include "coupling/adapt.h"
+
 #include <cstdio>
 #include <iostream>
 
-#include "cli.h"
-#include "coupling/adapt.h"
-#include "volume/check.h"
 #include "common/errors.h"
+#include "size_flags.h"
+#include "volume/check.h"
 #include "volume/quality_report.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
+using namespace hdimesh::volume;
 
 int main(int argc, char** argv)
 {
@@ -28,14 +30,16 @@ int main(int argc, char** argv)
         cl.option("-o", &output, "output mesh (.mesh .meshb .msh .vtu)");
         size.add_to(cl, true);
         cl.option("--stats", &stats_path, "write the final quality report as JSON");
-        cl.flag("--check", &check, "print the mesh checker's verdict on the input and output");
+        cl.flags({
+            {"--check", &check, "print the mesh checker's verdict on the input and output"},
+            {"--no-optimize", &no_optimize, "refinement (and projection) only"},
+            {"--no-projection", &no_projection, "keep the boundary as the input polyhedron"},
+            {"--noswap", &noswap, "no edge/face removal during optimization"},
+            {"--nomove", &nomove, "no vertex smoothing during optimization"},
+            {"--noinsert", &noinsert, "no refinement (no vertex insertion)"},
+            {"--optim", &optim_only, "optimize only: keep the sizes of the input mesh"},
+        });
         cl.option("-v", &verbosity, "0 silent, 1 summary (default), 2 a table per pass");
-        cl.flag("--no-optimize", &no_optimize, "refinement (and projection) only");
-        cl.flag("--no-projection", &no_projection, "keep the boundary as the input polyhedron");
-        cl.flag("--noswap", &noswap, "no edge/face removal during optimization");
-        cl.flag("--nomove", &nomove, "no vertex smoothing during optimization");
-        cl.flag("--noinsert", &noinsert, "no refinement (no vertex insertion)");
-        cl.flag("--optim", &optim_only, "optimize only: keep the sizes of the input mesh");
         cl.option("--max-passes", &options.max_passes, "refinement passes at most (default 40)");
         cl.parse(argc, argv);
         if (output.empty()) throw InputError("missing -o OUT (see --help)");

@@ -3,15 +3,20 @@
 // Mmg-style "--key value" options, and one error line + non-zero exit on any failure.
 
 #include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "volume/size_field.h"
-#include "volume/tet_mesh.h"
+#include "common/errors.h"
 
 namespace hdimesh::cli
 {
+
+/// A malformed command line: run() answers it with exit code 2.
+class UsageError : public InputError
+{
+public:
+    using InputError::InputError;
+};
 
 class CommandLine
 {
@@ -23,6 +28,14 @@ public:
                     bool required = true);
     /// A flag without value ("--check").
     void flag(const std::string& name, bool* target, const std::string& help);
+    struct Flag
+    {
+        std::string name;
+        bool* target;
+        std::string help;
+    };
+    /// A tool's switches as one table.
+    void flags(const std::vector<Flag>& table);
     /// Options with one value ("--hmin 0.01"). `was_set`, if given, tells whether it appeared.
     void option(const std::string& name, double* target, const std::string& help,
                 bool* was_set = nullptr);
@@ -55,26 +68,16 @@ private:
 /// exit code 1 (2 for a bad command line).
 int run(const char* program, const std::function<int()>& body);
 
-/// The size-field flags shared by adapt and meshstat (Mmg names).
-struct SizeFlags
+/// The Mmg size flags every tool shares: --hsiz, --sol and, when with_bounds, --hmin, --hmax,
+/// --hgrad. Each tool checks and applies them its own way; 0 means not given.
+struct SizeOptions
 {
-    double hsiz = 0;          ///< --hsiz: constant size
-    std::string sol;          ///< --sol: sizes at the input mesh's vertices (Medit .sol)
-    std::string bench_field;  ///< --bench-field: the paper's cases A-E
-    double hmin = 0, hmax = 0, hgrad = 0;  ///< 0: not set
-    bool hsiz_set = false;
+    double hsiz = 0;  ///< --hsiz: constant size
+    std::string sol;  ///< --sol: sizes at the input's vertices (Medit .sol/.solb)
+    double hmin = 0, hmax = 0, hgrad = 0;
+    bool hsiz_set = false, sol_set = false, hmax_set = false, hgrad_set = false;
 
-    /// Registers --hsiz, --sol, --bench-field and, when with_bounds, --hmin/--hmax/--hgrad.
     void add_to(CommandLine& cli, bool with_bounds);
-    bool any() const { return hsiz_set || !sol.empty() || !bench_field.empty(); }
-    /// The field they describe over `input` (the mesh the .sol belongs to). With no size flag:
-    /// the input's own sizes (mean length of the edges at each vertex, linear in each tet), so
-    /// --optim keeps the sizes. --hmin/--hmax clamp; --hgrad bounds the size ratio between
-    /// neighbouring vertices (Mmg's H-correction) on the input mesh's vertices: for a .sol the
-    /// corrected values are the field, for an analytic field the field becomes
-    /// min(analytic, graded samples), so it keeps its own resolution and gradation only ever
-    /// shrinks sizes. Throws InputError on conflicting or invalid flags.
-    std::shared_ptr<const SizeField> make(const TetMesh& input) const;
 };
 
 }  // namespace hdimesh::cli

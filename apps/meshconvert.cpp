@@ -2,11 +2,13 @@
 #include <iostream>
 
 #include "cli.h"
-#include "volume/check.h"
 #include "common/errors.h"
+#include "common/sol_io.h"
+#include "volume/check.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
+using namespace hdimesh::volume;
 
 int main(int argc, char** argv)
 {
@@ -19,10 +21,13 @@ int main(int argc, char** argv)
         cl.positional("IN", &input, "input mesh (.mesh .meshb .msh)");
         cl.positional("OUT", &output, "output mesh (.mesh .meshb .msh .vtu)");
         cl.option("--msh-version", &msh_version, "Gmsh version to write: 2.2 or 4.1 (default)");
-        cl.flag("--binary", &binary, "write .msh in binary");
-        cl.option("--sol", &sol_path, "a .sol/.solb on the input's vertices, written as .vtu point data \"size\"");
-        cl.flag("--no-check", &no_check, "write even if the mesh checker finds violations");
-        cl.flag("--verbose", &verbose, "print the counts read");
+        cl.flags({
+            {"--binary", &binary, "write .msh in binary"},
+            {"--no-check", &no_check, "write even if the mesh checker finds violations"},
+            {"--verbose", &verbose, "print the counts read"},
+        });
+        cl.option("--sol", &sol_path,
+                  "a .sol/.solb on the input's vertices, written as .vtu point data \"size\"");
         cl.parse(argc, argv);
         if (msh_version != "2.2" && msh_version != "4.1")
             throw InputError("--msh-version expects 2.2 or 4.1, got '" + msh_version + "'");

@@ -3,13 +3,14 @@
 #include <iostream>
 #include <string>
 
-#include "cli.h"
-#include "volume/check.h"
 #include "common/errors.h"
+#include "size_flags.h"
+#include "volume/check.h"
 #include "volume/quality_report.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
+using namespace hdimesh::volume;
 
 namespace
 {

@@ -6,15 +6,16 @@
 // bounding-box diagonal and hmax = the input's mean edge length × 2 (so a default run never
 // coarsens beyond twice the input's resolution and never ignores the model's scale).
 
-#include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 #include "apps/cli.h"
+#include "common/atomic_file.h"
+#include "common/errors.h"
+#include "common/sol_io.h"
+#include "common/stage_timer.h"
 #include "surface/remesh.h"
 #include "surface/sizing.h"
-#include "common/errors.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
 
@@ -27,10 +28,7 @@ namespace
 void write_stats(const std::string& path, const QualityReport& before, const QualityReport& after,
                  const SurfaceRemeshResult& result, double seconds)
 {
-    const std::string temp = path + ".tmp";
-    {
-        std::ofstream out(temp);
-        if (!out) throw IoError(path + ": cannot open for writing");
+    write_file_atomically(path, [&](std::ostream& out) {
         auto report = [&](const char* name, const QualityReport& r, bool last) {
             out << "  \"" << name << "\": {\"vertices\": " << r.vertices << ", \"triangles\": " << r.faces
                 << ", \"qe_min\": " << r.qe_min << ", \"qe_mean\": " << r.qe_mean
@@ -49,9 +47,7 @@ void write_stats(const std::string& path, const QualityReport& before, const Qua
         report("before", before, false);
         report("after", after, true);
         out << "}\n";
-        if (!out) throw IoError(path + ": write failed");
-    }
-    if (std::rename(temp.c_str(), path.c_str()) != 0) throw IoError(path + ": cannot rename into place");
+    });
 }
 
 }  // namespace
@@ -59,30 +55,30 @@ void write_stats(const std::string& path, const QualityReport& before, const Qua
 int main(int argc, char** argv)
 {
     return cli::run("surfremesh", [&]() {
-        std::string input, output, sol, stats;
-        double hsiz = 0, hausd = 0, hmin = 0, hmax = 0, hgrad = 1.3, ridge_angle = 45;
-        bool use_hdi = false, has_hsiz = false, has_sol = false, has_hausd = false, no_ridges = false, has_hmax = false;
+        std::string input, output, stats;
+        cli::SizeOptions size;
+        double hausd = 0, ridge_angle = 45;
+        bool use_hdi = false, has_hausd = false, no_ridges = false;
         int verbosity = 1, iterations = 8;
         cli::CommandLine cmd("surfremesh", "Remesh a triangle surface (OBJ, OFF, STL, PLY, Medit .mesh) to a size.");
         cmd.positional("IN", &input, "input surface");
         cmd.option("-o", &output, "output surface (format by extension)");
-        cmd.option("--hsiz", &hsiz, "uniform target edge length", &has_hsiz);
-        cmd.option("--sol", &sol, "Medit .sol with a target size per input vertex", &has_sol);
+        size.add_to(cmd, true);
         cmd.option("--hausd", &hausd, "geometric tolerance: curvature-adaptive size (default 0.002*diag)", &has_hausd);
-        cmd.option("--hmin", &hmin, "smallest size");
-        cmd.option("--hmax", &hmax, "largest size", &has_hmax);
-        cmd.option("--hgrad", &hgrad, "size gradation (default 1.3; <= 1: none)");
         cmd.option("--ridge-angle", &ridge_angle, "ridge detection angle in degrees (default 45)");
-        cmd.flag("--hdi", &use_hdi, "smooth vertices on the HDI model instead of the input facets (experimental)");
-        cmd.flag("--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)");
+        cmd.flags({
+            {"--hdi", &use_hdi, "smooth vertices on the HDI model instead of the input facets (experimental)"},
+            {"--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)"},
+        });
         cmd.option("--iterations", &iterations, "remeshing iterations (default 8)");
         cmd.option("--stats", &stats, "write the before/after figures as JSON");
         cmd.option("-v", &verbosity, "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details)");
         cmd.parse(argc, argv);
         if (output.empty()) throw InputError("missing -o OUT");
+        const bool has_hsiz = size.hsiz_set, has_sol = size.sol_set;
         if ((has_hsiz ? 1 : 0) + (has_sol ? 1 : 0) + (has_hausd ? 1 : 0) > 1)
             throw InputError("give at most one of --hsiz, --sol, --hausd");
-        if (has_hsiz && !(hsiz > 0)) throw InputError("--hsiz must be positive");
+        if (has_hsiz && !(size.hsiz > 0)) throw InputError("--hsiz must be positive");
 
         ReadReport read_report;
         SurfaceMesh mesh = read_surface(input, &read_report);
@@ -92,20 +88,21 @@ int main(int argc, char** argv)
         SurfaceRemeshSettings settings;
         settings.features.detect_ridges = !no_ridges;
         settings.features.ridge_angle_deg = ridge_angle;
-        settings.sizing.hsiz = has_hsiz ? hsiz : 0.0;
+        settings.sizing.hsiz = has_hsiz ? size.hsiz : 0.0;
         settings.sizing.hausd = has_hausd ? hausd : 0.0;
-        settings.sizing.hmin = hmin;
-        settings.sizing.hmax = hmax;
-        settings.sizing.hgrad = hgrad;
+        settings.sizing.hmin = size.hmin;
+        settings.sizing.hmax = size.hmax;
+        // default 1.3; <= 1: no gradation
+        settings.sizing.hgrad = size.hgrad_set ? size.hgrad : 1.3;
         settings.iterations = iterations;
         settings.use_hdi = use_hdi;
         settings.verbosity = verbosity > 1 ? verbosity - 1 : 0;
-        if (has_sol) settings.input_sizes = read_medit_sol(sol, mesh.n_vertices());
-        if (!has_hsiz && !has_sol && !has_hausd && !has_hmax) settings.sizing.hmax = 2.0 * mean_edge_length(mesh);
+        if (has_sol) settings.input_sizes = read_sol_sizes(size.sol, static_cast<int>(mesh.n_vertices()));
+        if (!has_hsiz && !has_sol && !has_hausd && !size.hmax_set) settings.sizing.hmax = 2.0 * mean_edge_length(mesh);
 
-        const auto start = std::chrono::steady_clock::now();
+        const WallStopwatch stopwatch;
         const SurfaceRemeshResult result = remesh_surface(mesh, settings);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds = stopwatch.seconds();
         write_surface(mesh, output);
 
         if (verbosity > 0 || !stats.empty())

@@ -10,6 +10,20 @@ namespace hdimesh
 /// CPU seconds the calling thread has used since it started.
 double thread_cpu_seconds();
 
+/// Wall time since construction (or the last restart()): no system call, so it can time the
+/// operators inside a per-element loop.
+class WallStopwatch
+{
+public:
+    WallStopwatch() { restart(); }
+    void restart() { start_ = Clock::now(); }
+    double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point start_;
+};
+
 /// A running clock of both times since construction (or the last restart()).
 class Stopwatch
 {
@@ -17,18 +31,14 @@ public:
     Stopwatch() { restart(); }
     void restart()
     {
-        wall_start_ = Clock::now();
+        wall_.restart();
         cpu_start_ = thread_cpu_seconds();
     }
-    double wall_seconds() const
-    {
-        return std::chrono::duration<double>(Clock::now() - wall_start_).count();
-    }
+    double wall_seconds() const { return wall_.seconds(); }
     double cpu_seconds() const { return thread_cpu_seconds() - cpu_start_; }
 
 private:
-    using Clock = std::chrono::steady_clock;
-    Clock::time_point wall_start_;
+    WallStopwatch wall_;
     double cpu_start_ = 0.0;
 };
 

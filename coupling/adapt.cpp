@@ -14,6 +14,8 @@
 namespace hdimesh::coupling
 {
 
+using namespace volume;
+
 namespace
 {
 

@@ -28,7 +28,7 @@ struct AdaptOptions
     bool optimize = true;  ///< improve after each pass and at the end (--no-optimize)
     bool project = true;   ///< keep boundary vertices on the HDI model (--no-projection)
     int max_passes = 40;   ///< refinement passes at most
-    OptimizeOptions optimizer;
+    volume::OptimizeOptions optimizer;
     ProjectionOptions projection;
     /// 0 silent; 1 progress on stderr when it is a terminal; 2 also a table row per pass on
     /// stdout as the passes run.
@@ -65,7 +65,8 @@ struct AdaptReport
 /// along a space-filling curve (volume/reorder.h); refs, boundary triangles, feature edges,
 /// corners and vertex classes are carried. A solver that needs to transfer fields maps them
 /// by position (e.g. volume/point_locator.h on the old mesh), not by id.
-AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& options = {});
+AdaptReport adapt(volume::TetMesh& mesh, const volume::SizeField& field,
+                  const AdaptOptions& options = {});
 
 /// The time split and the size verdict, preceded by the per-pass table when with_passes.
 std::string format_adapt_report(const AdaptReport& report, bool with_passes = true);

@@ -8,6 +8,8 @@
 namespace hdimesh::coupling
 {
 
+using namespace volume;
+
 namespace
 {
 

@@ -36,16 +36,16 @@ class BoundaryProjector
 public:
     /// Builds the model from mesh.triangles (all boundary and interface triangles), with the
     /// mesh's ridges and corners as features plus those detected by dihedral angle.
-    BoundaryProjector(const TetMesh& mesh, const ProjectionOptions& options = {});
+    BoundaryProjector(const volume::TetMesh& mesh, const ProjectionOptions& options = {});
     ~BoundaryProjector();
 
     /// Moves each listed Surface/Ridge vertex onto the model (Ridge vertices onto the ridge
     /// fit; Corner and Interior vertices are left alone). Vertex balls are walked over the
     /// adjacency (built here if missing); positions change, topology does not.
-    ProjectionReport project(TetMesh& mesh, const std::vector<int>& vertices) const;
+    ProjectionReport project(volume::TetMesh& mesh, const std::vector<int>& vertices) const;
 
     /// Projects every Surface/Ridge vertex of the mesh (finishes earlier shortened moves).
-    ProjectionReport project_all(TetMesh& mesh) const;
+    ProjectionReport project_all(volume::TetMesh& mesh) const;
 
     const hdi::HdiSurface& model() const { return *model_; }
 

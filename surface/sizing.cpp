@@ -2,11 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <limits>
-#include <sstream>
-
-#include "common/errors.h"
 
 namespace hdimesh::surface
 {
@@ -128,66 +123,6 @@ void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const
     }
     if (options.hmin > 0.0)
         for (double& s : sizes) s = std::max(s, options.hmin);
-}
-
-std::vector<double> read_medit_sol(const std::string& path, std::size_t vertices)
-{
-    std::ifstream in(path);
-    if (!in) throw IoError(path + ": cannot open");
-    std::vector<std::string> tokens;
-    std::vector<int> token_line;
-    std::string line;
-    int line_number = 0;
-    while (std::getline(in, line))
-    {
-        ++line_number;
-        const auto hash = line.find('#');
-        if (hash != std::string::npos) line.erase(hash);
-        std::istringstream words(line);
-        std::string word;
-        while (words >> word)
-        {
-            tokens.push_back(word);
-            token_line.push_back(line_number);
-        }
-    }
-    auto fail = [&](std::size_t token, const std::string& what) {
-        const int at = token < token_line.size() ? token_line[token] : line_number;
-        throw InputError(path + ":" + std::to_string(at) + ": " + what);
-    };
-    auto number = [&](std::size_t token) {
-        if (token >= tokens.size()) fail(token, "unexpected end of file");
-        try
-        {
-            std::size_t used = 0;
-            const double value = std::stod(tokens[token], &used);
-            if (used != tokens[token].size()) fail(token, "not a number: " + tokens[token]);
-            return value;
-        }
-        catch (const std::logic_error&)
-        {
-            fail(token, "not a number: " + tokens[token]);
-        }
-        return 0.0;
-    };
-    for (std::size_t i = 0; i < tokens.size(); ++i)
-    {
-        if (tokens[i] != "SolAtVertices") continue;
-        const auto count = static_cast<std::size_t>(number(i + 1));
-        if (count != vertices)
-            fail(i + 1, "SolAtVertices has " + std::to_string(count) + " values, the mesh has " +
-                            std::to_string(vertices) + " vertices");
-        const int types = static_cast<int>(number(i + 2));
-        if (types != 1 || static_cast<int>(number(i + 3)) != 1) fail(i + 2, "only one scalar solution is supported");
-        std::vector<double> sizes(count);
-        for (std::size_t k = 0; k < count; ++k)
-        {
-            sizes[k] = number(i + 4 + k);
-            if (!(sizes[k] > 0.0)) fail(i + 4 + k, "size must be positive");
-        }
-        return sizes;
-    }
-    throw InputError(path + ": no SolAtVertices section");
 }
 
 }  // namespace hdimesh::surface

@@ -1,9 +1,9 @@
 #pragma once
 // The target edge length of the surface remesher: uniform (--hsiz), given at the input
-// vertices (--sol), or curvature-adaptive from a geometric tolerance (--hausd, Mmg semantics:
-// a triangle of side h on a surface of curvature k strays about h²k/6 from it; with a margin
-// for the curvature estimate, h = √(3·hausd/k)),
-// bounded by hmin/hmax and graded by hgrad.
+// vertices (--sol, read by common/sol_io.h), or curvature-adaptive from a geometric tolerance
+// (--hausd, Mmg semantics: a triangle of side h on a surface of curvature k strays about h²k/6 from
+// it; with a margin for the curvature estimate, h = √(3·hausd/k)), bounded by hmin/hmax and graded
+// by hgrad.
 
 #include <string>
 #include <vector>
@@ -51,9 +51,5 @@ void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const
 
 /// Mean edge length of a mesh (the default size when none is given).
 double mean_edge_length(const SurfaceMesh& mesh);
-
-/// Reads a Medit .sol file with one scalar per vertex (SolAtVertices, type 1); throws
-/// InputError naming the file and line when malformed or when the count is not `vertices`.
-std::vector<double> read_medit_sol(const std::string& path, std::size_t vertices);
 
 }  // namespace hdimesh::surface

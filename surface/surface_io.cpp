@@ -1,16 +1,18 @@
 #include "surface/surface_io.h"
 
+#include <unistd.h>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
 #include <algorithm>
-#include <cctype>
+#include <climits>
 #include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <unistd.h>
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
-
+#include "common/buffer_io.h"
 #include "common/errors.h"
+#include "common/medit_reader.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -18,86 +20,18 @@ namespace hdimesh::surface
 namespace
 {
 
+/// Lower-case extension without its dot ("obj"), or "" when there is none.
 std::string lower_extension(const std::string& path)
 {
-    const auto dot = path.find_last_of('.');
-    const auto slash = path.find_last_of('/');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot + 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext;
+    const std::string ext = io::lower_extension(path);
+    return ext.empty() ? ext : ext.substr(1);
 }
 
-// Whitespace tokens with their line numbers ('#' starts a comment).
-struct Tokens
-{
-    std::string path;
-    std::vector<std::string> words;
-    std::vector<int> lines;
-    std::size_t next = 0;
-
-    explicit Tokens(const std::string& file) : path(file)
-    {
-        std::ifstream in(file);
-        if (!in) throw IoError(file + ": cannot open for reading");
-        std::string line;
-        int number = 0;
-        while (std::getline(in, line))
-        {
-            ++number;
-            const auto hash = line.find('#');
-            if (hash != std::string::npos) line.erase(hash);
-            std::istringstream s(line);
-            std::string w;
-            while (s >> w)
-            {
-                words.push_back(w);
-                lines.push_back(number);
-            }
-        }
-    }
-    bool done() const { return next >= words.size(); }
-    int line() const { return next < lines.size() ? lines[next] : (lines.empty() ? 0 : lines.back()); }
-    [[noreturn]] void fail(const std::string& what) const
-    {
-        throw InputError(path + ":" + std::to_string(line()) + ": " + what);
-    }
-    const std::string& word()
-    {
-        if (done()) fail("unexpected end of file");
-        return words[next++];
-    }
-    double number()
-    {
-        const std::string& w = word();
-        try
-        {
-            std::size_t used = 0;
-            const double v = std::stod(w, &used);
-            if (used == w.size()) return v;
-        }
-        catch (const std::logic_error&)
-        {
-        }
-        --next;
-        fail("expected a number, found '" + w + "'");
-    }
-    long integer()
-    {
-        const double v = number();
-        if (v != static_cast<double>(static_cast<long>(v)))
-        {
-            --next;
-            fail("expected an integer");
-        }
-        return static_cast<long>(v);
-    }
-};
-
-void check_index(Tokens& t, long index, std::size_t count)
+void check_index(io::TextReader& in, long long index, std::size_t count)
 {
     if (index < 0 || static_cast<std::size_t>(index) >= count)
-        t.fail("vertex index " + std::to_string(index + 1) + " out of range (1.." + std::to_string(count) + ")");
+        in.fail("vertex index " + std::to_string(index + 1) + " out of range (1.." +
+                std::to_string(count) + ")");
 }
 
 TriangleSoup read_obj(const std::string& path)
@@ -155,33 +89,30 @@ TriangleSoup read_obj(const std::string& path)
 
 TriangleSoup read_off(const std::string& path)
 {
-    Tokens t(path);
+    const std::string data = io::load_file(path);
+    io::TextReader in(path, data, '#');
     TriangleSoup soup;
-    std::string head = t.word();
-    if (head != "OFF") t.next = 0;  // the header keyword is optional
-    const long nv = t.integer(), nf = t.integer();
-    t.integer();  // edges
-    if (nv < 0 || nf < 0) t.fail("negative counts");
-    for (long i = 0; i < nv; ++i)
+    if (in.token("OFF header") != "OFF") in.set_position(0, 1);  // the header keyword is optional
+    const std::size_t nv = in.count("vertex count", 6), nf = in.count("face count", 8);
+    in.integer("edge count");
+    for (std::size_t i = 0; i < nv; ++i)
     {
         Vec3d p;
-        for (int k = 0; k < 3; ++k) p[k] = t.number();
+        for (int k = 0; k < 3; ++k) p[k] = in.real("vertex coordinate");
         soup.points.push_back(p);
     }
-    for (long i = 0; i < nf; ++i)
+    for (std::size_t i = 0; i < nf; ++i)
     {
-        const int line = t.line();
-        const long k = t.integer();
-        if (k < 3) t.fail("a face needs at least three vertices");
+        const long long k = in.integer("face vertex count");
+        if (k < 3) in.fail("a face needs at least three vertices");
         std::vector<int> poly;
-        for (long j = 0; j < k; ++j)
+        for (long long j = 0; j < k; ++j)
         {
-            const long idx = t.integer();
-            check_index(t, idx, soup.points.size());
+            const long long idx = in.integer("vertex index");
+            check_index(in, idx, soup.points.size());
             poly.push_back(static_cast<int>(idx));
         }
-        // Colour values may follow on the same line.
-        while (!t.done() && t.lines[t.next] == line) t.next++;
+        in.skip_line();  // colour values may follow on the same line
         for (std::size_t j = 1; j + 1 < poly.size(); ++j)
         {
             soup.triangles.push_back({poly[0], poly[j], poly[j + 1]});
@@ -191,67 +122,80 @@ TriangleSoup read_off(const std::string& path)
     return soup;
 }
 
+/// Tokens per record of the Medit sections a surface does not use.
+int skipped_medit_tokens_per_item(std::string_view keyword)
+{
+    struct Width
+    {
+        const char* keyword;
+        int tokens;
+    };
+    static constexpr Width kWidths[] = {{"Edges", 3},
+                                        {"Quadrilaterals", 5},
+                                        {"Tetrahedra", 5},
+                                        {"Hexahedra", 9},
+                                        {"Ridges", 1},
+                                        {"Corners", 1},
+                                        {"RequiredVertices", 1},
+                                        {"RequiredEdges", 1},
+                                        {"RequiredTriangles", 1},
+                                        {"Normals", 3},
+                                        {"NormalAtVertices", 2},
+                                        {"Tangents", 3},
+                                        {"TangentAtVertices", 2}};
+    for (const Width& w : kWidths)
+        if (keyword == w.keyword) return w.tokens;
+    return 0;
+}
+
 TriangleSoup read_medit(const std::string& path)
 {
-    Tokens t(path);
+    const std::string data = io::load_file(path);
+    io::TextReader in(path, data, '#');
     TriangleSoup soup;
-    // Entries per record of the sections we skip.
-    const std::map<std::string, int> widths = {
-        {"Edges", 3}, {"Quadrilaterals", 5}, {"Tetrahedra", 5}, {"Hexahedra", 9}, {"Ridges", 1},
-        {"Corners", 1}, {"RequiredVertices", 1}, {"RequiredEdges", 1}, {"RequiredTriangles", 1},
-        {"Normals", 3}, {"NormalAtVertices", 2}, {"Tangents", 3}, {"TangentAtVertices", 2}};
     bool has_vertices = false;
-    while (!t.done())
-    {
-        const std::string key = t.word();
-        if (key == "MeshVersionFormatted")
-            t.integer();
-        else if (key == "Dimension")
+    medit::read_ascii_keywords(
+        in, medit::EndKeyword::Optional, nullptr,
+        [&](std::string_view keyword)
         {
-            if (t.integer() != 3) t.fail("only Dimension 3 is supported");
-        }
-        else if (key == "Vertices")
-        {
-            const long n = t.integer();
-            for (long i = 0; i < n; ++i)
+            if (keyword == "Vertices")
             {
-                Vec3d p;
-                for (int k = 0; k < 3; ++k) p[k] = t.number();
-                t.integer();  // ref
-                soup.points.push_back(p);
-            }
-            has_vertices = true;
-        }
-        else if (key == "Triangles")
-        {
-            if (!has_vertices) t.fail("Triangles before Vertices");
-            const long n = t.integer();
-            for (long i = 0; i < n; ++i)
-            {
-                std::array<int, 3> tri;
-                for (int k = 0; k < 3; ++k)
+                const std::size_t n = in.count("Vertices count", 8);
+                for (std::size_t i = 0; i < n; ++i)
                 {
-                    const long idx = t.integer() - 1;
-                    check_index(t, idx, soup.points.size());
-                    tri[k] = static_cast<int>(idx);
+                    Vec3d p;
+                    for (int k = 0; k < 3; ++k) p[k] = in.real("vertex coordinate");
+                    in.integer("vertex ref");
+                    soup.points.push_back(p);
                 }
-                soup.triangles.push_back(tri);
-                soup.refs.push_back(static_cast<int>(t.integer()));
+                has_vertices = true;
             }
-        }
-        else if (key == "End")
-            break;
-        else if (auto it = widths.find(key); it != widths.end())
-        {
-            const long n = t.integer();
-            for (long i = 0; i < n * it->second; ++i) t.number();
-        }
-        else
-        {
-            --t.next;
-            t.fail("unknown keyword '" + key + "'");
-        }
-    }
+            else if (keyword == "Triangles")
+            {
+                if (!has_vertices) in.fail("Triangles before Vertices");
+                const std::size_t n = in.count("Triangles count", 8);
+                for (std::size_t i = 0; i < n; ++i)
+                {
+                    std::array<int, 3> tri;
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        const long long idx = in.integer("vertex index") - 1;
+                        check_index(in, idx, soup.points.size());
+                        tri[k] = static_cast<int>(idx);
+                    }
+                    soup.triangles.push_back(tri);
+                    soup.refs.push_back(static_cast<int>(in.integer_in("ref", INT_MIN, INT_MAX)));
+                }
+            }
+            else if (const int width = skipped_medit_tokens_per_item(keyword))
+            {
+                const std::size_t n = in.count("item count", 2 * width);
+                for (std::size_t i = 0; i < n * width; ++i) in.real(std::string(keyword).c_str());
+            }
+            else
+                return false;
+            return true;
+        });
     return soup;
 }
 

@@ -10,9 +10,10 @@
 #include <sstream>
 #include <string>
 
+#include "common/errors.h"
+#include "common/sol_io.h"
 #include "fixtures.h"
 #include "volume/check.h"
-#include "common/errors.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
@@ -279,12 +280,30 @@ TEST_CASE(".sol: wrong count, unsupported types, truncation")
         return std::string();
     };
     const std::string head = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n";
-    check_message(sol_error("count.sol", head + "2\n1 1\n0.5\n0.5\nEnd\n", 3), "count.sol", ": ",
+    check_message(sol_error("count.sol", head + "2\n1 1\n0.5\n0.5\nEnd\n", 3), "count.sol", ":4:",
                   "has 2 values but the mesh has 3 vertices");
     check_message(sol_error("tensor.sol", head + "2\n1 3\n1 0 0 1 0 1\nEnd\n", -1), "tensor.sol", ":5:",
                   "only scalar");
     check_message(sol_error("cut.sol", head + "3\n1 1\n0.5\n0.5\n", -1), "cut.sol", ":", "unexpected end");
     check_message(sol_error("inf.sol", head + "1\n1 1\ninf\nEnd\n", -1), "inf.sol", ":6:", "not finite");
+}
+
+TEST_CASE(".sol as a size field: a value that is not positive names the file and the vertex")
+{
+    // three sizes, the second zero: adapt --sol and surfremesh --sol read it the same way
+    const std::string path = write_text(
+        "zero.sol",
+        "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n3\n1 1\n0.5\n0\n0.5\nEnd\n");
+    CHECK(read_sol(path, 3).size() == 3);
+    try
+    {
+        read_sol_sizes(path, 3);
+        FAIL("no InputError");
+    }
+    catch (const InputError& e)
+    {
+        check_message(e.what(), "zero.sol", ": ", "size at vertex 2 is not positive");
+    }
 }
 
 namespace

@@ -20,27 +20,26 @@ using namespace hdimesh;
 
 TEST_CASE("every vertex class of either mesh survives the round trip through the classification")
 {
-    for (VertexClass c : {VertexClass::Interior, VertexClass::Surface, VertexClass::Ridge,
-                          VertexClass::Corner})
-        CHECK(to_vertex_class(to_classification(c, 7)) == c);
-    using surface::VertexClass;
-    for (VertexClass c : {VertexClass::Smooth, VertexClass::Ridge, VertexClass::Boundary,
-                          VertexClass::Corner})
+    using V = volume::VertexClass;
+    for (V c : {V::Interior, V::Surface, V::Ridge, V::Corner})
+        CHECK(volume::to_vertex_class(volume::to_classification(c, 7)) == c);
+    using S = surface::VertexClass;
+    for (S c : {S::Smooth, S::Ridge, S::Boundary, S::Corner})
         CHECK(surface::to_vertex_class(surface::to_classification(c, 3)) == c);
 }
 
 TEST_CASE("the two meshes agree on what a ridge, a corner and a surface vertex lie on")
 {
     using S = surface::VertexClass;
-    CHECK(to_classification(hdimesh::VertexClass::Ridge).dimension == Dimension::Curve);
-    CHECK(surface::to_classification(S::Ridge) == to_classification(hdimesh::VertexClass::Ridge));
-    CHECK(surface::to_classification(S::Corner) == to_classification(hdimesh::VertexClass::Corner));
-    CHECK(surface::to_classification(S::Smooth) == to_classification(hdimesh::VertexClass::Surface));
+    CHECK(to_classification(volume::VertexClass::Ridge).dimension == Dimension::Curve);
+    CHECK(surface::to_classification(S::Ridge) == to_classification(volume::VertexClass::Ridge));
+    CHECK(surface::to_classification(S::Corner) == to_classification(volume::VertexClass::Corner));
+    CHECK(surface::to_classification(S::Smooth) == to_classification(volume::VertexClass::Surface));
     // an open-boundary curve is a curve to the tet mesh, a boundary curve to the surface
     const Classification open = surface::to_classification(S::Boundary, 2);
     CHECK(open.dimension == Dimension::Curve);
     CHECK(open.id == 2);
-    CHECK(to_vertex_class(open) == hdimesh::VertexClass::Ridge);
+    CHECK(volume::to_vertex_class(open) == volume::VertexClass::Ridge);
 }
 
 TEST_CASE("Qt and the 0.66 threshold: too long and too short on either side of h")

@@ -155,6 +155,27 @@ TEST_CASE("malformed and missing files are errors naming the file and line")
     CHECK_THROWS_AS(read_surface(medit), InputError);
 }
 
+TEST_CASE("OFF and Medit surfaces: colours and unused sections skipped, errors name the line")
+{
+    // one triangle; the OFF face line carries a colour, the Medit file a Corners section
+    const std::string off = write_text("colour.off",
+                                       "OFF # a comment\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"
+                                       "3 0 1 2 255 0 0\n");
+    CHECK(read_surface(off).n_faces() == 1);
+    const std::string head =
+        "MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 0\n1 0 0 0\n0 1 0 0\n";
+    const std::string medit =
+        write_text("corners.mesh", head + "Corners\n1\n1\nTriangles\n1\n1 2 3 7\nEnd\n");
+    CHECK(read_surface(medit).n_faces() == 1);
+    // line 10 holds the index 4 of a three-vertex file
+    const std::string bad = write_text("index.mesh", head + "Triangles\n1\n1 2 4 0\nEnd\n");
+    CHECK_THROWS_WITH_AS(read_surface(bad),
+                         (bad + ":10: vertex index 4 out of range (1..3)").c_str(), InputError);
+    const std::string unknown = write_text("unknown.mesh", head + "Prisms\n0\nEnd\n");
+    CHECK_THROWS_WITH_AS(read_surface(unknown), (unknown + ":8: unknown keyword 'Prisms'").c_str(),
+                         InputError);
+}
+
 TEST_CASE("a multi-component input keeps its components; an open input keeps its boundary")
 {
     // Two tetrahedra far apart.

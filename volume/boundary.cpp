@@ -5,7 +5,7 @@
 
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -206,4 +206,4 @@ VertexGraph vertex_graph(const TetMesh& mesh)
     return graph;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

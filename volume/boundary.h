@@ -8,7 +8,7 @@
 
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// One face of a live tet: tets[tet], local face `local_face` (tet_tables.h numbering).
@@ -60,4 +60,4 @@ struct VertexGraph
 
 VertexGraph vertex_graph(const TetMesh& mesh);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -8,7 +8,7 @@
 #include "volume/boundary.h"
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -485,4 +485,4 @@ std::string format_violations(const std::vector<MeshViolation>& violations, std:
     return out.str();
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

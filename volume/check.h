@@ -9,7 +9,7 @@
 
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// One broken invariant. `kind` is one of the names below; `element` is the index of the
@@ -79,4 +79,4 @@ std::vector<MeshViolation> check_mesh(const TetMesh& mesh, const CheckOptions& o
 std::string format_violations(const std::vector<MeshViolation>& violations,
                               std::size_t max_lines = 20);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

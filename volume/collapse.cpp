@@ -4,7 +4,7 @@
 #include <iterator>
 #include <limits>
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -176,4 +176,4 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     return result;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -16,7 +16,7 @@
 
 #include "volume/tet_topology.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 struct CollapseOptions
@@ -42,4 +42,4 @@ struct CollapseResult
 CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, int to,
                              const CollapseOptions& options = {});
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -5,7 +5,7 @@
 
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -162,4 +162,4 @@ EdgeRemovalResult remove_edge(TetMesh& mesh, OperatorContext& context, int seed,
     return result;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -12,7 +12,7 @@
 
 #include "volume/tet_topology.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 struct EdgeRemovalOptions
@@ -45,4 +45,4 @@ EdgeRemovalResult evaluate_edge_removal(const TetMesh& mesh, const OperatorConte
 EdgeRemovalResult remove_edge(TetMesh& mesh, OperatorContext& context, int seed, int local_edge,
                               const EdgeRemovalOptions& options = {});
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

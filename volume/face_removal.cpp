@@ -6,7 +6,7 @@
 
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -356,4 +356,4 @@ MultiFaceRemovalResult remove_multi_face(TetMesh& mesh, OperatorContext& context
     return result;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -29,7 +29,7 @@
 
 #include "volume/tet_topology.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 struct FaceRemovalOptions
@@ -94,4 +94,4 @@ MultiFaceRemovalResult remove_multi_face(TetMesh& mesh, OperatorContext& context
                                          int local_face,
                                          const MultiFaceRemovalOptions& options = {});
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

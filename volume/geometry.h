@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace hdimesh
+#include "volume/namespace.h"
+
+namespace hdimesh::volume
 {
 
 using Vec3 = Eigen::Vector3d;
@@ -62,4 +64,4 @@ inline double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c)
     return kAlpha * (2.0 * triangle_area(a, b, c) / perimeter) / longest;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

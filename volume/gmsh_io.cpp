@@ -24,7 +24,7 @@
 
 #include "volume/io_detail.h"
 
-namespace hdimesh::io_detail
+namespace hdimesh::volume::io_detail
 {
 
 namespace
@@ -734,4 +734,4 @@ void write_gmsh(const TetMesh& mesh, std::ostream& out, const WriteOptions& opti
     else writer.write_v4();
 }
 
-}  // namespace hdimesh::io_detail
+}  // namespace hdimesh::volume::io_detail

@@ -1,14 +1,5 @@
-// Medit .mesh (ASCII) and .meshb (libMeshb binary) meshes.
-//
-// ASCII: "Keyword [count] items..." with '#' comments, indices 1-based.
-// Binary (libMeshb): int32 magic 1 (byte-swapped when written on the other endianness),
-// int32 version, then keyword blocks: int32 code, next-block position, [count], items.
-//
-//   version  reals    integers  positions
-//      1     float32  int32     int32
-//      2     float64  int32     int32      <- what we write (version 3 past 2 GiB)
-//      3     float64  int32     int64
-//      4     float64  int64     int64
+// Medit .mesh (ASCII) and .meshb (libMeshb binary) tet meshes; the layout shared with the
+// solution files (keyword codes, versions, the keyword loop) is in common/medit_reader.h.
 
 #include <climits>
 #include <cstdint>
@@ -16,7 +7,7 @@
 
 #include "volume/io_detail.h"
 
-namespace hdimesh::io_detail
+namespace hdimesh::volume::io_detail
 {
 
 namespace
@@ -42,6 +33,49 @@ bool is_unsupported_element_keyword(std::string_view keyword)
            keyword == "Pyramids" || keyword == "RequiredQuadrilaterals";
 }
 
+/// The sections that list indices into another array, in both encodings.
+enum class IndexTarget
+{
+    Vertices,
+    Edges,
+    Triangles,
+    Tetrahedra,
+};
+
+struct IndexSection
+{
+    std::string_view keyword;
+    int code;  ///< libMeshb
+    std::vector<int> TetMesh::*list;
+    IndexTarget target;
+};
+
+constexpr IndexSection kIndexSections[] = {
+    {"Ridges", gmf::kRidges, &TetMesh::ridges, IndexTarget::Edges},
+    {"Corners", gmf::kCorners, &TetMesh::corners, IndexTarget::Vertices},
+    {"RequiredVertices", gmf::kRequiredVertices, &TetMesh::required_vertices,
+     IndexTarget::Vertices},
+    {"RequiredEdges", gmf::kRequiredEdges, &TetMesh::required_edges, IndexTarget::Edges},
+    {"RequiredTriangles", gmf::kRequiredTriangles, &TetMesh::required_triangles,
+     IndexTarget::Triangles},
+    {"RequiredTetrahedra", gmf::kRequiredTetrahedra, &TetMesh::required_tets,
+     IndexTarget::Tetrahedra},
+};
+
+const IndexSection* find_index_section(std::string_view keyword)
+{
+    for (const IndexSection& section : kIndexSections)
+        if (section.keyword == keyword) return &section;
+    return nullptr;
+}
+
+const IndexSection* find_index_section(int code)
+{
+    for (const IndexSection& section : kIndexSections)
+        if (section.code == code) return &section;
+    return nullptr;
+}
+
 class MeditAsciiReader
 {
 public:
@@ -49,77 +83,41 @@ public:
 
     TetMesh read()
     {
-        bool seen_end = false;
-        while (!in_.at_end())
-        {
-            const std::string_view keyword = in_.token("keyword");
-            if (keyword == "End")
-            {
-                seen_end = true;
-                break;
-            }
-            if (keyword == "MeshVersionFormatted")
-                in_.integer_in("MeshVersionFormatted", 1, 4);
-            else if (keyword == "Dimension")
-            {
-                if (in_.integer("Dimension") != 3) in_.fail("only Dimension 3 is supported");
-            }
-            else if (keyword == "Vertices")
-                read_vertices();
-            else if (keyword == "Edges")
-                read_elements(mesh_.edges, mesh_.edge_refs, "Edges");
-            else if (keyword == "Triangles")
-                read_elements(mesh_.triangles, mesh_.triangle_refs, "Triangles");
-            else if (keyword == "Tetrahedra")
-                read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra");
-            else if (keyword == "Ridges")
-                read_index_list(mesh_.ridges, "Ridges", edges_known(), mesh_.edges.size());
-            else if (keyword == "Corners")
-                read_index_list(mesh_.corners, "Corners", vertices_known(), mesh_.points.size());
-            else if (keyword == "RequiredVertices")
-                read_index_list(mesh_.required_vertices, "RequiredVertices", vertices_known(),
-                                mesh_.points.size());
-            else if (keyword == "RequiredEdges")
-                read_index_list(mesh_.required_edges, "RequiredEdges", edges_known(),
-                                mesh_.edges.size());
-            else if (keyword == "RequiredTriangles")
-                read_index_list(mesh_.required_triangles, "RequiredTriangles", triangles_known(),
-                                mesh_.triangles.size());
-            else if (keyword == "RequiredTetrahedra")
-                read_index_list(mesh_.required_tets, "RequiredTetrahedra", tets_known(),
-                                mesh_.tets.size());
-            else if (const int per_item = skipped_tokens_per_item(keyword))
-            {
-                const std::size_t n = in_.count("item count", 2 * per_item);
-                for (std::size_t i = 0; i < n * per_item; ++i) in_.token(std::string(keyword).c_str());
-            }
-            else if (is_unsupported_element_keyword(keyword))
-            {
-                const std::size_t n = in_.count("item count", 2);
-                if (n > 0)
-                    in_.fail(std::string(keyword) + " are not supported (" + std::to_string(n) +
-                             " in the file): only tetrahedra, triangles and edges");
-            }
-            else
-            {
-                in_.fail("unknown keyword '" + std::string(keyword.substr(0, 60)) + "'");
-            }
-            ++sections_seen_;
-        }
-        if (sections_seen_ == 0 && !seen_end) in_.fail("no Medit keyword found (not a .mesh file?)");
-        if (!seen_end)
-        {
-            in_.set_position(in_.position(), in_.current_line());
-            in_.fail("missing End keyword (truncated file?)");
-        }
+        medit::read_ascii_keywords(in_, medit::EndKeyword::Required, nullptr,
+                                   [this](std::string_view keyword)
+                                   { return read_section(keyword); });
         return std::move(mesh_);
     }
 
 private:
-    bool vertices_known() const { return seen_vertices_; }
-    bool edges_known() const { return seen_edges_; }
-    bool triangles_known() const { return seen_triangles_; }
-    bool tets_known() const { return seen_tets_; }
+    bool read_section(std::string_view keyword)
+    {
+        if (keyword == "Vertices")
+            read_vertices();
+        else if (keyword == "Edges")
+            read_elements(mesh_.edges, mesh_.edge_refs, "Edges");
+        else if (keyword == "Triangles")
+            read_elements(mesh_.triangles, mesh_.triangle_refs, "Triangles");
+        else if (keyword == "Tetrahedra")
+            read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra");
+        else if (const IndexSection* section = find_index_section(keyword))
+            read_index_list(*section);
+        else if (const int per_item = skipped_tokens_per_item(keyword))
+        {
+            const std::size_t n = in_.count("item count", 2 * per_item);
+            for (std::size_t i = 0; i < n * per_item; ++i) in_.token(std::string(keyword).c_str());
+        }
+        else if (is_unsupported_element_keyword(keyword))
+        {
+            const std::size_t n = in_.count("item count", 2);
+            if (n > 0)
+                in_.fail(std::string(keyword) + " are not supported (" + std::to_string(n) +
+                         " in the file): only tetrahedra, triangles and edges");
+        }
+        else
+            return false;
+        return true;
+    }
 
     void once(bool& seen, const char* keyword)
     {
@@ -168,21 +166,55 @@ private:
         }
     }
 
-    void read_index_list(std::vector<int>& items, const char* keyword, bool target_known,
-                         std::size_t target_size)
+    void read_index_list(const IndexSection& section)
     {
-        const std::size_t n = in_.count(keyword, 2);
-        if (n > static_cast<std::size_t>(INT_MAX)) in_.fail(std::string("too many ") + keyword);
-        const long long max_index = target_known ? static_cast<long long>(target_size) : INT_MAX;
+        const std::string keyword(section.keyword);
+        const std::size_t n = in_.count(keyword.c_str(), 2);
+        if (n > static_cast<std::size_t>(INT_MAX)) in_.fail("too many " + keyword);
+        const long long max_index = target_known(section.target)
+                                        ? static_cast<long long>(target_size(section.target))
+                                        : INT_MAX;
+        std::vector<int>& items = mesh_.*section.list;
         items.reserve(items.size() + n);
         for (std::size_t i = 0; i < n; ++i)
             items.push_back(static_cast<int>(in_.integer_in("index", 1, max_index)) - 1);
     }
 
+    bool target_known(IndexTarget target) const
+    {
+        switch (target)
+        {
+            case IndexTarget::Vertices:
+                return seen_vertices_;
+            case IndexTarget::Edges:
+                return seen_edges_;
+            case IndexTarget::Triangles:
+                return seen_triangles_;
+            case IndexTarget::Tetrahedra:
+                return seen_tets_;
+        }
+        return false;
+    }
+
+    std::size_t target_size(IndexTarget target) const
+    {
+        switch (target)
+        {
+            case IndexTarget::Vertices:
+                return mesh_.points.size();
+            case IndexTarget::Edges:
+                return mesh_.edges.size();
+            case IndexTarget::Triangles:
+                return mesh_.triangles.size();
+            case IndexTarget::Tetrahedra:
+                return mesh_.tets.size();
+        }
+        return 0;
+    }
+
     TextReader in_;
     TetMesh mesh_;
     bool seen_vertices_ = false, seen_edges_ = false, seen_triangles_ = false, seen_tets_ = false;
-    int sections_seen_ = 0;
 };
 
 // --- binary
@@ -190,113 +222,82 @@ private:
 class MeshbReader
 {
 public:
-    MeshbReader(const std::string& path, const std::string& data) : in_(path, data, 0, false) {}
+    MeshbReader(const std::string& path, const std::string& data)
+        : in_(path, data, 0, false), file_(in_)
+    {
+    }
 
     TetMesh read()
     {
-        const std::int32_t magic = in_.get<std::int32_t>("magic number");
-        if (magic != 1)
-        {
-            if (BinaryReader::byte_swapped(magic) != 1)
-                in_.fail("not a Medit binary file (magic number " + std::to_string(magic) +
-                         ", expected 1)");
-            in_.set_swap(true);
-        }
-        version_ = static_cast<int>(in_.integer_in<std::int32_t>("version", 1, 4));
-        int_bytes_ = version_ == 4 ? 8 : 4;
-        real_bytes_ = version_ == 1 ? 4 : 8;
-        position_bytes_ = version_ >= 3 ? 8 : 4;
-
         for (;;)
         {
-            if (in_.position() >= in_.size()) in_.fail("missing End keyword (truncated file?)");
-            const int code = in_.get<std::int32_t>("keyword code");
-            const long long next = position_bytes_ == 8
-                                       ? in_.integer_in<std::int64_t>("next keyword position", 0, LLONG_MAX)
-                                       : in_.integer_in<std::int32_t>("next keyword position", 0, INT_MAX);
-            // End carries a (zero) position too, as libMeshb and meshio write it: requiring
-            // it catches files cut inside the last keyword
-            if (code == gmf::kEnd) break;
-            switch (code)
-            {
-                case gmf::kDimension:
-                    if (in_.get<std::int32_t>("dimension") != 3) in_.fail("only dimension 3 is supported");
-                    break;
-                case gmf::kVertices: read_vertices(); break;
-                case gmf::kEdges: read_elements(mesh_.edges, mesh_.edge_refs, "Edges"); break;
-                case gmf::kTriangles:
-                    read_elements(mesh_.triangles, mesh_.triangle_refs, "Triangles");
-                    break;
-                case gmf::kTetrahedra: read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra"); break;
-                case gmf::kRidges: read_index_list(mesh_.ridges, "Ridges"); break;
-                case gmf::kCorners: read_index_list(mesh_.corners, "Corners"); break;
-                case gmf::kRequiredVertices:
-                    read_index_list(mesh_.required_vertices, "RequiredVertices");
-                    break;
-                case gmf::kRequiredEdges: read_index_list(mesh_.required_edges, "RequiredEdges"); break;
-                case gmf::kRequiredTriangles:
-                    read_index_list(mesh_.required_triangles, "RequiredTriangles");
-                    break;
-                case gmf::kRequiredTetrahedra:
-                    read_index_list(mesh_.required_tets, "RequiredTetrahedra");
-                    break;
-                case gmf::kNormals:
-                case gmf::kTangents:
-                case gmf::kNormalAtVertices:
-                case gmf::kTangentAtVertices:
-                case gmf::kTangentAtEdgeVertices:
-                    // derived data the HDI model recomputes: jump over the block
-                    if (next <= static_cast<long long>(in_.position()))
-                        in_.fail("keyword " + std::to_string(code) + ": bad next-keyword position");
-                    in_.seek(static_cast<std::size_t>(next), "next-keyword position");
-                    break;
-                case gmf::kQuadrilaterals:
-                case gmf::kPrisms:
-                case gmf::kHexahedra:
-                case gmf::kPyramids:
-                case gmf::kRequiredQuadrilaterals:
-                    // element kinds a tet mesh cannot hold: harmless only when empty
-                    if (const long long n = count("element count", 4); n > 0)
-                        in_.fail("keyword " + std::to_string(code) + ": " + std::to_string(n) +
-                                 " quadrilaterals/prisms/pyramids/hexahedra are not supported");
-                    break;
-                default:
-                    in_.fail("unsupported keyword code " + std::to_string(code) +
-                             " (libMeshb numbering)");
-            }
+            const medit::BinaryFile::Keyword keyword = file_.keyword();
+            if (keyword.code == gmf::kEnd) break;
+            read_block(keyword);
         }
         return std::move(mesh_);
     }
 
 private:
-    long long count(const char* what, std::size_t bytes_per_item)
+    void read_block(const medit::BinaryFile::Keyword& keyword)
     {
-        const long long n = int_bytes_ == 8 ? in_.integer_in<std::int64_t>(what, 0, INT_MAX)
-                                            : in_.integer_in<std::int32_t>(what, 0, INT_MAX);
-        in_.require(static_cast<unsigned long long>(n), bytes_per_item, what);
-        return n;
-    }
-
-    long long integer(const char* what, long long lo, long long hi)
-    {
-        return int_bytes_ == 8 ? in_.integer_in<std::int64_t>(what, lo, hi)
-                               : in_.integer_in<std::int32_t>(what, lo, hi);
-    }
-
-    double real(const char* what)
-    {
-        return real_bytes_ == 4 ? in_.real<float>(what) : in_.real<double>(what);
+        switch (keyword.code)
+        {
+            case gmf::kDimension:
+                file_.dimension();
+                break;
+            case gmf::kVertices:
+                read_vertices();
+                break;
+            case gmf::kEdges:
+                read_elements(mesh_.edges, mesh_.edge_refs, "Edges");
+                break;
+            case gmf::kTriangles:
+                read_elements(mesh_.triangles, mesh_.triangle_refs, "Triangles");
+                break;
+            case gmf::kTetrahedra:
+                read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra");
+                break;
+            case gmf::kNormals:
+            case gmf::kTangents:
+            case gmf::kNormalAtVertices:
+            case gmf::kTangentAtVertices:
+            case gmf::kTangentAtEdgeVertices:
+                // derived data the HDI model recomputes: jump over the block
+                if (keyword.next <= static_cast<long long>(in_.position()))
+                    in_.fail("keyword " + std::to_string(keyword.code) +
+                             ": bad next-keyword position");
+                in_.seek(static_cast<std::size_t>(keyword.next), "next-keyword position");
+                break;
+            case gmf::kQuadrilaterals:
+            case gmf::kPrisms:
+            case gmf::kHexahedra:
+            case gmf::kPyramids:
+            case gmf::kRequiredQuadrilaterals:
+                // element kinds a tet mesh cannot hold: harmless only when empty
+                if (const long long n = file_.count("element count", 4); n > 0)
+                    in_.fail("keyword " + std::to_string(keyword.code) + ": " + std::to_string(n) +
+                             " quadrilaterals/prisms/pyramids/hexahedra are not supported");
+                break;
+            default:
+                if (const IndexSection* section = find_index_section(keyword.code))
+                    read_index_list(*section);
+                else
+                    in_.fail("unsupported keyword code " + std::to_string(keyword.code) +
+                             " (libMeshb numbering)");
+        }
     }
 
     void read_vertices()
     {
-        const long long n = count("Vertices count", 3 * real_bytes_ + int_bytes_);
+        const long long n =
+            file_.count("Vertices count", 3 * file_.real_bytes() + file_.int_bytes());
         mesh_.points.resize(n);
         mesh_.vertex_refs.resize(n);
         for (long long i = 0; i < n; ++i)
         {
-            for (int k = 0; k < 3; ++k) mesh_.points[i][k] = real("vertex coordinate");
-            mesh_.vertex_refs[i] = static_cast<int>(integer("vertex ref", INT_MIN, INT_MAX));
+            for (int k = 0; k < 3; ++k) mesh_.points[i][k] = file_.real("vertex coordinate");
+            mesh_.vertex_refs[i] = static_cast<int>(file_.integer("vertex ref", INT_MIN, INT_MAX));
         }
     }
 
@@ -304,28 +305,30 @@ private:
     void read_elements(std::vector<std::array<int, N>>& items, std::vector<int>& refs,
                        const char* keyword)
     {
-        const long long n = count(keyword, (N + 1) * int_bytes_);
+        const long long n = file_.count(keyword, (N + 1) * file_.int_bytes());
         items.resize(n);
         refs.resize(n);
         for (long long i = 0; i < n; ++i)
         {
             for (std::size_t k = 0; k < N; ++k)
-                items[i][k] = static_cast<int>(integer("vertex index", 1, INT_MAX)) - 1;
-            refs[i] = static_cast<int>(integer("ref", INT_MIN, INT_MAX));
+                items[i][k] = static_cast<int>(file_.integer("vertex index", 1, INT_MAX)) - 1;
+            refs[i] = static_cast<int>(file_.integer("ref", INT_MIN, INT_MAX));
         }
     }
 
-    void read_index_list(std::vector<int>& items, const char* keyword)
+    void read_index_list(const IndexSection& section)
     {
-        const long long n = count(keyword, int_bytes_);
+        const std::string keyword(section.keyword);
+        const long long n = file_.count(keyword.c_str(), file_.int_bytes());
+        std::vector<int>& items = mesh_.*section.list;
         items.reserve(items.size() + n);
         for (long long i = 0; i < n; ++i)
-            items.push_back(static_cast<int>(integer("index", 1, INT_MAX)) - 1);
+            items.push_back(static_cast<int>(file_.integer("index", 1, INT_MAX)) - 1);
     }
 
     BinaryReader in_;
+    medit::BinaryFile file_;
     TetMesh mesh_;
-    int version_ = 2, int_bytes_ = 4, real_bytes_ = 8, position_bytes_ = 4;
 };
 
 // --- writers
@@ -512,4 +515,4 @@ void write_medit_binary(const TetMesh& mesh, std::ostream& out)
     w.flush();
 }
 
-}  // namespace hdimesh::io_detail
+}  // namespace hdimesh::volume::io_detail

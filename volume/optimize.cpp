@@ -1,11 +1,11 @@
 #include "volume/optimize.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
+#include "common/stage_timer.h"
 #include "volume/collapse.h"
 #include "volume/edge_removal.h"
 #include "volume/face_removal.h"
@@ -13,7 +13,7 @@
 #include "volume/tet_tables.h"
 #include "volume/tet_topology.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -31,13 +31,6 @@ enum OperatorIndex
 
 const char* const kOperatorNames[kNumOperators] = {"edge removal", "multi-face removal",
                                                    "smoothing", "collapse", "size smoothing"};
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 struct QualitySummary
 {
@@ -94,7 +87,7 @@ public:
         for (int pass = 0; pass < options_.max_sweeps && !candidates.empty(); ++pass)
         {
             const SweepCounters before = counters();
-            const auto start = Clock::now();
+            const WallStopwatch stopwatch;
             context_.touched.clear();
             long collapsed = 0;
             for (const auto& candidate : candidates)
@@ -112,7 +105,7 @@ public:
                     done = attempt_collapse(v, u, collapse_options);
                 collapsed += done;
             }
-            report_.operators[kCollapse].seconds += seconds_since(start);
+            report_.operators[kCollapse].seconds += stopwatch.seconds();
             print_sweep("collapse", before);
             total += collapsed;
             if (collapsed == 0) break;
@@ -132,7 +125,7 @@ public:
     {
         if (!options_.move) return 0;
         const SweepCounters before = counters();
-        const auto start = Clock::now();
+        const WallStopwatch stopwatch;
         SizeSmoothOptions size_options;
         size_options.min_quality = options_.collapse_min_quality;
         long moved = 0;
@@ -145,7 +138,7 @@ public:
                 report_.operators[kSizeSmoothing].successes += done;
                 moved += done;
             }
-        report_.operators[kSizeSmoothing].seconds += seconds_since(start);
+        report_.operators[kSizeSmoothing].seconds += stopwatch.seconds();
         print_sweep("sizes", before);
         return moved;
     }
@@ -339,35 +332,35 @@ private:
     {
         if (options_.swap)
         {
-            auto start = Clock::now();
+            WallStopwatch stopwatch;
             for (int e = 0; e < 6; ++e)
             {
                 ++report_.operators[kEdgeRemoval].attempts;
                 if (remove_edge(mesh_, context_, t, e, edge_removal_options_).removed)
                 {
                     ++report_.operators[kEdgeRemoval].successes;
-                    report_.operators[kEdgeRemoval].seconds += seconds_since(start);
+                    report_.operators[kEdgeRemoval].seconds += stopwatch.seconds();
                     return kReplaced;
                 }
             }
-            report_.operators[kEdgeRemoval].seconds += seconds_since(start);
-            start = Clock::now();
+            report_.operators[kEdgeRemoval].seconds += stopwatch.seconds();
+            stopwatch.restart();
             for (int f = 0; f < 4; ++f)
             {
                 ++report_.operators[kFaceRemoval].attempts;
                 if (remove_multi_face(mesh_, context_, t, f).removed)
                 {
                     ++report_.operators[kFaceRemoval].successes;
-                    report_.operators[kFaceRemoval].seconds += seconds_since(start);
+                    report_.operators[kFaceRemoval].seconds += stopwatch.seconds();
                     return kReplaced;
                 }
             }
-            report_.operators[kFaceRemoval].seconds += seconds_since(start);
+            report_.operators[kFaceRemoval].seconds += stopwatch.seconds();
         }
         TetOutcome outcome = kNothing;
         if (options_.move)
         {
-            const auto start = Clock::now();
+            const WallStopwatch stopwatch;
             const TetVertices vertices = mesh_.tets[t];
             for (int v : vertices)
             {
@@ -382,7 +375,7 @@ private:
                     if (quality(t) >= threshold) break;
                 }
             }
-            report_.operators[kSmoothing].seconds += seconds_since(start);
+            report_.operators[kSmoothing].seconds += stopwatch.seconds();
         }
         return outcome;
     }
@@ -443,4 +436,4 @@ OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field, const Optimi
     return optimizer.finish();
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -12,7 +12,7 @@
 #include "volume/size_field.h"
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 struct OptimizeOptions
@@ -55,4 +55,4 @@ OptimizeReport improve_bad_elements(TetMesh& mesh, const SizeField& field,
 OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field,
                              const OptimizeOptions& options = {});
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

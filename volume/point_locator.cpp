@@ -9,7 +9,7 @@
 #include "common/errors.h"
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -28,36 +28,36 @@ constexpr int kMaxWalkSteps = 10000;
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
                                std::array<double, 3>& w)
 {
+    // the answer at vertex k, or at x + v * along on the edge from vertex i to vertex j
+    auto at_vertex = [&w](const Vec3& x, int k)
+    {
+        w = {0, 0, 0};
+        w[k] = 1;
+        return x;
+    };
+    auto on_edge = [&w](const Vec3& x, const Vec3& along, double v, int i, int j) -> Vec3
+    {
+        w = {0, 0, 0};
+        w[i] = 1 - v;
+        w[j] = v;
+        return x + v * along;
+    };
     const Vec3 ab = b - a, ac = c - a, ap = p - a;
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) { w = {1, 0, 0}; return a; }
+    if (d1 <= 0 && d2 <= 0) return at_vertex(a, 0);
     const Vec3 bp = p - b;
     const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) { w = {0, 1, 0}; return b; }
+    if (d3 >= 0 && d4 <= d3) return at_vertex(b, 1);
     const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    {
-        const double v = d1 / (d1 - d3);
-        w = {1 - v, v, 0};
-        return a + v * ab;
-    }
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return on_edge(a, ab, d1 / (d1 - d3), 0, 1);
     const Vec3 cp = p - c;
     const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) { w = {0, 0, 1}; return c; }
+    if (d6 >= 0 && d5 <= d6) return at_vertex(c, 2);
     const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    {
-        const double v = d2 / (d2 - d6);
-        w = {1 - v, 0, v};
-        return a + v * ac;
-    }
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return on_edge(a, ac, d2 / (d2 - d6), 0, 2);
     const double va = d3 * d6 - d5 * d4;
     if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    {
-        const double v = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        w = {0, 1 - v, v};
-        return b + v * (c - b);
-    }
+        return on_edge(b, c - b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), 1, 2);
     const double denominator = 1.0 / (va + vb + vc);
     const double v = vb * denominator, u = vc * denominator;
     w = {1 - v - u, v, u};
@@ -370,4 +370,4 @@ BoundaryPoint TetLocator::nearest_boundary_point(const Vec3& p) const
     return best;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

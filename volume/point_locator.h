@@ -11,7 +11,7 @@
 
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// A point inside the mesh: the tet (id in the mesh the locator was built from) and the
@@ -81,4 +81,4 @@ private:
     std::vector<int> vertex_triangles_;        // (by position in boundary_vertices_)
 };
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

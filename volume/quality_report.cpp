@@ -12,7 +12,7 @@
 #include "common/errors.h"
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -389,4 +389,4 @@ void write_quality_svg(const QualityReport& r, const std::string& path)
     write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

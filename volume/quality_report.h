@@ -10,7 +10,7 @@
 #include "volume/size_field.h"
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// Bin edges of the L/hth histogram (the same as ../shared/tools/meshstat.py): too short below
@@ -74,4 +74,4 @@ int length_ratio_histogram_bin(double ratio);
 /// degenerate face.
 std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

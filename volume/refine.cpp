@@ -2,15 +2,15 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdint>
 #include <string>
 
 #include "common/errors.h"
+#include "common/stage_timer.h"
 #include "volume/refine_patterns.h"
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int b)
@@ -28,8 +28,6 @@ int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int 
 
 namespace
 {
-
-using Clock = std::chrono::steady_clock;
 
 /// The tets' edges, each once, filed under its lower vertex (compressed rows); a slot number
 /// indexes per-edge data. Only edges whose higher vertex is >= first_vertex are kept (refine()
@@ -765,7 +763,7 @@ void RefinePass::split_feature_edges(const EdgeTable& edges)
 
 RefinePassResult RefinePass::run()
 {
-    const auto start = Clock::now();
+    const WallStopwatch stopwatch;
     if (mesh_.num_live_tets() != mesh_.num_tet_slots()) mesh_.compact();
     if (!trust_adjacency_ || !mesh_.has_adjacency()) mesh_.build_adjacency();
     num_vertices_before_ = mesh_.num_vertices();
@@ -797,7 +795,7 @@ RefinePassResult RefinePass::run()
     report.fallback_tets = num_fallbacks_;
     report.tets = mesh_.num_tet_slots();
     report.vertices = mesh_.num_vertices();
-    report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    report.seconds = stopwatch.seconds();
     return std::move(result_);
 }
 
@@ -842,4 +840,4 @@ RefineResult refine(TetMesh& mesh, const SizeField& field, const RefineOptions& 
     return result;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

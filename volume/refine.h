@@ -19,7 +19,7 @@
 #include "volume/size_field.h"
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 struct RefineOptions
@@ -98,4 +98,4 @@ RefineResult refine(TetMesh& mesh, const SizeField& field, const RefineOptions& 
 /// Symmetric in a and b.
 int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int b);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

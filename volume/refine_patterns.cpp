@@ -6,7 +6,7 @@
 
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -72,13 +72,6 @@ int find_refine_pattern(int mask, int diagonals)
     return lookup().index[mask * 16 + diagonals];
 }
 
-int face_split_count(int mask, int face)
-{
-    int n = 0;
-    for (int e : tet::kFaceEdges[face]) n += (mask >> e) & 1;
-    return n;
-}
-
 int faces_with_two_split_edges(int mask)
 {
     int faces = 0;
@@ -86,37 +79,4 @@ int faces_with_two_split_edges(int mask)
     return faces;
 }
 
-int paper_face_code(int mask, int diagonals, int face)
-{
-    std::array<int, 3> pos = {tet::kFaceVertices[face][0], tet::kFaceVertices[face][1],
-                              tet::kFaceVertices[face][2]};
-    std::sort(pos.begin(), pos.end(), [](int x, int y) { return x > y; });
-    auto split_opposite = [&](int k) {
-        return ((mask >> tet::kEdgeOfVertices[pos[(k + 1) % 3]][pos[(k + 2) % 3]]) & 1) != 0;
-    };
-    switch (face_split_count(mask, face))
-    {
-        case 0: return 0;
-        case 3: return 1 + 2 + 4;
-        case 1:
-            for (int k = 0; k < 3; ++k)
-                if (split_opposite(k)) return 1 << (3 + k);
-            return -1;  // unreachable
-        default: break;
-    }
-    int corner = 0;  // opposite the face's one unsplit edge
-    while (split_opposite(corner)) ++corner;
-    const int a = pos[(corner + 1) % 3], b = pos[(corner + 2) % 3];
-    const int from = ((diagonals >> face) & 1) ? std::max(a, b) : std::min(a, b);
-    const int from_position = from == a ? (corner + 1) % 3 : (corner + 2) % 3;
-    return (1 << corner) + (1 << (3 + from_position));
-}
-
-int paper_pattern_code(int mask, int diagonals)
-{
-    int code = 0;
-    for (int i = 0; i < 4; ++i) code += paper_face_code(mask, diagonals, kPaperFaceToOurs[i]) << (6 * i);
-    return code;
-}
-
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

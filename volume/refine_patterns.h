@@ -15,7 +15,10 @@
 
 #include <cstdint>
 
-namespace hdimesh
+#include "volume/namespace.h"
+#include "volume/refine_pattern_code.h"
+
+namespace hdimesh::volume
 {
 
 inline constexpr int kPatternSteinerPoint = 10;
@@ -29,7 +32,7 @@ struct RefinePattern
 {
     int mask = 0;
     int diagonals = 0;
-    int paper_code = 0;    ///< the paper's eq. 3, see paper_pattern_code()
+    int paper_code = 0;    ///< the paper's eq. 3 (volume/refine_pattern_code.h)
     bool steiner = false;  ///< uses local point 10
     const std::uint8_t (*tets)[4] = nullptr;  ///< positive child tets over local points
     int num_tets = 0;
@@ -47,22 +50,4 @@ int find_refine_pattern(int mask, int diagonals);
 /// Bit f set when face f has exactly two split edges under the mask (a diagonal to choose).
 int faces_with_two_split_edges(int mask);
 
-/// Number of split edges of face f under the mask.
-int face_split_count(int mask, int face);
-
-/// The paper's FaceCode of our face f: the sum of 2^j over the face's interior edges j.
-/// The paper's figures are not in its text; our reading (it maps the paper's example
-/// 20, 8, 20, 7 -> 1917460 onto a valid configuration, mask {e0,e1,e2,e3}, diagonals 0):
-///  - inside a face, positions P0, P1, P2 are its local vertices in decreasing local index;
-///  - interior edge k (k = 0,1,2) joins the midpoints of the two face edges at corner Pk;
-///  - interior edge 3+k joins Pk to the midpoint of the face edge opposite Pk.
-int paper_face_code(int mask, int diagonals, int face);
-
-/// The paper's face F_i is our face kPaperFaceToOurs[i] (our face j is opposite local vertex j).
-inline constexpr int kPaperFaceToOurs[4] = {1, 0, 2, 3};
-
-/// The paper's code, eq. 3: sum over its faces F_i of FaceCode(F_i) * 2^(6i). Unique per
-/// configuration.
-int paper_pattern_code(int mask, int diagonals);
-
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -8,7 +8,7 @@
 
 #include "common/morton.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 CompactionMaps renumber_spatially(TetMesh& mesh)
@@ -75,4 +75,4 @@ CompactionMaps renumber_spatially(TetMesh& mesh)
     return maps;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

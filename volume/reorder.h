@@ -6,7 +6,7 @@
 
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// Renumbers the vertices along a Morton (Z-order) curve of their positions and the tets by
@@ -15,4 +15,4 @@ namespace hdimesh
 /// \pre the mesh is compact (no dead tets).
 CompactionMaps renumber_spatially(TetMesh& mesh);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -10,7 +10,7 @@
 #include "common/size_quality.h"
 #include "volume/geometry.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 class SizeField
@@ -27,4 +27,4 @@ inline double edge_target_size(const SizeField& field, const Vec3& a, const Vec3
     return size_at_midpoint([&field](const Vec3& p) { return field.size(p); }, a, b);
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

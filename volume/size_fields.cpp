@@ -13,7 +13,7 @@
 #include "volume/boundary.h"
 #include "common/errors.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -159,4 +159,4 @@ void grade_vertex_sizes(const TetMesh& mesh, std::vector<double>& sizes, double 
     }
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

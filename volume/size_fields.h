@@ -10,7 +10,7 @@
 #include "volume/size_field.h"
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// The same size everywhere (--hsiz). Throws InputError unless h is finite and > 0.
@@ -90,4 +90,4 @@ std::vector<double> sample_vertex_sizes(const TetMesh& mesh, const SizeField& fi
 /// sizes.size() != mesh.num_vertices() or hgrad is not finite and >= 1.
 void grade_vertex_sizes(const TetMesh& mesh, std::vector<double>& sizes, double hgrad);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -6,7 +6,7 @@
 
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -323,4 +323,4 @@ SmoothResult equalize_edge_sizes(TetMesh& mesh, OperatorContext& context, int v,
     return result;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

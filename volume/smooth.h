@@ -15,7 +15,7 @@
 
 #include "volume/tet_topology.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 struct SmoothOptions
@@ -49,4 +49,4 @@ SmoothResult equalize_edge_sizes(TetMesh& mesh, OperatorContext& context, int v,
 SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
                            const SmoothOptions& options = {});
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

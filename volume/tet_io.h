@@ -7,7 +7,7 @@
 //   .msh    Gmsh 2.2 / 4.1     read + write  ASCII and binary; physical tag <-> ref
 //   .vtu    VTK XML            write         raw appended binary; cell data "ref", "Qe";
 //                                            point data "size" when given (for ParaView)
-//   .sol / .solb  Medit solution, SolAtVertices with one scalar per vertex (read_sol/write_sol)
+//   .sol / .solb  Medit solution, one scalar per vertex: read_sol/write_sol in common/sol_io.h
 //
 // What each format keeps:
 //  - Medit keeps everything in TetMesh. Normals, Tangents, NormalAtVertices,
@@ -32,9 +32,10 @@
 #include <string>
 #include <vector>
 
+#include "common/sol_io.h"
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 enum class MeshFormat
@@ -68,9 +69,4 @@ struct WriteOptions
 /// the wrong length), IoError when the file system refuses.
 void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions& options = {});
 
-/// Medit .sol (ASCII) or .solb (binary): SolAtVertices, one scalar per vertex.
-/// expected_vertices < 0: don't check the count. Values must be finite.
-std::vector<double> read_sol(const std::string& path, int expected_vertices = -1);
-void write_sol(const std::vector<double>& values, const std::string& path);
-
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

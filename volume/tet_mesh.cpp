@@ -5,7 +5,7 @@
 
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 const char* to_string(VertexClass c)
@@ -253,4 +253,4 @@ CompactionMaps TetMesh::compact()
     return maps;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

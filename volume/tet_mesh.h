@@ -18,7 +18,7 @@
 #include "common/classification.h"
 #include "volume/geometry.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// What a vertex lies on. No operator may change a vertex's class (Omega_h's classification).
@@ -144,4 +144,4 @@ struct TetMesh
     }
 };
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

@@ -18,7 +18,9 @@
 #include <array>
 #include <cstdint>
 
-namespace hdimesh::tet
+#include "volume/namespace.h"
+
+namespace hdimesh::volume::tet
 {
 
 /// Local vertices of each edge, lower local index first.
@@ -52,4 +54,4 @@ inline constexpr std::array<std::array<int, 2>, 6> kEdgeFaces = {{
 /// The edge opposite edge i (sharing no vertex with it).
 inline constexpr int opposite_edge(int edge) { return 5 - edge; }
 
-}  // namespace hdimesh::tet
+}  // namespace hdimesh::volume::tet

@@ -7,7 +7,7 @@
 
 #include "volume/tet_tables.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 namespace
@@ -403,4 +403,4 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
     return ids;
 }
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

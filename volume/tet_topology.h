@@ -10,7 +10,7 @@
 #include "volume/size_field.h"
 #include "volume/tet_mesh.h"
 
-namespace hdimesh
+namespace hdimesh::volume
 {
 
 /// Local index (0..3) of vertex v in tet t, or -1. Inline: every walk asks it per tet.
@@ -48,7 +48,7 @@ std::vector<int> vertex_to_tet(const TetMesh& mesh);
 /// The sorted vertex triple of face f of tet t.
 std::array<int, 3> sorted_face(const TetMesh& mesh, int t, int f);
 
-/// What the optimization operators may not touch (issue 4: the boundary stays fixed).
+/// What the optimization operators may not touch (the boundary stays fixed).
 class MeshConstraints
 {
 public:
@@ -136,4 +136,4 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
                               const std::vector<int>& removed,
                               const std::vector<TetVertices>& added, int ref);
 
-}  // namespace hdimesh
+}  // namespace hdimesh::volume

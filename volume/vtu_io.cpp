@@ -10,7 +10,7 @@
 #include "volume/geometry.h"
 #include "volume/io_detail.h"
 
-namespace hdimesh::io_detail
+namespace hdimesh::volume::io_detail
 {
 
 namespace
@@ -122,4 +122,4 @@ void write_vtu(const TetMesh& mesh, std::ostream& out, const WriteOptions& optio
     w.flush();
 }
 
-}  // namespace hdimesh::io_detail
+}  // namespace hdimesh::volume::io_detail

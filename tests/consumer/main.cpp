@@ -6,7 +6,7 @@
 
 int main()
 {
-    hdimesh::TetMesh mesh;
+    hdimesh::volume::TetMesh mesh;
     mesh.add_vertex({0, 0, 0});
     mesh.add_vertex({1, 0, 0});
     mesh.add_vertex({0, 1, 0});

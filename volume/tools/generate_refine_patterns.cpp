@@ -40,15 +40,17 @@
 #include <string>
 #include <vector>
 
+#include "volume/refine_pattern_code.h"
 #include "volume/tet_tables.h"
 
 namespace
 {
 
-using hdimesh::tet::kEdgeOfVertices;
-using hdimesh::tet::kEdgeVertices;
-using hdimesh::tet::kFaceEdges;
-using hdimesh::tet::kFaceVertices;
+using hdimesh::volume::face_split_count;
+using hdimesh::volume::tet::kEdgeOfVertices;
+using hdimesh::volume::tet::kEdgeVertices;
+using hdimesh::volume::tet::kFaceEdges;
+using hdimesh::volume::tet::kFaceVertices;
 
 using IPoint = std::array<std::int64_t, 3>;
 using LocalTet = std::array<int, 4>;
@@ -137,13 +139,6 @@ LocalTriangle canonical(LocalTriangle t)
 }
 LocalTriangle reversed(const LocalTriangle& t) { return canonical({t[0], t[2], t[1]}); }
 
-int split_count(int mask, int face)
-{
-    int n = 0;
-    for (int e : kFaceEdges[face]) n += (mask >> e) & 1;
-    return n;
-}
-
 /// The prescribed triangulation of face f (outward, local points). For a face with two split
 /// edges meeting at corner c, with the other two vertices a < b (local ids): diagonal bit 0 joins
 /// a to the midpoint of edge cb, bit 1 joins b to the midpoint of edge ca.
@@ -152,7 +147,7 @@ std::vector<LocalTriangle> face_triangles(int mask, int diagonals, int f)
     const auto& v = kFaceVertices[f];
     const auto& e = kFaceEdges[f];  // e[k] joins v[k] and v[k+1]
     std::vector<LocalTriangle> out;
-    const int n = split_count(mask, f);
+    const int n = face_split_count(mask, f);
     if (n == 0) out.push_back({v[0], v[1], v[2]});
     else if (n == 1)
     {
@@ -353,43 +348,6 @@ std::string prove(const Configuration& config, const std::vector<LocalTet>& tets
     return {};
 }
 
-// --- the paper's code (eq. 3) ------------------------------------------------------------------
-// The paper's figures (interior edge numbering of a face) are not in the text; our reading, which
-// maps the paper's example 20, 8, 20, 7 -> 1917460 onto a valid configuration (mask {e0,e1,e2,e3}):
-//  - paper face F_i is our face kPaperFace[i] = {1, 0, 2, 3}[i] (face j opposite local vertex j);
-//  - inside a face, positions P0, P1, P2 are its local vertices in decreasing local index;
-//  - interior edge k (k = 0,1,2) joins the midpoints of the two edges at corner Pk (code 2^k);
-//  - interior edge 3+k joins Pk to the midpoint of the opposite edge (code 2^(3+k)).
-constexpr std::array<int, 4> kPaperFace = {1, 0, 2, 3};
-
-int face_code(int mask, int diagonals, int f)
-{
-    std::array<int, 3> pos = {kFaceVertices[f][0], kFaceVertices[f][1], kFaceVertices[f][2]};
-    std::sort(pos.begin(), pos.end(), [](int x, int y) { return x > y; });
-    auto split_opposite = [&](int k) {
-        return (mask >> kEdgeOfVertices[pos[(k + 1) % 3]][pos[(k + 2) % 3]]) & 1;
-    };
-    const int n = split_count(mask, f);
-    if (n == 0) return 0;
-    if (n == 3) return 7;
-    if (n == 1)
-        for (int k = 0; k < 3; ++k)
-            if (split_opposite(k)) return 1 << (3 + k);
-    int corner = 0;
-    while (split_opposite(corner)) ++corner;  // the corner is opposite the unsplit edge
-    const int a = pos[(corner + 1) % 3], b = pos[(corner + 2) % 3];
-    const int from = ((diagonals >> f) & 1) ? std::max(a, b) : std::min(a, b);
-    const int from_pos = from == a ? (corner + 1) % 3 : (corner + 2) % 3;
-    return (1 << corner) + (1 << (3 + from_pos));
-}
-
-int paper_code(int mask, int diagonals)
-{
-    int code = 0;
-    for (int i = 0; i < 4; ++i) code += face_code(mask, diagonals, kPaperFace[i]) << (6 * i);
-    return code;
-}
-
 /// The rule of method.md: a configuration has no tetrahedralization iff it has quads and every
 /// midpoint on a quad is the end of exactly one diagonal.
 bool schonhardt_by_rule(int mask, int diagonals)
@@ -399,7 +357,7 @@ bool schonhardt_by_rule(int mask, int diagonals)
     bool any_quad = false;
     for (int f = 0; f < 4; ++f)
     {
-        if (split_count(mask, f) != 2) continue;
+        if (face_split_count(mask, f) != 2) continue;
         any_quad = true;
         for (const auto& tri : face_triangles(mask, diagonals, f))
             for (int p : tri)
@@ -441,6 +399,19 @@ struct Entry
     std::vector<LocalTriangle> boundary;
 };
 
+/// One table row of local tets or triangles: "    {a, b, c, d}, {..},", no line end.
+template <std::size_t N>
+void write_row(std::ostringstream& out, const std::vector<std::array<int, N>>& items)
+{
+    out << "    ";
+    for (std::size_t i = 0; i < items.size(); ++i)
+    {
+        out << (i ? " " : "") << "{";
+        for (std::size_t k = 0; k < N; ++k) out << (k ? ", " : "") << items[i][k];
+        out << "},";
+    }
+}
+
 std::string format_table(const std::vector<Entry>& entries)
 {
     std::ostringstream out;
@@ -478,25 +449,14 @@ std::string format_table(const std::vector<Entry>& entries)
     out << "constexpr std::uint8_t kTableTets[kTableNumTets][4] = {\n";
     for (const auto& e : entries)
     {
-        out << "    ";
-        for (std::size_t i = 0; i < e.tets.size(); ++i)
-        {
-            const auto& t = e.tets[i];
-            out << (i ? " " : "") << "{" << t[0] << ", " << t[1] << ", " << t[2] << ", " << t[3]
-                << "},";
-        }
+        write_row(out, e.tets);
         out << "  // mask " << e.mask << " diagonals " << e.diagonals << "\n";
     }
     out << "};\n\n";
     out << "constexpr std::uint8_t kTableTriangles[kTableNumTriangles][3] = {\n";
     for (const auto& e : entries)
     {
-        out << "    ";
-        for (std::size_t i = 0; i < e.boundary.size(); ++i)
-        {
-            const auto& t = e.boundary[i];
-            out << (i ? " " : "") << "{" << t[0] << ", " << t[1] << ", " << t[2] << "},";
-        }
+        write_row(out, e.boundary);
         out << "\n";
     }
     out << "};\n";
@@ -517,7 +477,7 @@ int main(int argc, char** argv)
     for (int mask = 0; mask < 64; ++mask)  // mask 0: nothing split, the tet itself
     {
         int free_faces = 0;  // faces with two split edges
-        for (int f = 0; f < 4; ++f) free_faces |= (split_count(mask, f) == 2) << f;
+        for (int f = 0; f < 4; ++f) free_faces |= (face_split_count(mask, f) == 2) << f;
         for (int diagonals = 0; diagonals < 16; ++diagonals)
         {
             if (diagonals & ~free_faces) continue;
@@ -530,7 +490,8 @@ int main(int argc, char** argv)
             for (int f = 0; f < 4; ++f)
                 for (const auto& t : face_triangles(mask, diagonals, f)) config.boundary.push_back(t);
 
-            Entry entry{mask, diagonals, paper_code(mask, diagonals), false, {}, config.boundary};
+            const int code = hdimesh::volume::paper_pattern_code(mask, diagonals);
+            Entry entry{mask, diagonals, code, false, {}, config.boundary};
             entry.tets = Tetrahedralizer(config, false).solve();
             if (entry.tets.empty())
             {

@@ -1,0 +1,32 @@
+#pragma once
+// The size-field flags of the tet tools (adapt, meshstat): the shared Mmg flags plus the
+// paper's benchmark fields, made into a volume size field over the input mesh.
+
+#include <memory>
+#include <string>
+
+#include "cli.h"
+#include "volume/size_field.h"
+#include "volume/tet_mesh.h"
+
+namespace hdimesh::cli
+{
+
+struct SizeFlags : SizeOptions
+{
+    std::string bench_field;  ///< --bench-field: the paper's cases A-E
+
+    /// Registers --hsiz, --sol, --bench-field and, when with_bounds, --hmin/--hmax/--hgrad.
+    void add_to(CommandLine& cli, bool with_bounds);
+    bool any() const { return hsiz_set || sol_set || !bench_field.empty(); }
+    /// The field they describe over `input` (the mesh the .sol belongs to). With no size flag:
+    /// the input's own sizes (mean length of the edges at each vertex, linear in each tet), so
+    /// --optim keeps the sizes. --hmin/--hmax clamp; --hgrad bounds the size ratio between
+    /// neighbouring vertices (Mmg's H-correction) on the input mesh's vertices: for a .sol the
+    /// corrected values are the field, for an analytic field the field becomes
+    /// min(analytic, graded samples), so it keeps its own resolution and gradation only ever
+    /// shrinks sizes. Throws InputError on conflicting or invalid flags.
+    std::shared_ptr<const volume::SizeField> make(const volume::TetMesh& input) const;
+};
+
+}  // namespace hdimesh::cli
