@@ -1,6 +1,7 @@
-// Feature detection (ridges by dihedral angle, the chain-length robustness rule, corners, open
-// boundaries), feature chains and smooth patches, and the model's use of them: each side of a
-// ridge fitted apart, points on a feature line projected onto its 1-D fit.
+// The feature set the HDI model takes (detect_features: ridges by dihedral angle, the
+// chain-length robustness rule, corners, open boundaries), feature chains and smooth patches, and
+// the model's use of them: each side of a ridge fitted apart, points on a feature line projected
+// onto its 1-D fit. The detector's own rules: tests/features_test.cpp.
 
 #include <doctest/doctest.h>
 
@@ -122,15 +123,17 @@ TEST_CASE("features: a cube's 12 edges are ridges, its 8 vertices corners, its 6
     }
     const std::vector<int> patch = smooth_patches(s.triangles, f);
     CHECK(std::set<int>(patch.begin(), patch.end()).size() == 6);
-    // Ridges can be switched off; a closed cube then has no feature at all.
+    // Ridges can be switched off; a closed cube then has no ridge, and its 8 vertices are
+    // isolated spikes (angle defect 90 degrees, angle sum 270): corners still.
     FeatureOptions off;
     off.detect_ridges = false;
     const FeatureSet none = detect_features(s.points, s.triangles, off);
     CHECK(none.ridge_edges.empty());
-    CHECK(none.corners.empty());
-    // A ridge angle above 90 degrees sees no cube edge.
+    CHECK(none.corners == f.corners);
+    // A ridge (and crease) angle above 90 degrees sees no cube edge.
     FeatureOptions obtuse;
     obtuse.ridge_angle_deg = 100;
+    obtuse.crease_angle_deg = 100;
     CHECK(detect_features(s.points, s.triangles, obtuse).ridge_edges.empty());
 }
 
@@ -149,14 +152,16 @@ TEST_CASE("features: an isolated crease (a spike of noise) is not a ridge")
     const int lifted = s.add(Vec3(0.5, 0.5, 0), where);
     s.points[static_cast<std::size_t>(lifted)].z() = 1.0 / cells;
     FeatureOptions keep_all;
-    keep_all.min_chain_length_fraction = 0;
+    keep_all.min_ridge_length = 0;
     const FeatureSet raw = detect_features(s.points, s.triangles, keep_all);
     REQUIRE(!raw.ridge_edges.empty());  // the spike's edges are sharp at 45 degrees
     const FeatureSet f = detect_features(s.points, s.triangles);
     CHECK(f.ridge_edges.empty());
     // The open boundary is a feature: 4 x 150 edges, and a corner wherever it turns by 90 degrees.
+    // The spike's tip, its creases gone, is an isolated cone: kept as a corner.
     CHECK(f.boundary_edges.size() == static_cast<std::size_t>(4 * cells));
-    CHECK(f.corners.size() == 4);
+    CHECK(f.corners.size() == 5);
+    CHECK(std::binary_search(f.corners.begin(), f.corners.end(), lifted));
     // A triangle with flipped orientation is not mistaken for a crease.
     Surface flat;
     std::map<std::array<long long, 3>, int> flat_where;
@@ -250,13 +255,13 @@ TEST_CASE("features: fandisk's ridge network survives the noise rule whole")
 {
     const TriangleSurface input = read_obj(hdimesh::fixtures::data_path("fandisk.obj"));
     FeatureOptions keep_all;
-    keep_all.min_chain_length_fraction = 0;
+    keep_all.min_ridge_length = 0;
     const FeatureSet raw = detect_features(input.points, input.triangles, keep_all);
     const FeatureSet f = detect_features(input.points, input.triangles);
     MESSAGE("fandisk: " << f.ridge_edges.size() << " ridge edges, " << f.corners.size() << " corners, "
             << feature_chains(f, static_cast<int>(input.points.size())).size() << " ridge lines");
     CHECK(f.ridge_edges == raw.ridge_edges);  // no fandisk ridge is noise
-    CHECK(f.ridge_edges.size() == 706);
+    CHECK(f.ridge_edges.size() == 722);  // the 45-degree ridges and the long 30-45 degree creases
     CHECK(f.boundary_edges.empty());
     CHECK(f.corners.size() == 25);  // 22 junctions of three ridges, 2 ridge ends, 1 sharp turn
 }
