@@ -70,11 +70,14 @@ struct Rows
 struct EdgeTable
 {
     std::vector<EdgeEnds> edges;
-    Rows<Side> sides;             // per edge, in triangle order
-    Rows<int> vertex_edges;       // per vertex
-    Rows<int> vertex_triangles;   // per vertex
+    Rows<Side> sides;            // per edge, in triangle order
+    Rows<int> vertex_edges;      // per vertex
+    Rows<int> vertex_triangles;  // per vertex
 
-    int other_end(int e, int v) const { return edges[at(e)][0] == v ? edges[at(e)][1] : edges[at(e)][0]; }
+    int other_end(int e, int v) const
+    {
+        return edges[at(e)][0] == v ? edges[at(e)][1] : edges[at(e)][0];
+    }
     bool open(int e) const { return sides.size(e) == 1; }
 };
 
@@ -112,10 +115,13 @@ std::vector<KeyedSide> sorted_sides(const std::vector<Triangle3>& triangles)
             if (a == b) continue;  // a degenerate triangle's collapsed side is no edge
             sides.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t), i});
         }
-    std::sort(sides.begin(), sides.end(), [](const KeyedSide& x, const KeyedSide& y) {
-        if (x.key != y.key) return x.key < y.key;
-        return x.triangle != y.triangle ? x.triangle < y.triangle : x.position < y.position;
-    });
+    std::sort(sides.begin(), sides.end(),
+              [](const KeyedSide& x, const KeyedSide& y)
+              {
+                  if (x.key != y.key) return x.key < y.key;
+                  return x.triangle != y.triangle ? x.triangle < y.triangle
+                                                  : x.position < y.position;
+              });
     return sides;
 }
 
@@ -139,9 +145,11 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
         for (std::size_t i = 0; i < sides.size(); ++i)
             if (i == 0 || sides[i].key != sides[i - 1].key)
                 first.push_back({sides[i].triangle, sides[i].position, i});
-        std::sort(first.begin(), first.end(), [](const FirstUse& x, const FirstUse& y) {
-            return x.triangle != y.triangle ? x.triangle < y.triangle : x.position < y.position;
-        });
+        std::sort(first.begin(), first.end(),
+                  [](const FirstUse& x, const FirstUse& y) {
+                      return x.triangle != y.triangle ? x.triangle < y.triangle
+                                                      : x.position < y.position;
+                  });
         for (const FirstUse& f : first)
         {
             const Triangle3& t = triangles[at(f.triangle)];
@@ -166,14 +174,15 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
         std::sort(keys.begin(), keys.end());
         for (std::size_t k = 1; k < keys.size(); ++k)
             if (keys[k].first == keys[k - 1].first)
-                throw InputError("features: edges " + std::to_string(keys[k - 1].second) + " and "
-                                 + std::to_string(keys[k].second) + " join the same vertices");
+                throw InputError("features: edges " + std::to_string(keys[k - 1].second) + " and " +
+                                 std::to_string(keys[k].second) + " join the same vertices");
         for (std::size_t i = 0; i < sides.size(); ++i)
         {
-            const auto it = std::lower_bound(keys.begin(), keys.end(), std::make_pair(sides[i].key, -1));
+            const auto it =
+                std::lower_bound(keys.begin(), keys.end(), std::make_pair(sides[i].key, -1));
             if (it == keys.end() || it->first != sides[i].key)
-                throw InputError("features: a side of triangle " + std::to_string(sides[i].triangle)
-                                 + " is in no given edge");
+                throw InputError("features: a side of triangle " +
+                                 std::to_string(sides[i].triangle) + " is in no given edge");
             edge_of[i] = it->second;
         }
     }
@@ -202,9 +211,13 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
     table.vertex_edges = make_rows(point_count, incidences);
     incidences.clear();
     for (std::size_t t = 0; t < triangles.size(); ++t)
-        for (int v : triangles[t])
-            if (incidences.empty() || incidences.back() != std::make_pair(v, static_cast<int>(t)))
-                incidences.push_back({v, static_cast<int>(t)});
+        for (int i = 0; i < 3; ++i)
+        {
+            const Triangle3& tri = triangles[t];
+            const bool repeated = (i > 0 && tri[at(i)] == tri[0]) || (i > 1 && tri[2] == tri[1]);
+            if (!repeated)
+                incidences.push_back({tri[at(i)], static_cast<int>(t)});  // once per triangle
+        }
     table.vertex_triangles = make_rows(point_count, incidences);
     return table;
 }
@@ -225,11 +238,17 @@ class FeatureGraph
 public:
     FeatureGraph(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
                  const EdgeTable& table, const FeatureOptions& options, std::vector<char> sharp)
-        : points_(points), triangles_(triangles), table_(table), options_(options),
-          sharp_(std::move(sharp)), open_vertex_(points.size(), 0)
+        : points_(points),
+          triangles_(triangles),
+          table_(table),
+          options_(options),
+          sharp_(std::move(sharp)),
+          open_vertex_(points.size(), 0)
     {
         for (int e = 0; e < static_cast<int>(table_.edges.size()); ++e)
-            if (table_.open(e)) open_vertex_[at(table_.edges[at(e)][0])] = open_vertex_[at(table_.edges[at(e)][1])] = 1;
+            if (table_.open(e))
+                open_vertex_[at(table_.edges[at(e)][0])] =
+                    open_vertex_[at(table_.edges[at(e)][1])] = 1;
     }
 
     /// Curves end, meet or turn sharply at corners; an isolated spike is one too.
@@ -281,12 +300,16 @@ public:
             }
             // An open boundary of a scan zig-zags: only its sharpest turns are corners.
             const bool open = open_vertex_[at(v)];
-            const double limit = open ? options_.boundary_corner_turn_angle_deg : options_.corner_turn_angle_deg;
+            const double limit =
+                open ? options_.boundary_corner_turn_angle_deg : options_.corner_turn_angle_deg;
             const Vec3& p = points_[at(v)];
-            const double turn = angle_between_deg(p - points_[at(ends[0])], points_[at(ends[1])] - p);
+            const double turn =
+                angle_between_deg(p - points_[at(ends[0])], points_[at(ends[1])] - p);
             if (turn <= limit) continue;
-            if (open) turn_corners.emplace_back(turn, v);  // may be thinned below
-            else corner_[at(v)] = 1;  // a ridge that turns sharply is a corner of the part
+            if (open)
+                turn_corners.emplace_back(turn, v);  // may be thinned below
+            else
+                corner_[at(v)] = 1;  // a ridge that turns sharply is a corner of the part
         }
         // Boundary turn corners closer than min_corner_spacing to a kept corner are zig-zag noise
         // at the scale of the target mesh: the sharpest turn of a cluster stays, the rest slide.
@@ -298,9 +321,9 @@ public:
         for (const auto& [turn, v] : turn_corners)
         {
             const Vec3& p = points_[at(v)];
-            const bool crowded = std::any_of(kept.begin(), kept.end(), [&](const Vec3& q) {
-                return length(q - p) < options_.min_corner_spacing;
-            });
+            const bool crowded = std::any_of(
+                kept.begin(), kept.end(),
+                [&](const Vec3& q) { return length(q - p) < options_.min_corner_spacing; });
             if (crowded) continue;
             corner_[at(v)] = 1;
             kept.push_back(p);
@@ -363,7 +386,8 @@ private:
         const int count = table_.vertex_triangles.size(v);
         if (count == 0) return std::numeric_limits<double>::quiet_NaN();
         const int* fan = table_.vertex_triangles.row(v);
-        auto position = [&](int t) {
+        auto position = [&](int t)
+        {
             const Triangle3& tri = triangles_[at(t)];
             return tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
         };
@@ -386,7 +410,8 @@ private:
                     next = fan[i];
                 }
             if (next < 0) return std::numeric_limits<double>::quiet_NaN();
-            if (next == start) return step == count - 1 ? sum : std::numeric_limits<double>::quiet_NaN();
+            if (next == start)
+                return step == count - 1 ? sum : std::numeric_limits<double>::quiet_NaN();
             t = next;
         }
         return std::numeric_limits<double>::quiet_NaN();
@@ -427,18 +452,21 @@ private:
 
 /// Sharpness per edge: open, non-manifold and ref-border edges are sharp; inner edges by the
 /// angle between their two faces' normals.
-std::vector<char> sharp_edges(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
-                              const std::vector<int>& refs, const EdgeTable& table, const FeatureOptions& options)
+std::vector<char> sharp_edges(const std::vector<Vec3>& points,
+                              const std::vector<Triangle3>& triangles, const std::vector<int>& refs,
+                              const EdgeTable& table, const FeatureOptions& options)
 {
     std::vector<Vec3> normal(triangles.size());
     for (std::size_t t = 0; t < triangles.size(); ++t)
-        normal[t] = unit_normal(points[at(triangles[t][0])], points[at(triangles[t][1])], points[at(triangles[t][2])]);
+        normal[t] = unit_normal(points[at(triangles[t][0])], points[at(triangles[t][1])],
+                                points[at(triangles[t][2])]);
     // An edge whose face normals' cosine is above that of the lowest sharp angle by a clear
     // margin is flat: its angle (an acos) is not computed. The margin is far above the rounding
     // of acos and of the degree conversion: the same decisions.
     const double lowest_sharp_deg = std::min(options.ridge_angle_deg, options.crease_angle_deg);
-    const double flat_cosine = lowest_sharp_deg > 0.0 ? std::cos(lowest_sharp_deg * pi / 180.0) + 1e-9
-                                                      : std::numeric_limits<double>::infinity();
+    const double flat_cosine = lowest_sharp_deg > 0.0
+                                   ? std::cos(lowest_sharp_deg * pi / 180.0) + 1e-9
+                                   : std::numeric_limits<double>::infinity();
     std::vector<char> sharp(table.edges.size(), 0);
     for (int e = 0; e < static_cast<int>(table.edges.size()); ++e)
     {
@@ -455,12 +483,15 @@ std::vector<char> sharp_edges(const std::vector<Vec3>& points, const std::vector
         }
         if (!options.detect_ridges) continue;
         const Vec3& n0 = normal[at(s0.triangle)];
-        const Vec3 n1 = s0.forward == s1.forward ? Vec3(-normal[at(s1.triangle)]) : normal[at(s1.triangle)];
+        const Vec3 n1 =
+            s0.forward == s1.forward ? Vec3(-normal[at(s1.triangle)]) : normal[at(s1.triangle)];
         const double cosine = cosine_between(n0, n1);
         if (cosine >= flat_cosine) continue;
         const double angle = std::acos(cosine) * 180.0 / pi;
-        if (angle > options.ridge_angle_deg) sharp[at(e)] = 1;
-        else if (angle > options.crease_angle_deg) sharp[at(e)] = 2;  // a crease: kept only in long chains
+        if (angle > options.ridge_angle_deg)
+            sharp[at(e)] = 1;
+        else if (angle > options.crease_angle_deg)
+            sharp[at(e)] = 2;  // a crease: kept only in long chains
     }
     return sharp;
 }
@@ -470,7 +501,8 @@ std::pair<int, int> chain_ends(const Chain& c, const EdgeTable& table)
 {
     const EdgeEnds& first = table.edges[at(c.edges.front())];
     if (c.edges.size() == 1) return {first[0], first[1]};
-    auto free_end = [&](const EdgeEnds& e, int neighbour) {
+    auto free_end = [&](const EdgeEnds& e, int neighbour)
+    {
         const EdgeEnds& n = table.edges[at(neighbour)];
         const bool shared = n[0] == e[0] || n[1] == e[0];
         return shared ? e[1] : e[0];
@@ -481,22 +513,25 @@ std::pair<int, int> chain_ends(const Chain& c, const EdgeTable& table)
 
 }  // namespace
 
-FeatureClassification classify_features(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
-                                        const FeatureOptions& options, const std::vector<EdgeEnds>& edges,
+FeatureClassification classify_features(const std::vector<Vec3>& points,
+                                        const std::vector<Triangle3>& triangles,
+                                        const FeatureOptions& options,
+                                        const std::vector<EdgeEnds>& edges,
                                         const std::vector<int>& triangle_refs)
 {
     const int point_count = static_cast<int>(points.size());
     check_triangle_indices(triangles, point_count);
     if (!triangle_refs.empty() && triangle_refs.size() != triangles.size())
-        throw InputError("features: " + std::to_string(triangle_refs.size()) + " refs given for "
-                         + std::to_string(triangles.size()) + " triangles");
+        throw InputError("features: " + std::to_string(triangle_refs.size()) + " refs given for " +
+                         std::to_string(triangles.size()) + " triangles");
     const EdgeTable table = build_edge_table(point_count, triangles, edges);
     const BoundingBox box = bounding_box(points);
     const double diagonal = points.empty() ? 0.0 : length(box.max - box.min);
 
     FeatureClassification result;
     FeatureSummary& summary = result.summary;
-    FeatureGraph graph(points, triangles, table, options, sharp_edges(points, triangles, triangle_refs, table, options));
+    FeatureGraph graph(points, triangles, table, options,
+                       sharp_edges(points, triangles, triangle_refs, table, options));
     std::vector<Chain> chains;
     // Dropping a noise chain can turn a corner into a plain curve vertex and merge two chains,
     // so classify again until nothing more is dropped.
@@ -563,11 +598,14 @@ FeatureClassification classify_features(const std::vector<Vec3>& points, const s
     }
     int corner = 0;
     for (int v = 0; v < point_count; ++v)
-        if (graph.corner()[at(v)]) result.vertex_class[at(v)] = {Dimension::Corner, corner++, false};
+        if (graph.corner()[at(v)])
+            result.vertex_class[at(v)] = {Dimension::Corner, corner++, false};
     for (const Classification& c : result.vertex_class)
     {
-        if (c.dimension == Dimension::Curve) ++(c.open_boundary ? summary.boundary_vertices : summary.ridge_vertices);
-        else if (c.dimension == Dimension::Corner) ++summary.corners;
+        if (c.dimension == Dimension::Curve)
+            ++(c.open_boundary ? summary.boundary_vertices : summary.ridge_vertices);
+        else if (c.dimension == Dimension::Corner)
+            ++summary.corners;
     }
     summary.curves = static_cast<std::size_t>(curve);
     return result;
@@ -587,7 +625,8 @@ FeatureSet feature_set(const FeatureClassification& classification)
     std::sort(features.ridge_edges.begin(), features.ridge_edges.end());
     std::sort(features.boundary_edges.begin(), features.boundary_edges.end());
     for (std::size_t v = 0; v < classification.vertex_class.size(); ++v)
-        if (classification.vertex_class[v].dimension == Dimension::Corner) features.corners.push_back(static_cast<int>(v));
+        if (classification.vertex_class[v].dimension == Dimension::Corner)
+            features.corners.push_back(static_cast<int>(v));
     return features;
 }
 
@@ -681,7 +720,8 @@ std::vector<FeatureChain> feature_chains(const FeatureSet& features, int point_c
     std::vector<char> used(edges.size(), 0);
     std::vector<FeatureChain> chains;
     // Follows unused edges from `start` through `first` until a break vertex or back at start.
-    auto walk = [&](int start, int first_incidence) {
+    auto walk = [&](int start, int first_incidence)
+    {
         FeatureChain chain;
         chain.vertices.push_back(start);
         int current = start;
@@ -694,8 +734,10 @@ std::vector<FeatureChain> feature_chains(const FeatureSet& features, int point_c
             {
                 // Back where it began: a loop through one break vertex ends on it (the line is
                 // not smooth there); a loop without any is closed.
-                if (breaks[at(start)]) chain.vertices.push_back(start);
-                else chain.closed = true;
+                if (breaks[at(start)])
+                    chain.vertices.push_back(start);
+                else
+                    chain.closed = true;
                 break;
             }
             chain.vertices.push_back(next);

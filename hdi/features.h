@@ -84,8 +84,8 @@ FeatureClassification classify_features(const std::vector<Vec3>& points,
 /// Edges are stored as (smaller index, larger index), sorted; corners sorted.
 struct FeatureSet
 {
-    std::vector<EdgeEnds> ridge_edges;     ///< inner curve edges (ridges, ref borders, non-manifold)
-    std::vector<int> corners;              ///< vertices that never move
+    std::vector<EdgeEnds> ridge_edges;  ///< inner curve edges (ridges, ref borders, non-manifold)
+    std::vector<int> corners;           ///< vertices that never move
     std::vector<EdgeEnds> boundary_edges;  ///< edges with one triangle (open boundary)
 };
 
@@ -102,7 +102,8 @@ std::vector<EdgeEnds> open_boundary_edges(const std::vector<Triangle3>& triangle
 /// A feature line between two corners (or branch points), or a closed loop without any.
 struct FeatureChain
 {
-    std::vector<int> vertices;  ///< consecutive along the line; a closed loop does not repeat its first vertex
+    std::vector<int>
+        vertices;  ///< consecutive along the line; a closed loop does not repeat its first vertex
     bool closed = false;
 };
 
@@ -112,6 +113,7 @@ std::vector<FeatureChain> feature_chains(const FeatureSet& features, int point_c
 
 /// Smooth patches: triangles joined across edges that are neither features nor non-manifold get
 /// the same id (0, 1, ...). A node on a ridge touches two or more patches: one side of each.
-std::vector<int> smooth_patches(const std::vector<Triangle3>& triangles, const FeatureSet& features);
+std::vector<int> smooth_patches(const std::vector<Triangle3>& triangles,
+                                const FeatureSet& features);
 
 }  // namespace hdimesh::hdi

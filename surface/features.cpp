@@ -40,7 +40,8 @@ FeatureSummary detect_features(SurfaceMesh& mesh, const FeatureOptions& options)
         edges.push_back({mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()});
     }
 
-    const hdi::FeatureClassification found = hdi::classify_features(points, triangles, options, edges, refs);
+    const hdi::FeatureClassification found =
+        hdi::classify_features(points, triangles, options, edges, refs);
     for (auto v : mesh.vertices())
     {
         const Classification& c = found.vertex_class[static_cast<std::size_t>(v.idx())];

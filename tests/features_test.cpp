@@ -3,6 +3,8 @@
 // caller's edge order; and the surface mesh's adapter (surface::detect_features), which must
 // answer exactly as the arrays do.
 
+#include "hdi/features.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <vector>
 
 #include "common/errors.h"
-#include "hdi/features.h"
 #include "surface/features.h"
 #include "surface/surface_io.h"
 #include "surface/surface_mesh.h"
@@ -50,8 +51,10 @@ struct Surface
         for (int i = 0; i < nu; ++i)
             for (int j = 0; j < nv; ++j)
             {
-                auto at = [&](int a, int b) { return add(origin + (double(a) / nu) * u + (double(b) / nv) * v); };
-                const int p00 = at(i, j), p10 = at(i + 1, j), p11 = at(i + 1, j + 1), p01 = at(i, j + 1);
+                auto at = [&](int a, int b)
+                { return add(origin + (double(a) / nu) * u + (double(b) / nv) * v); };
+                const int p00 = at(i, j), p10 = at(i + 1, j), p11 = at(i + 1, j + 1),
+                          p01 = at(i, j + 1);
                 triangles.push_back({p00, p10, p11});
                 triangles.push_back({p00, p11, p01});
             }
@@ -81,11 +84,13 @@ Surface disc(const std::vector<double>& radii, int around, double apex)
     Surface s;
     for (double r : radii)
         for (int i = 0; i < around; ++i)
-            s.points.emplace_back(r * std::cos(2 * pi * i / around), r * std::sin(2 * pi * i / around), 0.0);
+            s.points.emplace_back(r * std::cos(2 * pi * i / around),
+                                  r * std::sin(2 * pi * i / around), 0.0);
     for (std::size_t k = 0; k + 1 < radii.size(); ++k)
         for (int i = 0; i < around; ++i)
         {
-            const int a = static_cast<int>(k) * around + i, b = static_cast<int>(k) * around + (i + 1) % around;
+            const int a = static_cast<int>(k) * around + i,
+                      b = static_cast<int>(k) * around + (i + 1) % around;
             s.triangles.push_back({a, b, b + around});
             s.triangles.push_back({a, b + around, a + around});
         }
@@ -107,7 +112,8 @@ void check_invariants(const Surface& s, const FeatureClassification& c)
     REQUIRE(c.edge_class.size() == c.edges.size());
     std::map<std::pair<int, int>, int> uses;  // triangles per edge
     for (const Triangle3& t : s.triangles)
-        for (int i = 0; i < 3; ++i) ++uses[{std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3])}];
+        for (int i = 0; i < 3; ++i)
+            ++uses[{std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3])}];
     std::vector<int> curve_edges_at(s.points.size(), 0);
     std::vector<int> first_edge_of_curve;
     std::size_t ridge_edges = 0, boundary_edges = 0;
@@ -124,7 +130,8 @@ void check_invariants(const Surface& s, const FeatureClassification& c)
         }
         CHECK(ec.open_boundary == open);
         (open ? boundary_edges : ridge_edges) += 1;
-        if (ec.id == static_cast<int>(first_edge_of_curve.size())) first_edge_of_curve.push_back(static_cast<int>(e));
+        if (ec.id == static_cast<int>(first_edge_of_curve.size()))
+            first_edge_of_curve.push_back(static_cast<int>(e));
         CHECK(ec.id < static_cast<int>(first_edge_of_curve.size()));  // numbered by first edge
         for (int v : {a, b})
         {
@@ -150,7 +157,8 @@ void check_invariants(const Surface& s, const FeatureClassification& c)
 std::size_t count_class(const FeatureClassification& c, Dimension d)
 {
     return static_cast<std::size_t>(std::count_if(c.vertex_class.begin(), c.vertex_class.end(),
-                                                  [&](const Classification& x) { return x.dimension == d; }));
+                                                  [&](const Classification& x)
+                                                  { return x.dimension == d; }));
 }
 
 /// The surface as the surface tools build it from a file (surface_io's repairs find nothing here).
@@ -170,14 +178,16 @@ void check_mesh_agrees(const Surface& s, const FeatureOptions& options = {})
     surface::SurfaceMesh mesh = to_mesh(s);
     REQUIRE(mesh.n_vertices() == s.points.size());
     Surface arrays;
-    for (auto v : mesh.vertices()) arrays.points.emplace_back(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]);
+    for (auto v : mesh.vertices())
+        arrays.points.emplace_back(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]);
     for (auto f : mesh.faces())
     {
         auto fv = mesh.cfv_iter(f);
         const int a = fv->idx(), b = (++fv)->idx(), c = (++fv)->idx();
         arrays.triangles.push_back({a, b, c});
     }
-    const FeatureClassification c = hdi::classify_features(arrays.points, arrays.triangles, options);
+    const FeatureClassification c =
+        hdi::classify_features(arrays.points, arrays.triangles, options);
     check_invariants(arrays, c);
     const hdi::FeatureSummary summary = surface::detect_features(mesh, options);
     CHECK(summary.curves == c.summary.curves);
@@ -187,7 +197,8 @@ void check_mesh_agrees(const Surface& s, const FeatureOptions& options = {})
     {
         const Classification& vc = c.vertex_class[static_cast<std::size_t>(v.idx())];
         CHECK(mesh.property(props.vertex_class, v) == surface::to_vertex_class(vc));
-        CHECK(mesh.property(props.vertex_curve, v) == (vc.dimension == Dimension::Curve ? vc.id : surface::kNoCurve));
+        CHECK(mesh.property(props.vertex_curve, v) ==
+              (vc.dimension == Dimension::Curve ? vc.id : surface::kNoCurve));
     }
     REQUIRE(mesh.n_edges() == c.edges.size());
     for (auto e : mesh.edges())
@@ -197,7 +208,8 @@ void check_mesh_agrees(const Surface& s, const FeatureOptions& options = {})
         CHECK(mesh.from_vertex_handle(h).idx() == ends[0]);  // the same edge numbering
         CHECK(mesh.to_vertex_handle(h).idx() == ends[1]);
         const Classification& ec = c.edge_class[static_cast<std::size_t>(e.idx())];
-        CHECK(mesh.property(props.edge_curve, e) == (ec.dimension == Dimension::Curve ? ec.id : surface::kNoCurve));
+        CHECK(mesh.property(props.edge_curve, e) ==
+              (ec.dimension == Dimension::Curve ? ec.id : surface::kNoCurve));
     }
 }
 
@@ -237,7 +249,8 @@ TEST_CASE("features: a cube has 12 ridge curves between its 8 corners")
         const Classification& ce = c.edge_class[e];
         const Classification& re = r.edge_class[edge_count - 1 - e];
         REQUIRE(ce.dimension == re.dimension);
-        if (ce.dimension == Dimension::Curve) CHECK(c2r.emplace(ce.id, re.id).first->second == re.id);
+        if (ce.dimension == Dimension::Curve)
+            CHECK(c2r.emplace(ce.id, re.id).first->second == re.id);
     }
     CHECK(c2r.size() == 12);
     std::size_t last_curve_edge = edge_count - 1;
@@ -286,7 +299,9 @@ TEST_CASE("features: a folded strip's ridge ends on its open boundary at two cor
     CHECK(crease.summary.ridge_edges == static_cast<std::size_t>(n));
     FeatureOptions no_creases;
     no_creases.crease_angle_deg = no_creases.ridge_angle_deg;
-    CHECK(hdi::classify_features(shallow.points, shallow.triangles, no_creases).summary.ridge_edges == 0);
+    CHECK(
+        hdi::classify_features(shallow.points, shallow.triangles, no_creases).summary.ridge_edges ==
+        0);
 }
 
 TEST_CASE("features: a plane with a hole - the hole and the rim are closed boundary curves")
@@ -330,12 +345,14 @@ TEST_CASE("features: a cone tip on a smooth disc is an isolated corner")
     // Off: a cone defect limit of 360 degrees.
     FeatureOptions off = options;
     off.cone_defect_deg = 360;
-    CHECK(hdi::classify_features(s.points, s.triangles, off).vertex_class[tip].dimension == Dimension::Surface);
+    CHECK(hdi::classify_features(s.points, s.triangles, off).vertex_class[tip].dimension ==
+          Dimension::Surface);
     // Too sharp a spike (angle sum below the minimum) is not kept either: remeshing cannot
     // give it fair triangles.
     FeatureOptions narrow = options;
     narrow.cone_min_angle_sum_deg = 359;
-    CHECK(hdi::classify_features(s.points, s.triangles, narrow).vertex_class[tip].dimension == Dimension::Surface);
+    CHECK(hdi::classify_features(s.points, s.triangles, narrow).vertex_class[tip].dimension ==
+          Dimension::Surface);
 }
 
 TEST_CASE("features: an edge of three triangles is a curve whatever its length")
@@ -367,6 +384,7 @@ TEST_CASE("features: an edge of three triangles is a curve whatever its length")
     const hdi::FeatureSet f = hdi::feature_set(c);
     CHECK(f.ridge_edges.size() == 2);
     for (std::size_t v = 0; v < s.points.size(); ++v)
-        if (s.points[v].x() == 0 && s.points[v].y() == 0 && (s.points[v].z() == 0 || s.points[v].z() == 0.1))
+        if (s.points[v].x() == 0 && s.points[v].y() == 0 &&
+            (s.points[v].z() == 0 || s.points[v].z() == 0.1))
             CHECK(c.vertex_class[v].dimension == Dimension::Corner);
 }
