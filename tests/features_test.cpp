@@ -17,6 +17,7 @@
 #include "surface/features.h"
 #include "surface/surface_io.h"
 #include "surface/surface_mesh.h"
+#include "tests/fixtures.h"
 
 using namespace hdimesh;
 using hdi::EdgeEnds;
@@ -30,52 +31,8 @@ namespace
 
 constexpr double pi = 3.14159265358979323846;
 
-struct Surface
-{
-    std::vector<Vec3> points;
-    std::vector<Triangle3> triangles;
-
-    /// Adds the point unless one is already at the same place; returns its index.
-    int add(const Vec3& p)
-    {
-        const std::array<long long, 3> key{std::llround(p.x() * 1e9), std::llround(p.y() * 1e9),
-                                           std::llround(p.z() * 1e9)};
-        const auto it = where.find(key);
-        if (it != where.end()) return it->second;
-        points.push_back(p);
-        return where[key] = static_cast<int>(points.size()) - 1;
-    }
-    /// An nu x nv grid over origin + [0,1] u + [0,1] v (normal u x v).
-    void add_grid(const Vec3& origin, const Vec3& u, const Vec3& v, int nu, int nv)
-    {
-        for (int i = 0; i < nu; ++i)
-            for (int j = 0; j < nv; ++j)
-            {
-                auto at = [&](int a, int b)
-                { return add(origin + (double(a) / nu) * u + (double(b) / nv) * v); };
-                const int p00 = at(i, j), p10 = at(i + 1, j), p11 = at(i + 1, j + 1),
-                          p01 = at(i, j + 1);
-                triangles.push_back({p00, p10, p11});
-                triangles.push_back({p00, p11, p01});
-            }
-    }
-
-    std::map<std::array<long long, 3>, int> where;
-};
-
-/// The unit cube's surface, each face an n x n grid, outward normals.
-Surface cube(int n)
-{
-    Surface s;
-    const Vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1), o(0, 0, 0);
-    s.add_grid(o, y, x, n, n);
-    s.add_grid(o + z, x, y, n, n);
-    s.add_grid(o, x, z, n, n);
-    s.add_grid(o + y, z, x, n, n);
-    s.add_grid(o, z, y, n, n);
-    s.add_grid(o + x, y, z, n, n);
-    return s;
-}
+using Surface = fixtures::GridSurface;
+using fixtures::grid_cube;
 
 /// Rings of `around` vertices at radii r0 < r1 < ... in the plane z = 0, joined by triangles;
 /// `apex`: the centre, lifted to that height, joined to the first ring (0: a hole instead).
@@ -224,7 +181,7 @@ TEST_CASE("features: a cube has 12 ridge curves between its 8 corners")
     //   |/      |/
     //   +-------+
     const int n = 3;
-    const Surface s = cube(n);
+    const Surface s = grid_cube(n);
     const FeatureClassification c = hdi::classify_features(s.points, s.triangles);
     check_invariants(s, c);
     CHECK(c.summary.curves == 12);
