@@ -70,14 +70,10 @@ struct Rows
 struct EdgeTable
 {
     std::vector<EdgeEnds> edges;
-    Rows<Side> sides;            // per edge, in triangle order
-    Rows<int> vertex_edges;      // per vertex
-    Rows<int> vertex_triangles;  // per vertex
+    Rows<Side> sides;             // per edge, in triangle order
+    Rows<EdgeEnds> vertex_edges;  // per vertex: (other end, edge)
+    Rows<int> vertex_triangles;   // per vertex
 
-    int other_end(int e, int v) const
-    {
-        return edges[at(e)][0] == v ? edges[at(e)][1] : edges[at(e)][0];
-    }
     bool open(int e) const { return sides.size(e) == 1; }
 };
 
@@ -96,12 +92,11 @@ Rows<T> make_rows(int row_count, const std::vector<std::pair<int, T>>& pairs)
 }
 
 /// Every non-degenerate triangle side, keyed by its sorted vertex pair, sorted by key and then
-/// by (triangle, position): a key's first side is where a triangle first uses the edge.
+/// by triangle: the sides along one edge side by side.
 struct KeyedSide
 {
     EdgeEnds key;
     int triangle;
-    int position;
 };
 
 std::vector<KeyedSide> sorted_sides(const std::vector<Triangle3>& triangles)
@@ -113,15 +108,11 @@ std::vector<KeyedSide> sorted_sides(const std::vector<Triangle3>& triangles)
         {
             const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
             if (a == b) continue;  // a degenerate triangle's collapsed side is no edge
-            sides.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t), i});
+            sides.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t)});
         }
     std::sort(sides.begin(), sides.end(),
               [](const KeyedSide& x, const KeyedSide& y)
-              {
-                  if (x.key != y.key) return x.key < y.key;
-                  return x.triangle != y.triangle ? x.triangle < y.triangle
-                                                  : x.position < y.position;
-              });
+              { return x.key != y.key ? x.key < y.key : x.triangle < y.triangle; });
     return sides;
 }
 
@@ -130,86 +121,9 @@ std::vector<KeyedSide> sorted_sides(const std::vector<Triangle3>& triangles)
 EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triangles,
                            const std::vector<EdgeEnds>& given)
 {
-    const std::vector<KeyedSide> sides = sorted_sides(triangles);
-    // per side: the edge it lies on
-    std::vector<int> edge_of(sides.size(), -1);
     EdgeTable table;
-    if (given.empty())
-    {
-        struct FirstUse
-        {
-            int triangle, position;
-            std::size_t side;
-        };
-        std::vector<FirstUse> first;
-        for (std::size_t i = 0; i < sides.size(); ++i)
-            if (i == 0 || sides[i].key != sides[i - 1].key)
-                first.push_back({sides[i].triangle, sides[i].position, i});
-        std::sort(first.begin(), first.end(),
-                  [](const FirstUse& x, const FirstUse& y) {
-                      return x.triangle != y.triangle ? x.triangle < y.triangle
-                                                      : x.position < y.position;
-                  });
-        for (const FirstUse& f : first)
-        {
-            const Triangle3& t = triangles[at(f.triangle)];
-            const int e = static_cast<int>(table.edges.size());
-            table.edges.push_back({t[at(f.position)], t[at((f.position + 1) % 3)]});
-            for (std::size_t i = f.side; i < sides.size() && sides[i].key == sides[f.side].key; ++i)
-                edge_of[i] = e;
-        }
-    }
-    else
-    {
-        table.edges = given;
-        std::vector<std::pair<EdgeEnds, int>> keys;
-        keys.reserve(given.size());
-        for (std::size_t e = 0; e < given.size(); ++e)
-        {
-            const int a = given[e][0], b = given[e][1];
-            if (a < 0 || b < 0 || a >= point_count || b >= point_count || a == b)
-                throw InputError("features: edge " + std::to_string(e) + " has bad ends");
-            keys.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(e)});
-        }
-        std::sort(keys.begin(), keys.end());
-        for (std::size_t k = 1; k < keys.size(); ++k)
-            if (keys[k].first == keys[k - 1].first)
-                throw InputError("features: edges " + std::to_string(keys[k - 1].second) + " and " +
-                                 std::to_string(keys[k].second) + " join the same vertices");
-        for (std::size_t i = 0; i < sides.size(); ++i)
-        {
-            const auto it =
-                std::lower_bound(keys.begin(), keys.end(), std::make_pair(sides[i].key, -1));
-            if (it == keys.end() || it->first != sides[i].key)
-                throw InputError("features: a side of triangle " +
-                                 std::to_string(sides[i].triangle) + " is in no given edge");
-            edge_of[i] = it->second;
-        }
-    }
-
-    std::vector<std::pair<int, Side>> edge_sides;
-    edge_sides.reserve(sides.size());
-    for (std::size_t i = 0; i < sides.size(); ++i)
-    {
-        const Triangle3& t = triangles[at(sides[i].triangle)];
-        const bool forward = t[at(sides[i].position)] == table.edges[at(edge_of[i])][0];
-        edge_sides.push_back({edge_of[i], {sides[i].triangle, forward}});
-    }
-    // sides are sorted by triangle within a key, so each edge's row is in triangle order
-    table.sides = make_rows(static_cast<int>(table.edges.size()), edge_sides);
-    for (int e = 0; e < static_cast<int>(table.edges.size()); ++e)
-        if (table.sides.size(e) == 0)
-            throw InputError("features: edge " + std::to_string(e) + " is a side of no triangle");
-
     std::vector<std::pair<int, int>> incidences;
-    incidences.reserve(2 * table.edges.size());
-    for (std::size_t e = 0; e < table.edges.size(); ++e)
-    {
-        incidences.push_back({table.edges[e][0], static_cast<int>(e)});
-        incidences.push_back({table.edges[e][1], static_cast<int>(e)});
-    }
-    table.vertex_edges = make_rows(point_count, incidences);
-    incidences.clear();
+    incidences.reserve(3 * triangles.size());
     for (std::size_t t = 0; t < triangles.size(); ++t)
         for (int i = 0; i < 3; ++i)
         {
@@ -219,6 +133,93 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
                 incidences.push_back({tri[at(i)], static_cast<int>(t)});  // once per triangle
         }
     table.vertex_triangles = make_rows(point_count, incidences);
+    auto vertex_edge_rows = [&]()
+    {
+        std::vector<std::pair<int, EdgeEnds>> ends;
+        ends.reserve(2 * table.edges.size());
+        for (std::size_t e = 0; e < table.edges.size(); ++e)
+        {
+            const EdgeEnds& edge = table.edges[e];
+            ends.push_back({edge[0], {edge[1], static_cast<int>(e)}});
+            ends.push_back({edge[1], {edge[0], static_cast<int>(e)}});
+        }
+        table.vertex_edges = make_rows(point_count, ends);
+    };
+
+    // per triangle side (3 t + i, from corner i to i + 1): the edge it lies on (-1: degenerate)
+    std::vector<int> side_edge(3 * triangles.size(), -1);
+    if (given.empty())
+    {
+        // an edge is new unless a triangle up to this one (a's triangles, ascending) has it
+        auto known_edge = [&](int t, int a, int b)
+        {
+            for (int k = 0; k < table.vertex_triangles.size(a); ++k)
+            {
+                const int u = table.vertex_triangles.row(a)[k];
+                if (u > t) break;
+                for (int j = 0; j < 3; ++j)
+                {
+                    const int c = triangles[at(u)][at(j)], d = triangles[at(u)][at((j + 1) % 3)];
+                    const int e = side_edge[at(3 * u + j)];
+                    if (e >= 0 && ((c == a && d == b) || (c == b && d == a))) return e;
+                }
+            }
+            return -1;
+        };
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+            for (int i = 0; i < 3; ++i)
+            {
+                const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
+                if (a == b) continue;  // a degenerate triangle's collapsed side is no edge
+                int e = known_edge(static_cast<int>(t), a, b);
+                if (e < 0)
+                {
+                    e = static_cast<int>(table.edges.size());
+                    table.edges.push_back({a, b});
+                }
+                side_edge[3 * t + at(i)] = e;
+            }
+        vertex_edge_rows();
+    }
+    else
+    {
+        table.edges = given;
+        for (std::size_t e = 0; e < given.size(); ++e)
+        {
+            const int a = given[e][0], b = given[e][1];
+            if (a < 0 || b < 0 || a >= point_count || b >= point_count || a == b)
+                throw InputError("features: edge " + std::to_string(e) + " has bad ends");
+        }
+        vertex_edge_rows();
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+            for (int i = 0; i < 3; ++i)
+            {
+                const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
+                if (a == b) continue;
+                int e = -1;
+                for (int k = 0; k < table.vertex_edges.size(a) && e < 0; ++k)
+                    if (table.vertex_edges.row(a)[k][0] == b) e = table.vertex_edges.row(a)[k][1];
+                if (e < 0)
+                    throw InputError("features: side " + std::to_string(i) + " of triangle " +
+                                     std::to_string(t) + " is in no given edge");
+                side_edge[3 * t + at(i)] = e;
+            }
+    }
+
+    std::vector<std::pair<int, Side>> edge_sides;
+    edge_sides.reserve(side_edge.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        for (int i = 0; i < 3; ++i)
+        {
+            const int e = side_edge[3 * t + at(i)];
+            if (e < 0) continue;
+            const bool forward = triangles[t][at(i)] == table.edges[at(e)][0];
+            edge_sides.push_back({e, {static_cast<int>(t), forward}});
+        }
+    table.sides = make_rows(static_cast<int>(table.edges.size()), edge_sides);  // in triangle order
+    for (int e = 0; e < static_cast<int>(table.edges.size()); ++e)
+        if (table.sides.size(e) == 0)  // also a second edge between the same two vertices
+            throw InputError("features: edge " + std::to_string(e) + " is a side of no triangle");
     return table;
 }
 
@@ -268,7 +269,7 @@ public:
         for (int v = 0; v < n; ++v)
             if (sharp_degree_[at(v)] > 0)
                 for (int i = 0; i < table_.vertex_edges.size(v); ++i)
-                    beside_sharp_[at(table_.other_end(table_.vertex_edges.row(v)[i], v))] = 1;
+                    beside_sharp_[at(table_.vertex_edges.row(v)[i][0])] = 1;
         std::vector<std::pair<double, int>> turn_corners;
         for (int v = 0; v < n; ++v)
         {
@@ -286,9 +287,9 @@ public:
             int ends[2], open_edges = 0, found = 0;
             for (int i = 0; i < table_.vertex_edges.size(v); ++i)
             {
-                const int e = table_.vertex_edges.row(v)[i];
+                const auto [other, e] = table_.vertex_edges.row(v)[i];
                 if (!sharp_[at(e)] || found == 2) continue;
-                ends[found++] = table_.other_end(e, v);
+                ends[found++] = other;
                 open_edges += table_.open(e);
             }
             // An open boundary going on as an inner curve (only where the surface is not a
@@ -381,40 +382,40 @@ private:
     /// The sum of v's corner angles, taken clockwise around v from its last triangle (the order
     /// in which a mesh built triangle by triangle circulates, so the sums round alike); NaN when
     /// v's triangles are not one closed, consistently oriented fan.
-    double fan_angle_sum(int v) const
+    double fan_angle_sum(int v)
     {
+        constexpr double not_a_fan = std::numeric_limits<double>::quiet_NaN();
         const int count = table_.vertex_triangles.size(v);
-        if (count == 0) return std::numeric_limits<double>::quiet_NaN();
-        const int* fan = table_.vertex_triangles.row(v);
-        auto position = [&](int t)
+        if (count == 0) return not_a_fan;
+        // each triangle's corner at v: the vertices after and before v (read once)
+        ring_.clear();
+        for (int i = 0; i < count; ++i)
         {
-            const Triangle3& tri = triangles_[at(t)];
-            return tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-        };
+            const Triangle3& tri = triangles_[at(table_.vertex_triangles.row(v)[i])];
+            const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+            ring_.push_back({tri[at((k + 1) % 3)], tri[at((k + 2) % 3)]});
+        }
         const Vec3& p = points_[at(v)];
-        const int start = fan[count - 1];
-        int t = start;
+        const int start = count - 1;
+        int corner = start;
         double sum = 0.0;
         for (int step = 0; step < count; ++step)
         {
-            const Triangle3& tri = triangles_[at(t)];
-            const int k = position(t);
-            const int a = tri[at((k + 1) % 3)], b = tri[at((k + 2) % 3)];
+            const auto [a, b] = ring_[at(corner)];
             sum += angle_between_deg(points_[at(a)] - p, points_[at(b)] - p);
             // clockwise: across the edge (v, a), into the triangle where a comes just before v
             int next = -1;
             for (int i = 0; i < count; ++i)
-                if (triangles_[at(fan[i])][at((position(fan[i]) + 2) % 3)] == a)
+                if (ring_[at(i)][1] == a)
                 {
-                    if (next >= 0) return std::numeric_limits<double>::quiet_NaN();
-                    next = fan[i];
+                    if (next >= 0) return not_a_fan;
+                    next = i;
                 }
-            if (next < 0) return std::numeric_limits<double>::quiet_NaN();
-            if (next == start)
-                return step == count - 1 ? sum : std::numeric_limits<double>::quiet_NaN();
-            t = next;
+            if (next < 0) return not_a_fan;
+            if (next == start) return step == count - 1 ? sum : not_a_fan;
+            corner = next;
         }
-        return std::numeric_limits<double>::quiet_NaN();
+        return not_a_fan;
     }
 
     // Follows the curve from v (reached by edge `came`) through non-corner vertices of degree 2.
@@ -422,16 +423,17 @@ private:
     {
         while (!corner_[at(v)])
         {
-            int next = -1;
+            assert(sharp_degree_[at(v)] == 2 && "a vertex inside a curve has two curve edges");
+            int next = -1, next_end = -1;
             for (int i = 0; i < table_.vertex_edges.size(v); ++i)
             {
-                const int e = table_.vertex_edges.row(v)[i];
-                if (e != came && sharp_[at(e)]) next = e;
+                const auto [other, e] = table_.vertex_edges.row(v)[i];
+                if (e != came && sharp_[at(e)]) next = e, next_end = other;
             }
             if (next < 0 || visited[at(next)]) return;
             visited[at(next)] = 1;
             out.push_back(next);
-            v = table_.other_end(next, v);
+            v = next_end;
             came = next;
         }
     }
@@ -448,6 +450,7 @@ private:
     std::vector<int> sharp_degree_;   // per vertex: its sharp edges (find_corners' round)
     std::vector<char> beside_sharp_;  // per vertex: a neighbour has a sharp edge (the same round)
     std::vector<double> angle_sum_;   // per vertex: the sum of its corner angles (not_yet)
+    std::vector<std::array<int, 2>> ring_;  // fan_angle_sum's scratch: (after, before) per corner
 };
 
 /// Sharpness per edge: open, non-manifold and ref-border edges are sharp; inner edges by the
