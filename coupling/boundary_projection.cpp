@@ -45,8 +45,13 @@ BoundaryProjector::BoundaryProjector(const TetMesh& mesh, const ProjectionOption
     for (const auto& tri : mesh.triangles)
         triangles.push_back({model_id(tri[0]), model_id(tri[1]), model_id(tri[2])});
 
-    // features: detected on the input, plus the ridges and corners the file declares
-    hdi::FeatureSet features = hdi::detect_features(points, triangles, options.features);
+    // features: detected on the input by the surface's rules (borders between triangle refs
+    // included), plus the ridges and corners the file declares
+    const std::vector<int> no_refs;
+    const std::vector<int>& refs =
+        mesh.triangle_refs.size() == mesh.triangles.size() ? mesh.triangle_refs : no_refs;
+    hdi::FeatureSet features =
+        hdi::feature_set(hdi::classify_features(points, triangles, options.features, {}, refs));
     for (int e : mesh.ridges)
     {
         const auto& edge = mesh.edges[e];

@@ -16,7 +16,7 @@ namespace hdimesh::coupling
 struct ProjectionOptions
 {
     hdi::HdiOptions model;          ///< the meshfree model's neighbours, weights, tolerances
-    hdi::FeatureOptions features;   ///< ridge detection on the input boundary
+    hdi::FeatureOptions features;   ///< feature detection on the input boundary (as the surface's)
     /// A move that would push a tet's quality below this is shortened (halved until valid).
     double min_quality_after_move = 1e-3;
     int max_halvings = 6;
@@ -35,7 +35,7 @@ class BoundaryProjector
 {
 public:
     /// Builds the model from mesh.triangles (all boundary and interface triangles), with the
-    /// mesh's ridges and corners as features plus those detected by dihedral angle.
+    /// mesh's ridges and corners as features plus those hdi::classify_features finds.
     BoundaryProjector(const volume::TetMesh& mesh, const ProjectionOptions& options = {});
     ~BoundaryProjector();
 

@@ -1,9 +1,14 @@
 #include "hdi/features.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
-#include <cstdint>
+#include <limits>
 #include <numeric>
+#include <string>
+#include <utility>
+
+#include "common/errors.h"
 
 namespace hdimesh::hdi
 {
@@ -11,238 +16,684 @@ namespace hdimesh::hdi
 namespace
 {
 
-constexpr double degrees = 3.14159265358979323846 / 180.0;
+constexpr double pi = 3.14159265358979323846;
 
-/// One triangle side, keyed by its sorted vertex pair; `forward` when the triangle runs
-/// smaller -> larger along it (two consistently oriented neighbours disagree on it).
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+// The vector arithmetic of the surface mesh (OpenMesh), term by term in its order, so that a
+// decision at a threshold is the same whichever mesh asks.
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+Vec3 unit_normal(const Vec3& a, const Vec3& b, const Vec3& c)
+{
+    const Vec3 u = b - a, v = c - a;
+    const Vec3 n(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+    const double len = length(n);
+    return len > 0.0 ? Vec3(n[0] / len, n[1] / len, n[2] / len) : Vec3(0, 0, 0);
+}
+
+// The cosine of the angle between a and b; 1 (no angle) when either is zero.
+double cosine_between(const Vec3& a, const Vec3& b)
+{
+    const double na = length(a), nb = length(b);
+    if (!(na > 0.0) || !(nb > 0.0)) return 1.0;
+    return std::clamp(dot(a, b) / (na * nb), -1.0, 1.0);
+}
+
+double angle_between_deg(const Vec3& a, const Vec3& b)
+{
+    return std::acos(cosine_between(a, b)) * 180.0 / pi;
+}
+
+/// One triangle side along an edge; `forward` when the triangle runs from -> to along it (two
+/// consistently oriented neighbours disagree on it).
 struct Side
 {
-    std::array<int, 2> edge;
     int triangle;
     bool forward;
 };
 
-std::vector<Side> sorted_sides(const std::vector<Triangle3>& triangles)
+/// Compressed rows: row r is items[begin[r] .. begin[r + 1]).
+template <class T>
+struct Rows
 {
-    std::vector<Side> sides;
+    std::vector<int> begin;
+    std::vector<T> items;
+
+    int size(int r) const { return begin[at(r) + 1] - begin[at(r)]; }
+    const T* row(int r) const { return items.data() + begin[at(r)]; }
+};
+
+/// The edges of a triangle surface, the sides along each, and each vertex's edges and
+/// triangles (in edge and triangle order).
+struct EdgeTable
+{
+    std::vector<EdgeEnds> edges;
+    Rows<Side> sides;             // per edge, in triangle order
+    Rows<EdgeEnds> vertex_edges;  // per vertex: (other end, edge)
+    Rows<int> vertex_triangles;   // per vertex
+
+    bool open(int e) const { return sides.size(e) == 1; }
+};
+
+/// Fills rows from (row, item) pairs, keeping their order within a row.
+template <class T>
+Rows<T> make_rows(int row_count, const std::vector<std::pair<int, T>>& pairs)
+{
+    Rows<T> rows;
+    rows.begin.assign(at(row_count) + 1, 0);
+    for (const auto& p : pairs) ++rows.begin[at(p.first) + 1];
+    std::partial_sum(rows.begin.begin(), rows.begin.end(), rows.begin.begin());
+    rows.items.resize(pairs.size());
+    std::vector<int> fill(rows.begin.begin(), rows.begin.end() - 1);
+    for (const auto& p : pairs) rows.items[at(fill[at(p.first)]++)] = p.second;
+    return rows;
+}
+
+/// Every non-degenerate triangle side, keyed by its sorted vertex pair, sorted by key and then
+/// by triangle: the sides along one edge side by side.
+struct KeyedSide
+{
+    EdgeEnds key;
+    int triangle;
+};
+
+std::vector<KeyedSide> sorted_sides(const std::vector<Triangle3>& triangles)
+{
+    std::vector<KeyedSide> sides;
     sides.reserve(3 * triangles.size());
     for (std::size_t t = 0; t < triangles.size(); ++t)
-        for (std::size_t i = 0; i < 3; ++i) {
-            const int a = triangles[t][i];
-            const int b = triangles[t][(i + 1) % 3];
+        for (int i = 0; i < 3; ++i)
+        {
+            const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
             if (a == b) continue;  // a degenerate triangle's collapsed side is no edge
-            sides.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t), a < b});
+            sides.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t)});
         }
-    std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
-        return x.edge < y.edge || (x.edge == y.edge && x.triangle < y.triangle);
-    });
+    std::sort(sides.begin(), sides.end(),
+              [](const KeyedSide& x, const KeyedSide& y)
+              { return x.key != y.key ? x.key < y.key : x.triangle < y.triangle; });
     return sides;
 }
 
-/// Vertices joined by feature edges, as adjacency lists (neighbour, edge id).
-struct FeatureGraph
+/// The edge table of the triangles; with `given` edges, numbered as given (each must be a
+/// side, and each side one of them), else in the order triangles first use them.
+EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triangles,
+                           const std::vector<EdgeEnds>& given)
 {
-    std::vector<int> begin;                       // CSR offsets, size point_count + 1
-    std::vector<std::array<int, 2>> incidences;  // (other vertex, edge id)
+    EdgeTable table;
+    std::vector<std::pair<int, int>> incidences;
+    incidences.reserve(3 * triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        for (int i = 0; i < 3; ++i)
+        {
+            const Triangle3& tri = triangles[t];
+            const bool repeated = (i > 0 && tri[at(i)] == tri[0]) || (i > 1 && tri[2] == tri[1]);
+            if (!repeated)
+                incidences.push_back({tri[at(i)], static_cast<int>(t)});  // once per triangle
+        }
+    table.vertex_triangles = make_rows(point_count, incidences);
+    auto vertex_edge_rows = [&]()
+    {
+        std::vector<std::pair<int, EdgeEnds>> ends;
+        ends.reserve(2 * table.edges.size());
+        for (std::size_t e = 0; e < table.edges.size(); ++e)
+        {
+            const EdgeEnds& edge = table.edges[e];
+            ends.push_back({edge[0], {edge[1], static_cast<int>(e)}});
+            ends.push_back({edge[1], {edge[0], static_cast<int>(e)}});
+        }
+        table.vertex_edges = make_rows(point_count, ends);
+    };
 
-    FeatureGraph(const std::vector<std::array<int, 2>>& edges, int point_count)
-        : begin(static_cast<std::size_t>(point_count) + 1, 0), incidences(2 * edges.size())
+    // per triangle side (3 t + i, from corner i to i + 1): the edge it lies on (-1: degenerate)
+    std::vector<int> side_edge(3 * triangles.size(), -1);
+    if (given.empty())
     {
-        for (const auto& e : edges) {
-            ++begin[static_cast<std::size_t>(e[0]) + 1];
-            ++begin[static_cast<std::size_t>(e[1]) + 1];
+        // an edge is new unless a triangle up to this one (a's triangles, ascending) has it
+        auto known_edge = [&](int t, int a, int b)
+        {
+            for (int k = 0; k < table.vertex_triangles.size(a); ++k)
+            {
+                const int u = table.vertex_triangles.row(a)[k];
+                if (u > t) break;
+                for (int j = 0; j < 3; ++j)
+                {
+                    const int c = triangles[at(u)][at(j)], d = triangles[at(u)][at((j + 1) % 3)];
+                    const int e = side_edge[at(3 * u + j)];
+                    if (e >= 0 && ((c == a && d == b) || (c == b && d == a))) return e;
+                }
+            }
+            return -1;
+        };
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+            for (int i = 0; i < 3; ++i)
+            {
+                const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
+                if (a == b) continue;  // a degenerate triangle's collapsed side is no edge
+                int e = known_edge(static_cast<int>(t), a, b);
+                if (e < 0)
+                {
+                    e = static_cast<int>(table.edges.size());
+                    table.edges.push_back({a, b});
+                }
+                side_edge[3 * t + at(i)] = e;
+            }
+        vertex_edge_rows();
+    }
+    else
+    {
+        table.edges = given;
+        for (std::size_t e = 0; e < given.size(); ++e)
+        {
+            const int a = given[e][0], b = given[e][1];
+            if (a < 0 || b < 0 || a >= point_count || b >= point_count || a == b)
+                throw InputError("features: edge " + std::to_string(e) + " has bad ends");
         }
-        std::partial_sum(begin.begin(), begin.end(), begin.begin());
-        std::vector<int> fill(begin.begin(), begin.end() - 1);
-        for (std::size_t i = 0; i < edges.size(); ++i) {
-            const int a = edges[i][0];
-            const int b = edges[i][1];
-            incidences[static_cast<std::size_t>(fill[static_cast<std::size_t>(a)]++)] = {b, static_cast<int>(i)};
-            incidences[static_cast<std::size_t>(fill[static_cast<std::size_t>(b)]++)] = {a, static_cast<int>(i)};
+        vertex_edge_rows();
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+            for (int i = 0; i < 3; ++i)
+            {
+                const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
+                if (a == b) continue;
+                int e = -1;
+                for (int k = 0; k < table.vertex_edges.size(a) && e < 0; ++k)
+                    if (table.vertex_edges.row(a)[k][0] == b) e = table.vertex_edges.row(a)[k][1];
+                if (e < 0)
+                    throw InputError("features: side " + std::to_string(i) + " of triangle " +
+                                     std::to_string(t) + " is in no given edge");
+                side_edge[3 * t + at(i)] = e;
+            }
+    }
+
+    std::vector<std::pair<int, Side>> edge_sides;
+    edge_sides.reserve(side_edge.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        for (int i = 0; i < 3; ++i)
+        {
+            const int e = side_edge[3 * t + at(i)];
+            if (e < 0) continue;
+            const bool forward = triangles[t][at(i)] == table.edges[at(e)][0];
+            edge_sides.push_back({e, {static_cast<int>(t), forward}});
         }
-    }
-    int degree(int v) const
-    {
-        return begin[static_cast<std::size_t>(v) + 1] - begin[static_cast<std::size_t>(v)];
-    }
-    const std::array<int, 2>& incidence(int v, int i) const
-    {
-        return incidences[static_cast<std::size_t>(begin[static_cast<std::size_t>(v)] + i)];
-    }
+    table.sides = make_rows(static_cast<int>(table.edges.size()), edge_sides);  // in triangle order
+    for (int e = 0; e < static_cast<int>(table.edges.size()); ++e)
+        if (table.sides.size(e) == 0)  // also a second edge between the same two vertices
+            throw InputError("features: edge " + std::to_string(e) + " is a side of no triangle");
+    return table;
+}
+
+/// A maximal run of sharp edges between corners (or a closed loop without any).
+struct Chain
+{
+    std::vector<int> edges;  // consecutive along the run
+    double length = 0.0;
+    bool open = false;      // along an open boundary
+    bool topology = false;  // has an edge of three or more triangles
 };
 
-int find_root(std::vector<int>& parent, int v)
+/// The corner rules and the chains of sharp edges between corners, recomputed each round as
+/// noise chains are dropped.
+class FeatureGraph
 {
-    while (parent[static_cast<std::size_t>(v)] != v) {
-        parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
-        v = parent[static_cast<std::size_t>(v)];
+public:
+    FeatureGraph(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
+                 const EdgeTable& table, const FeatureOptions& options, std::vector<char> sharp)
+        : points_(points),
+          triangles_(triangles),
+          table_(table),
+          options_(options),
+          sharp_(std::move(sharp)),
+          open_vertex_(points.size(), 0)
+    {
+        for (int e = 0; e < static_cast<int>(table_.edges.size()); ++e)
+            if (table_.open(e))
+                open_vertex_[at(table_.edges[at(e)][0])] =
+                    open_vertex_[at(table_.edges[at(e)][1])] = 1;
     }
-    return v;
-}
 
-/// Vertices where the lines made of `edges` branch (3+ edges), end (1) or turn by more than
-/// corner_angle_deg (2), sorted.
-std::vector<int> line_corners(const std::vector<std::array<int, 2>>& edges, const std::vector<Vec3>& points,
-                              double corner_angle_deg)
-{
-    const int point_count = static_cast<int>(points.size());
-    const FeatureGraph graph(edges, point_count);
-    const double cos_turn = std::cos(corner_angle_deg * degrees);
-    std::vector<int> corners;
-    for (int v = 0; v < point_count; ++v) {
-        const int degree = graph.degree(v);
-        if (degree == 0) continue;
-        bool corner = degree != 2;
-        if (degree == 2) {
-            const Vec3& p = points[static_cast<std::size_t>(v)];
-            const Vec3 in = (p - points[static_cast<std::size_t>(graph.incidence(v, 0)[0])]).normalized();
-            const Vec3 out = (points[static_cast<std::size_t>(graph.incidence(v, 1)[0])] - p).normalized();
-            corner = in.dot(out) < cos_turn;  // the direction changes by more than the corner angle
-        }
-        if (corner) corners.push_back(v);
-    }
-    return corners;
-}
-
-/// The robustness rule. Sharp edges are cut into chains at branch points, ends and sharp turns.
-/// A chain at least min_length long is a ridge; a shorter chain is kept only when both of its
-/// ends are ends of kept chains (a short ridge between two corners of a machined part), repeated
-/// until nothing changes. Scan noise (single creases, short zig-zags, spurs) goes.
-std::vector<std::array<int, 2>> keep_ridge_chains(const std::vector<std::array<int, 2>>& sharp,
-                                                  const std::vector<Vec3>& points, double min_length,
-                                                  double corner_angle_deg)
-{
-    FeatureSet lines;
-    lines.ridge_edges = sharp;
-    lines.corners = line_corners(sharp, points, corner_angle_deg);
-    const std::vector<FeatureChain> chains = feature_chains(lines, static_cast<int>(points.size()));
-    std::vector<char> kept(chains.size(), 0);
-    std::vector<int> kept_ends(points.size(), 0);  // per vertex: ends of kept chains there
-    auto keep = [&](std::size_t c) {
-        kept[c] = 1;
-        if (!chains[c].closed) {
-            ++kept_ends[static_cast<std::size_t>(chains[c].vertices.front())];
-            ++kept_ends[static_cast<std::size_t>(chains[c].vertices.back())];
-        }
-    };
-    for (std::size_t c = 0; c < chains.size(); ++c) {
-        const std::vector<int>& v = chains[c].vertices;
-        double length = 0;
-        for (std::size_t i = 0; i + 1 < v.size(); ++i)
-            length += (points[static_cast<std::size_t>(v[i])] - points[static_cast<std::size_t>(v[i + 1])]).norm();
-        if (chains[c].closed)
-            length += (points[static_cast<std::size_t>(v.back())] - points[static_cast<std::size_t>(v.front())]).norm();
-        if (length >= min_length) keep(c);
-    }
-    for (bool changed = true; changed;) {
-        changed = false;
-        for (std::size_t c = 0; c < chains.size(); ++c) {
-            if (kept[c] || chains[c].closed) continue;
-            if (kept_ends[static_cast<std::size_t>(chains[c].vertices.front())] > 0
-                && kept_ends[static_cast<std::size_t>(chains[c].vertices.back())] > 0) {
-                keep(c);
-                changed = true;
+    /// Curves end, meet or turn sharply at corners; an isolated spike is one too.
+    void find_corners()
+    {
+        const int n = static_cast<int>(points_.size());
+        corner_.assign(at(n), 0);
+        sharp_degree_.assign(at(n), 0);
+        for (int e = 0; e < static_cast<int>(table_.edges.size()); ++e)
+            if (sharp_[at(e)])
+            {
+                ++sharp_degree_[at(table_.edges[at(e)][0])];
+                ++sharp_degree_[at(table_.edges[at(e)][1])];
             }
+        // Marked around the sharp vertices (few), not asked of every other vertex's ring.
+        beside_sharp_.assign(at(n), 0);
+        for (int v = 0; v < n; ++v)
+            if (sharp_degree_[at(v)] > 0)
+                for (int i = 0; i < table_.vertex_edges.size(v); ++i)
+                    beside_sharp_[at(table_.vertex_edges.row(v)[i][0])] = 1;
+        std::vector<std::pair<double, int>> turn_corners;
+        for (int v = 0; v < n; ++v)
+        {
+            const int degree = sharp_degree_[at(v)];
+            if (degree == 0)
+            {
+                if (is_cone_tip(v)) corner_[at(v)] = 1;
+                continue;
+            }
+            if (degree != 2)
+            {
+                corner_[at(v)] = 1;
+                continue;
+            }
+            int ends[2], open_edges = 0, found = 0;
+            for (int i = 0; i < table_.vertex_edges.size(v); ++i)
+            {
+                const auto [other, e] = table_.vertex_edges.row(v)[i];
+                if (!sharp_[at(e)] || found == 2) continue;
+                ends[found++] = other;
+                open_edges += table_.open(e);
+            }
+            // An open boundary going on as an inner curve (only where the surface is not a
+            // manifold): a curve is open all along or nowhere.
+            if (open_edges == 1)
+            {
+                corner_[at(v)] = 1;
+                continue;
+            }
+            // An open boundary of a scan zig-zags: only its sharpest turns are corners.
+            const bool open = open_vertex_[at(v)];
+            const double limit =
+                open ? options_.boundary_corner_turn_angle_deg : options_.corner_turn_angle_deg;
+            const Vec3& p = points_[at(v)];
+            const double turn =
+                angle_between_deg(p - points_[at(ends[0])], points_[at(ends[1])] - p);
+            if (turn <= limit) continue;
+            if (open)
+                turn_corners.emplace_back(turn, v);  // may be thinned below
+            else
+                corner_[at(v)] = 1;  // a ridge that turns sharply is a corner of the part
+        }
+        // Boundary turn corners closer than min_corner_spacing to a kept corner are zig-zag noise
+        // at the scale of the target mesh: the sharpest turn of a cluster stays, the rest slide.
+        std::sort(turn_corners.begin(), turn_corners.end(),
+                  [](const auto& a, const auto& b) { return a.first > b.first; });
+        std::vector<Vec3> kept;
+        for (int v = 0; v < n; ++v)
+            if (corner_[at(v)]) kept.push_back(points_[at(v)]);
+        for (const auto& [turn, v] : turn_corners)
+        {
+            const Vec3& p = points_[at(v)];
+            const bool crowded = std::any_of(
+                kept.begin(), kept.end(),
+                [&](const Vec3& q) { return length(q - p) < options_.min_corner_spacing; });
+            if (crowded) continue;
+            corner_[at(v)] = 1;
+            kept.push_back(p);
         }
     }
-    std::vector<std::array<int, 2>> ridges;
-    for (std::size_t c = 0; c < chains.size(); ++c) {
-        if (!kept[c]) continue;
-        const std::vector<int>& v = chains[c].vertices;
-        const std::size_t segments = chains[c].closed ? v.size() : v.size() - 1;
-        for (std::size_t i = 0; i < segments; ++i) {
-            const int a = v[i], b = v[(i + 1) % v.size()];
-            ridges.push_back({std::min(a, b), std::max(a, b)});
+
+    /// Maximal runs of sharp edges between corners (closed loops have no corner).
+    std::vector<Chain> chains() const
+    {
+        std::vector<Chain> out;
+        std::vector<char> visited(table_.edges.size(), 0);
+        for (int e = 0; e < static_cast<int>(table_.edges.size()); ++e)
+        {
+            if (!sharp_[at(e)] || visited[at(e)]) continue;
+            Chain chain;
+            chain.open = table_.open(e);
+            std::vector<int> forward, backward;
+            visited[at(e)] = 1;
+            walk(table_.edges[at(e)][1], e, visited, forward);
+            walk(table_.edges[at(e)][0], e, visited, backward);
+            chain.edges.assign(backward.rbegin(), backward.rend());
+            chain.edges.push_back(e);
+            chain.edges.insert(chain.edges.end(), forward.begin(), forward.end());
+            for (int ce : chain.edges)
+            {
+                const EdgeEnds& ends = table_.edges[at(ce)];
+                chain.length += length(points_[at(ends[1])] - points_[at(ends[0])]);
+                chain.topology = chain.topology || table_.sides.size(ce) > 2;
+            }
+            out.push_back(std::move(chain));
+        }
+        return out;
+    }
+
+    std::vector<char>& sharp() { return sharp_; }
+    const std::vector<char>& corner() const { return corner_; }
+
+private:
+    /// A spike of the input (a cone tip: angle defect above cone_defect_deg) is kept as a
+    /// corner, or remeshing would cut it off; only when its cone is wide enough for fair
+    /// triangles around it (angle sum at least cone_min_angle_sum_deg). Reads beside_sharp_.
+    bool is_cone_tip(int v)
+    {
+        if (open_vertex_[at(v)] || !(options_.cone_defect_deg < 360.0)) return false;
+        // Only an isolated spike: next to a ridge the defect belongs to the ridge's geometry.
+        if (beside_sharp_[at(v)]) return false;
+        // The angle sum is geometry only: computed once, though find_corners runs each round.
+        if (angle_sum_.empty()) angle_sum_.assign(points_.size(), not_yet);
+        double& sum = angle_sum_[at(v)];
+        if (sum == not_yet) sum = fan_angle_sum(v);
+        if (std::isnan(sum)) return false;  // not one closed fan
+        return 360.0 - sum > options_.cone_defect_deg && sum >= options_.cone_min_angle_sum_deg;
+    }
+
+    /// The sum of v's corner angles, taken clockwise around v from its last triangle (the order
+    /// in which a mesh built triangle by triangle circulates, so the sums round alike); NaN when
+    /// v's triangles are not one closed, consistently oriented fan.
+    double fan_angle_sum(int v)
+    {
+        constexpr double not_a_fan = std::numeric_limits<double>::quiet_NaN();
+        const int count = table_.vertex_triangles.size(v);
+        if (count == 0) return not_a_fan;
+        // each triangle's corner at v: the vertices after and before v (read once)
+        ring_.clear();
+        for (int i = 0; i < count; ++i)
+        {
+            const Triangle3& tri = triangles_[at(table_.vertex_triangles.row(v)[i])];
+            const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+            ring_.push_back({tri[at((k + 1) % 3)], tri[at((k + 2) % 3)]});
+        }
+        const Vec3& p = points_[at(v)];
+        const int start = count - 1;
+        int corner = start;
+        double sum = 0.0;
+        for (int step = 0; step < count; ++step)
+        {
+            const auto [a, b] = ring_[at(corner)];
+            sum += angle_between_deg(points_[at(a)] - p, points_[at(b)] - p);
+            // clockwise: across the edge (v, a), into the triangle where a comes just before v
+            int next = -1;
+            for (int i = 0; i < count; ++i)
+                if (ring_[at(i)][1] == a)
+                {
+                    if (next >= 0) return not_a_fan;
+                    next = i;
+                }
+            if (next < 0) return not_a_fan;
+            if (next == start) return step == count - 1 ? sum : not_a_fan;
+            corner = next;
+        }
+        return not_a_fan;
+    }
+
+    // Follows the curve from v (reached by edge `came`) through non-corner vertices of degree 2.
+    void walk(int v, int came, std::vector<char>& visited, std::vector<int>& out) const
+    {
+        while (!corner_[at(v)])
+        {
+            assert(sharp_degree_[at(v)] == 2 && "a vertex inside a curve has two curve edges");
+            int next = -1, next_end = -1;
+            for (int i = 0; i < table_.vertex_edges.size(v); ++i)
+            {
+                const auto [other, e] = table_.vertex_edges.row(v)[i];
+                if (e != came && sharp_[at(e)]) next = e, next_end = other;
+            }
+            if (next < 0 || visited[at(next)]) return;
+            visited[at(next)] = 1;
+            out.push_back(next);
+            v = next_end;
+            came = next;
         }
     }
-    std::sort(ridges.begin(), ridges.end());
-    return ridges;
+
+    static constexpr double not_yet = -1.0;
+
+    const std::vector<Vec3>& points_;
+    const std::vector<Triangle3>& triangles_;
+    const EdgeTable& table_;
+    const FeatureOptions& options_;
+    std::vector<char> sharp_;        // per edge: 0 flat, 1 sharp, 2 a crease (kept in long chains)
+    std::vector<char> open_vertex_;  // per vertex: on an open-boundary edge
+    std::vector<char> corner_;
+    std::vector<int> sharp_degree_;   // per vertex: its sharp edges (find_corners' round)
+    std::vector<char> beside_sharp_;  // per vertex: a neighbour has a sharp edge (the same round)
+    std::vector<double> angle_sum_;   // per vertex: the sum of its corner angles (not_yet)
+    std::vector<std::array<int, 2>> ring_;  // fan_angle_sum's scratch: (after, before) per corner
+};
+
+/// Sharpness per edge: open, non-manifold and ref-border edges are sharp; inner edges by the
+/// angle between their two faces' normals.
+std::vector<char> sharp_edges(const std::vector<Vec3>& points,
+                              const std::vector<Triangle3>& triangles, const std::vector<int>& refs,
+                              const EdgeTable& table, const FeatureOptions& options)
+{
+    std::vector<Vec3> normal(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        normal[t] = unit_normal(points[at(triangles[t][0])], points[at(triangles[t][1])],
+                                points[at(triangles[t][2])]);
+    // An edge whose face normals' cosine is above that of the lowest sharp angle by a clear
+    // margin is flat: its angle (an acos) is not computed. The margin is far above the rounding
+    // of acos and of the degree conversion: the same decisions.
+    const double lowest_sharp_deg = std::min(options.ridge_angle_deg, options.crease_angle_deg);
+    const double flat_cosine = lowest_sharp_deg > 0.0
+                                   ? std::cos(lowest_sharp_deg * pi / 180.0) + 1e-9
+                                   : std::numeric_limits<double>::infinity();
+    std::vector<char> sharp(table.edges.size(), 0);
+    for (int e = 0; e < static_cast<int>(table.edges.size()); ++e)
+    {
+        if (table.sides.size(e) != 2)
+        {
+            sharp[at(e)] = 1;  // an open boundary, or topology
+            continue;
+        }
+        const Side s0 = table.sides.row(e)[0], s1 = table.sides.row(e)[1];
+        if (!refs.empty() && refs[at(s0.triangle)] != refs[at(s1.triangle)])
+        {
+            sharp[at(e)] = 1;  // a border between refs is kept like a ridge
+            continue;
+        }
+        if (!options.detect_ridges) continue;
+        const Vec3& n0 = normal[at(s0.triangle)];
+        const Vec3 n1 =
+            s0.forward == s1.forward ? Vec3(-normal[at(s1.triangle)]) : normal[at(s1.triangle)];
+        const double cosine = cosine_between(n0, n1);
+        if (cosine >= flat_cosine) continue;
+        const double angle = std::acos(cosine) * 180.0 / pi;
+        if (angle > options.ridge_angle_deg)
+            sharp[at(e)] = 1;
+        else if (angle > options.crease_angle_deg)
+            sharp[at(e)] = 2;  // a crease: kept only in long chains
+    }
+    return sharp;
+}
+
+/// The ends of a chain: of its first and last edge, those not shared with the next in line.
+std::pair<int, int> chain_ends(const Chain& c, const EdgeTable& table)
+{
+    const EdgeEnds& first = table.edges[at(c.edges.front())];
+    if (c.edges.size() == 1) return {first[0], first[1]};
+    auto free_end = [&](const EdgeEnds& e, int neighbour)
+    {
+        const EdgeEnds& n = table.edges[at(neighbour)];
+        const bool shared = n[0] == e[0] || n[1] == e[0];
+        return shared ? e[1] : e[0];
+    };
+    const EdgeEnds& last = table.edges[at(c.edges.back())];
+    return {free_end(first, c.edges[1]), free_end(last, c.edges[c.edges.size() - 2])};
 }
 
 }  // namespace
 
-std::vector<std::array<int, 2>> open_boundary_edges(const std::vector<Triangle3>& triangles)
+FeatureClassification classify_features(const std::vector<Vec3>& points,
+                                        const std::vector<Triangle3>& triangles,
+                                        const FeatureOptions& options,
+                                        const std::vector<EdgeEnds>& edges,
+                                        const std::vector<int>& triangle_refs)
 {
-    const std::vector<Side> sides = sorted_sides(triangles);
-    std::vector<std::array<int, 2>> boundary;
-    for (std::size_t i = 0; i < sides.size();) {
-        std::size_t j = i;
-        while (j < sides.size() && sides[j].edge == sides[i].edge) ++j;
-        if (j - i == 1) boundary.push_back(sides[i].edge);
-        i = j;
+    const int point_count = static_cast<int>(points.size());
+    check_triangle_indices(triangles, point_count);
+    if (!triangle_refs.empty() && triangle_refs.size() != triangles.size())
+        throw InputError("features: " + std::to_string(triangle_refs.size()) + " refs given for " +
+                         std::to_string(triangles.size()) + " triangles");
+    const EdgeTable table = build_edge_table(point_count, triangles, edges);
+    const BoundingBox box = bounding_box(points);
+    const double diagonal = points.empty() ? 0.0 : length(box.max - box.min);
+
+    FeatureClassification result;
+    FeatureSummary& summary = result.summary;
+    FeatureGraph graph(points, triangles, table, options,
+                       sharp_edges(points, triangles, triangle_refs, table, options));
+    std::vector<Chain> chains;
+    // Dropping a noise chain can turn a corner into a plain curve vertex and merge two chains,
+    // so classify again until nothing more is dropped.
+    for (int round = 0; round < 8; ++round)
+    {
+        graph.find_corners();
+        chains = graph.chains();
+        // A chain long enough is a ridge; a shorter one only when both its ends are ends of
+        // ridges (a short ridge between corners of a machined part); the rest is noise.
+        std::vector<char> kept(chains.size(), 0);
+        std::vector<char> ridge_end(points.size(), 0);
+        for (std::size_t i = 0; i < chains.size(); ++i)
+        {
+            const Chain& c = chains[i];
+            const bool crease_only = std::all_of(c.edges.begin(), c.edges.end(),
+                                                 [&](int e) { return graph.sharp()[at(e)] == 2; });
+            const double needed = (crease_only ? 2.0 : 1.0) * options.min_ridge_length * diagonal;
+            if (c.open || c.topology || c.length >= needed)
+            {
+                kept[i] = 1;
+                const auto [a, b] = chain_ends(c, table);
+                ridge_end[at(a)] = ridge_end[at(b)] = 1;
+            }
+        }
+        for (bool grew = true; grew;)
+        {
+            grew = false;
+            for (std::size_t i = 0; i < chains.size(); ++i)
+            {
+                if (kept[i]) continue;
+                const auto [a, b] = chain_ends(chains[i], table);
+                if (!ridge_end[at(a)] || !ridge_end[at(b)]) continue;
+                kept[i] = 1;
+                grew = true;
+            }
+        }
+        bool dropped = false;
+        for (std::size_t i = 0; i < chains.size(); ++i)
+        {
+            if (kept[i]) continue;
+            for (int e : chains[i].edges) graph.sharp()[at(e)] = 0;
+            ++summary.dropped_ridge_chains;
+            dropped = true;
+        }
+        if (!dropped) break;
     }
-    return boundary;
+
+    const Classification smooth{Dimension::Surface, kNoModelEntity, false};
+    result.edges = table.edges;
+    result.vertex_class.assign(points.size(), smooth);
+    result.edge_class.assign(table.edges.size(), smooth);
+    int curve = 0;
+    for (const Chain& c : chains)
+    {
+        const Classification on_curve{Dimension::Curve, curve, c.open};
+        for (int e : c.edges)
+        {
+            result.edge_class[at(e)] = on_curve;
+            result.vertex_class[at(table.edges[at(e)][1])] = on_curve;
+            result.vertex_class[at(table.edges[at(e)][0])] = on_curve;
+            (c.open ? summary.boundary_edges : summary.ridge_edges) += 1;
+        }
+        ++curve;
+    }
+    int corner = 0;
+    for (int v = 0; v < point_count; ++v)
+        if (graph.corner()[at(v)])
+            result.vertex_class[at(v)] = {Dimension::Corner, corner++, false};
+    for (const Classification& c : result.vertex_class)
+    {
+        if (c.dimension == Dimension::Curve)
+            ++(c.open_boundary ? summary.boundary_vertices : summary.ridge_vertices);
+        else if (c.dimension == Dimension::Corner)
+            ++summary.corners;
+    }
+    summary.curves = static_cast<std::size_t>(curve);
+    return result;
+}
+
+FeatureSet feature_set(const FeatureClassification& classification)
+{
+    FeatureSet features;
+    for (std::size_t e = 0; e < classification.edges.size(); ++e)
+    {
+        const Classification& c = classification.edge_class[e];
+        if (c.dimension != Dimension::Curve) continue;
+        const EdgeEnds& ends = classification.edges[e];
+        const EdgeEnds sorted{std::min(ends[0], ends[1]), std::max(ends[0], ends[1])};
+        (c.open_boundary ? features.boundary_edges : features.ridge_edges).push_back(sorted);
+    }
+    std::sort(features.ridge_edges.begin(), features.ridge_edges.end());
+    std::sort(features.boundary_edges.begin(), features.boundary_edges.end());
+    for (std::size_t v = 0; v < classification.vertex_class.size(); ++v)
+        if (classification.vertex_class[v].dimension == Dimension::Corner)
+            features.corners.push_back(static_cast<int>(v));
+    return features;
 }
 
 FeatureSet detect_features(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
                            const FeatureOptions& options)
 {
-    const int point_count = static_cast<int>(points.size());
-    check_triangle_indices(triangles, point_count);
-    std::vector<Vec3> face_normals(triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        face_normals[t] = triangle_normal(points[static_cast<std::size_t>(triangles[t][0])],
-                                          points[static_cast<std::size_t>(triangles[t][1])],
-                                          points[static_cast<std::size_t>(triangles[t][2])]);
+    return feature_set(classify_features(points, triangles, options));
+}
 
-    FeatureSet features;
-    std::vector<std::array<int, 2>> sharp;
-    std::vector<std::array<int, 2>> non_manifold;
-    const double cos_ridge = std::cos(options.ridge_angle_deg * degrees);
-    const std::vector<Side> sides = sorted_sides(triangles);
-    for (std::size_t i = 0; i < sides.size();) {
+std::vector<EdgeEnds> open_boundary_edges(const std::vector<Triangle3>& triangles)
+{
+    const std::vector<KeyedSide> sides = sorted_sides(triangles);
+    std::vector<EdgeEnds> boundary;
+    for (std::size_t i = 0; i < sides.size();)
+    {
         std::size_t j = i;
-        while (j < sides.size() && sides[j].edge == sides[i].edge) ++j;
-        if (j - i == 1) {
-            features.boundary_edges.push_back(sides[i].edge);
-        } else if (j - i > 2) {
-            non_manifold.push_back(sides[i].edge);
-        } else if (options.detect_ridges) {
-            const Vec3& n0 = face_normals[static_cast<std::size_t>(sides[i].triangle)];
-            Vec3 n1 = face_normals[static_cast<std::size_t>(sides[i + 1].triangle)];
-            if (sides[i].forward == sides[i + 1].forward) n1 = -n1;  // inconsistent orientation
-            const bool both_usable = n0.squaredNorm() > 0 && n1.squaredNorm() > 0;
-            if (both_usable && n0.dot(n1) < cos_ridge) sharp.push_back(sides[i].edge);
-        }
+        while (j < sides.size() && sides[j].key == sides[i].key) ++j;
+        if (j - i == 1) boundary.push_back(sides[i].key);
         i = j;
     }
-
-    const double diagonal = bounding_box(points).diagonal();
-    features.ridge_edges = keep_ridge_chains(sharp, points, options.min_chain_length_fraction * diagonal,
-                                             options.corner_angle_deg);
-    features.ridge_edges.insert(features.ridge_edges.end(), non_manifold.begin(), non_manifold.end());
-    std::sort(features.ridge_edges.begin(), features.ridge_edges.end());
-
-    // Corners: where feature lines meet (3+), end (1), or turn sharply (2).
-    std::vector<std::array<int, 2>> all = features.ridge_edges;
-    all.insert(all.end(), features.boundary_edges.begin(), features.boundary_edges.end());
-    features.corners = line_corners(all, points, options.corner_angle_deg);
-    return features;
+    return boundary;
 }
+
+namespace
+{
+
+int find_root(std::vector<int>& parent, int v)
+{
+    while (parent[at(v)] != v)
+    {
+        parent[at(v)] = parent[at(parent[at(v)])];
+        v = parent[at(v)];
+    }
+    return v;
+}
+
+}  // namespace
 
 std::vector<int> smooth_patches(const std::vector<Triangle3>& triangles, const FeatureSet& features)
 {
-    std::vector<std::array<int, 2>> cuts = features.ridge_edges;
+    std::vector<EdgeEnds> cuts = features.ridge_edges;
     cuts.insert(cuts.end(), features.boundary_edges.begin(), features.boundary_edges.end());
     std::sort(cuts.begin(), cuts.end());
     std::vector<int> parent(triangles.size());
     std::iota(parent.begin(), parent.end(), 0);
-    const std::vector<Side> sides = sorted_sides(triangles);
-    for (std::size_t i = 0; i < sides.size();) {
+    const std::vector<KeyedSide> sides = sorted_sides(triangles);
+    for (std::size_t i = 0; i < sides.size();)
+    {
         std::size_t j = i;
-        while (j < sides.size() && sides[j].edge == sides[i].edge) ++j;
-        if (j - i == 2 && !std::binary_search(cuts.begin(), cuts.end(), sides[i].edge)) {
+        while (j < sides.size() && sides[j].key == sides[i].key) ++j;
+        if (j - i == 2 && !std::binary_search(cuts.begin(), cuts.end(), sides[i].key))
+        {
             const int ra = find_root(parent, sides[i].triangle);
             const int rb = find_root(parent, sides[i + 1].triangle);
-            if (ra != rb) parent[static_cast<std::size_t>(ra)] = rb;
+            if (ra != rb) parent[at(ra)] = rb;
         }
         i = j;
     }
     std::vector<int> patch_of_root(triangles.size(), -1);
     std::vector<int> patch(triangles.size());
     int patch_count = 0;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-        int& id = patch_of_root[static_cast<std::size_t>(find_root(parent, static_cast<int>(t)))];
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+    {
+        int& id = patch_of_root[at(find_root(parent, static_cast<int>(t)))];
         if (id < 0) id = patch_count++;
         patch[t] = id;
     }
@@ -251,53 +702,66 @@ std::vector<int> smooth_patches(const std::vector<Triangle3>& triangles, const F
 
 std::vector<FeatureChain> feature_chains(const FeatureSet& features, int point_count)
 {
-    std::vector<std::array<int, 2>> edges = features.ridge_edges;
+    std::vector<EdgeEnds> edges = features.ridge_edges;
     edges.insert(edges.end(), features.boundary_edges.begin(), features.boundary_edges.end());
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-    const FeatureGraph graph(edges, point_count);
+    std::vector<std::pair<int, EdgeEnds>> incidences;  // (vertex, (other vertex, edge id))
+    incidences.reserve(2 * edges.size());
+    for (std::size_t i = 0; i < edges.size(); ++i)
+    {
+        incidences.push_back({edges[i][0], {edges[i][1], static_cast<int>(i)}});
+        incidences.push_back({edges[i][1], {edges[i][0], static_cast<int>(i)}});
+    }
+    const Rows<EdgeEnds> graph = make_rows(point_count, incidences);
 
-    std::vector<char> breaks(static_cast<std::size_t>(point_count), 0);
-    for (int v = 0; v < point_count; ++v) breaks[static_cast<std::size_t>(v)] = graph.degree(v) != 2 && graph.degree(v) > 0;
+    std::vector<char> breaks(at(point_count), 0);
+    for (int v = 0; v < point_count; ++v) breaks[at(v)] = graph.size(v) != 2 && graph.size(v) > 0;
     for (int c : features.corners)
-        if (c >= 0 && c < point_count) breaks[static_cast<std::size_t>(c)] = 1;
+        if (c >= 0 && c < point_count) breaks[at(c)] = 1;
 
     std::vector<char> used(edges.size(), 0);
     std::vector<FeatureChain> chains;
     // Follows unused edges from `start` through `first` until a break vertex or back at start.
-    auto walk = [&](int start, int first_incidence) {
+    auto walk = [&](int start, int first_incidence)
+    {
         FeatureChain chain;
         chain.vertices.push_back(start);
         int current = start;
         int incidence = first_incidence;
-        while (true) {
-            const auto [next, edge] = graph.incidence(current, incidence);
-            used[static_cast<std::size_t>(edge)] = 1;
-            if (next == start) {
+        while (true)
+        {
+            const auto [next, edge] = graph.row(current)[incidence];
+            used[at(edge)] = 1;
+            if (next == start)
+            {
                 // Back where it began: a loop through one break vertex ends on it (the line is
                 // not smooth there); a loop without any is closed.
-                if (breaks[static_cast<std::size_t>(start)]) chain.vertices.push_back(start);
-                else chain.closed = true;
+                if (breaks[at(start)])
+                    chain.vertices.push_back(start);
+                else
+                    chain.closed = true;
                 break;
             }
             chain.vertices.push_back(next);
-            if (breaks[static_cast<std::size_t>(next)]) break;
+            if (breaks[at(next)]) break;
             current = next;
             incidence = -1;
-            for (int i = 0; i < graph.degree(current); ++i)
-                if (!used[static_cast<std::size_t>(graph.incidence(current, i)[1])]) incidence = i;
+            for (int i = 0; i < graph.size(current); ++i)
+                if (!used[at(graph.row(current)[i][1])]) incidence = i;
             if (incidence < 0) break;
         }
         chains.push_back(std::move(chain));
     };
-    for (int v = 0; v < point_count; ++v) {
-        if (!breaks[static_cast<std::size_t>(v)]) continue;
-        for (int i = 0; i < graph.degree(v); ++i)
-            if (!used[static_cast<std::size_t>(graph.incidence(v, i)[1])]) walk(v, i);
+    for (int v = 0; v < point_count; ++v)
+    {
+        if (!breaks[at(v)]) continue;
+        for (int i = 0; i < graph.size(v); ++i)
+            if (!used[at(graph.row(v)[i][1])]) walk(v, i);
     }
     for (int v = 0; v < point_count; ++v)  // loops without any break vertex
-        for (int i = 0; i < graph.degree(v); ++i)
-            if (!used[static_cast<std::size_t>(graph.incidence(v, i)[1])]) walk(v, i);
+        for (int i = 0; i < graph.size(v); ++i)
+            if (!used[at(graph.row(v)[i][1])]) walk(v, i);
     return chains;
 }
 

@@ -197,4 +197,39 @@ double mean_edge_length(const hdi::TriangleSurface& surface)
     return sum / (3.0 * static_cast<double>(surface.triangles.size()));
 }
 
+int GridSurface::add(const hdi::Vec3& p)
+{
+    const std::array<long long, 3> key{std::llround(p.x() * 1e9), std::llround(p.y() * 1e9),
+                                       std::llround(p.z() * 1e9)};
+    const auto it = where_.find(key);
+    if (it != where_.end()) return it->second;
+    points.push_back(p);
+    return where_[key] = static_cast<int>(points.size()) - 1;
+}
+
+void GridSurface::add_grid(const hdi::Vec3& origin, const hdi::Vec3& u, const hdi::Vec3& v, int nu, int nv)
+{
+    for (int i = 0; i < nu; ++i)
+        for (int j = 0; j < nv; ++j)
+        {
+            auto at = [&](int a, int b) { return add(origin + (double(a) / nu) * u + (double(b) / nv) * v); };
+            const int p00 = at(i, j), p10 = at(i + 1, j), p11 = at(i + 1, j + 1), p01 = at(i, j + 1);
+            triangles.push_back({p00, p10, p11});
+            triangles.push_back({p00, p11, p01});
+        }
+}
+
+GridSurface grid_cube(int n)
+{
+    GridSurface s;
+    const hdi::Vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1), o(0, 0, 0);
+    s.add_grid(o, y, x, n, n);      // z = 0, normal -z
+    s.add_grid(o + z, x, y, n, n);  // z = 1, normal +z
+    s.add_grid(o, x, z, n, n);      // y = 0, normal -y
+    s.add_grid(o + y, z, x, n, n);  // y = 1, normal +y
+    s.add_grid(o, z, y, n, n);      // x = 0, normal -x
+    s.add_grid(o + x, y, z, n, n);  // x = 1, normal +x
+    return s;
+}
+
 }  // namespace hdimesh::fixtures

@@ -2,8 +2,10 @@
 // Tiny procedural meshes for tests. Each builds its tets positive, its adjacency, and its
 // boundary triangles (outward, ref 1), so check_mesh accepts it as is.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,26 @@ hdi::TriangleSurface icosphere(int levels);
 
 /// Mean edge length of a triangle surface (each interior edge counted twice): its sampling h.
 double mean_edge_length(const hdi::TriangleSurface& surface);
+
+/// A triangle surface assembled from parallelogram grids; a point added again at the same place
+/// (to 1e-9) is the same vertex.
+struct GridSurface
+{
+    std::vector<hdi::Vec3> points;
+    std::vector<hdi::Triangle3> triangles;
+
+    /// Adds the point unless one is already at the same place; returns its index.
+    int add(const hdi::Vec3& p);
+    /// An nu x nv grid over origin + [0,1] u + [0,1] v (normal u x v), each cell cut by its
+    /// diagonal from (0,0) to (1,1).
+    void add_grid(const hdi::Vec3& origin, const hdi::Vec3& u, const hdi::Vec3& v, int nu, int nv);
+
+private:
+    std::map<std::array<long long, 3>, int> where_;
+};
+
+/// The unit cube's surface, each face an n x n grid, outward normals.
+GridSurface grid_cube(int n);
 
 /// Path of a file in the project's data/ folder.
 std::string data_path(const std::string& name);

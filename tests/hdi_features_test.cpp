@@ -1,12 +1,12 @@
-// Feature detection (ridges by dihedral angle, the chain-length robustness rule, corners, open
-// boundaries), feature chains and smooth patches, and the model's use of them: each side of a
-// ridge fitted apart, points on a feature line projected onto its 1-D fit.
+// The feature set the HDI model takes (detect_features: ridges by dihedral angle, the
+// chain-length robustness rule, corners, open boundaries), feature chains and smooth patches, and
+// the model's use of them: each side of a ridge fitted apart, points on a feature line projected
+// onto its 1-D fit. The detector's own rules: tests/features_test.cpp.
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <set>
 #include <vector>
 
@@ -25,47 +25,8 @@ namespace
 
 constexpr double pi = 3.14159265358979323846;
 
-struct Surface
-{
-    std::vector<Vec3> points;
-    std::vector<Triangle3> triangles;
-
-    /// Adds the point unless one is already at the same place; returns its index.
-    int add(const Vec3& p, std::map<std::array<long long, 3>, int>& where)
-    {
-        const std::array<long long, 3> key{std::llround(p.x() * 1e9), std::llround(p.y() * 1e9), std::llround(p.z() * 1e9)};
-        const auto it = where.find(key);
-        if (it != where.end()) return it->second;
-        points.push_back(p);
-        return where[key] = static_cast<int>(points.size()) - 1;
-    }
-    /// An n x n grid over the parallelogram origin + [0,1] u + [0,1] v (normal u x v).
-    void add_grid(const Vec3& origin, const Vec3& u, const Vec3& v, int n, std::map<std::array<long long, 3>, int>& where)
-    {
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) {
-                auto at = [&](int a, int b) { return add(origin + (double(a) / n) * u + (double(b) / n) * v, where); };
-                const int p00 = at(i, j), p10 = at(i + 1, j), p11 = at(i + 1, j + 1), p01 = at(i, j + 1);
-                triangles.push_back({p00, p10, p11});
-                triangles.push_back({p00, p11, p01});
-            }
-    }
-};
-
-/// The unit cube's surface, each face an n x n grid, outward normals.
-Surface cube(int n)
-{
-    Surface s;
-    std::map<std::array<long long, 3>, int> where;
-    const Vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1), o(0, 0, 0);
-    s.add_grid(o, y, x, n, where);      // z = 0, normal -z
-    s.add_grid(o + z, x, y, n, where);  // z = 1, normal +z
-    s.add_grid(o, x, z, n, where);      // y = 0, normal -y
-    s.add_grid(o + y, z, x, n, where);  // y = 1, normal +y
-    s.add_grid(o, z, y, n, where);      // x = 0, normal -x
-    s.add_grid(o + x, y, z, n, where);  // x = 1, normal +x
-    return s;
-}
+using Surface = hdimesh::fixtures::GridSurface;
+using hdimesh::fixtures::grid_cube;
 
 /// Two unit squares folded at 90 degrees along the line x = 1, z = 0 (an open "book").
 ///        B (x = 1, z in [0,1])
@@ -75,9 +36,8 @@ Surface cube(int n)
 Surface fold(int n)
 {
     Surface s;
-    std::map<std::array<long long, 3>, int> where;
-    s.add_grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), n, where);  // A, normal +z
-    s.add_grid(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), n, where);  // B, normal +x
+    s.add_grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), n, n);  // A, normal +z
+    s.add_grid(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), n, n);  // B, normal +x
     return s;
 }
 
@@ -93,7 +53,7 @@ std::set<int> vertex_set(const std::vector<std::array<int, 2>>& edges)
 TEST_CASE("features: a cube's 12 edges are ridges, its 8 vertices corners, its 6 faces patches")
 {
     const int n = 4;
-    const Surface s = cube(n);
+    const Surface s = grid_cube(n);
     REQUIRE(s.points.size() == static_cast<std::size_t>(6 * n * n + 2));  // Euler: V = E - F + 2
     const FeatureSet f = detect_features(s.points, s.triangles);
     CHECK(f.ridge_edges.size() == static_cast<std::size_t>(12 * n));
@@ -122,15 +82,17 @@ TEST_CASE("features: a cube's 12 edges are ridges, its 8 vertices corners, its 6
     }
     const std::vector<int> patch = smooth_patches(s.triangles, f);
     CHECK(std::set<int>(patch.begin(), patch.end()).size() == 6);
-    // Ridges can be switched off; a closed cube then has no feature at all.
+    // Ridges can be switched off; a closed cube then has no ridge, and its 8 vertices are
+    // isolated spikes (angle defect 90 degrees, angle sum 270): corners still.
     FeatureOptions off;
     off.detect_ridges = false;
     const FeatureSet none = detect_features(s.points, s.triangles, off);
     CHECK(none.ridge_edges.empty());
-    CHECK(none.corners.empty());
-    // A ridge angle above 90 degrees sees no cube edge.
+    CHECK(none.corners == f.corners);
+    // A ridge (and crease) angle above 90 degrees sees no cube edge.
     FeatureOptions obtuse;
     obtuse.ridge_angle_deg = 100;
+    obtuse.crease_angle_deg = 100;
     CHECK(detect_features(s.points, s.triangles, obtuse).ridge_edges.empty());
 }
 
@@ -144,23 +106,23 @@ TEST_CASE("features: an isolated crease (a spike of noise) is not a ridge")
     //   . . . . .
     const int cells = 150;
     Surface s;
-    std::map<std::array<long long, 3>, int> where;
-    s.add_grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), cells, where);
-    const int lifted = s.add(Vec3(0.5, 0.5, 0), where);
+    s.add_grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), cells, cells);
+    const int lifted = s.add(Vec3(0.5, 0.5, 0));
     s.points[static_cast<std::size_t>(lifted)].z() = 1.0 / cells;
     FeatureOptions keep_all;
-    keep_all.min_chain_length_fraction = 0;
+    keep_all.min_ridge_length = 0;
     const FeatureSet raw = detect_features(s.points, s.triangles, keep_all);
     REQUIRE(!raw.ridge_edges.empty());  // the spike's edges are sharp at 45 degrees
     const FeatureSet f = detect_features(s.points, s.triangles);
     CHECK(f.ridge_edges.empty());
     // The open boundary is a feature: 4 x 150 edges, and a corner wherever it turns by 90 degrees.
+    // The spike's tip, its creases gone, is an isolated cone: kept as a corner.
     CHECK(f.boundary_edges.size() == static_cast<std::size_t>(4 * cells));
-    CHECK(f.corners.size() == 4);
+    CHECK(f.corners.size() == 5);
+    CHECK(std::binary_search(f.corners.begin(), f.corners.end(), lifted));
     // A triangle with flipped orientation is not mistaken for a crease.
     Surface flat;
-    std::map<std::array<long long, 3>, int> flat_where;
-    flat.add_grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 6, flat_where);
+    flat.add_grid(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 6, 6);
     std::swap(flat.triangles[20][1], flat.triangles[20][2]);
     CHECK(detect_features(flat.points, flat.triangles).ridge_edges.empty());
 }
@@ -250,13 +212,13 @@ TEST_CASE("features: fandisk's ridge network survives the noise rule whole")
 {
     const TriangleSurface input = read_obj(hdimesh::fixtures::data_path("fandisk.obj"));
     FeatureOptions keep_all;
-    keep_all.min_chain_length_fraction = 0;
+    keep_all.min_ridge_length = 0;
     const FeatureSet raw = detect_features(input.points, input.triangles, keep_all);
     const FeatureSet f = detect_features(input.points, input.triangles);
     MESSAGE("fandisk: " << f.ridge_edges.size() << " ridge edges, " << f.corners.size() << " corners, "
             << feature_chains(f, static_cast<int>(input.points.size())).size() << " ridge lines");
     CHECK(f.ridge_edges == raw.ridge_edges);  // no fandisk ridge is noise
-    CHECK(f.ridge_edges.size() == 706);
+    CHECK(f.ridge_edges.size() == 722);  // the 45-degree ridges and the long 30-45 degree creases
     CHECK(f.boundary_edges.empty());
     CHECK(f.corners.size() == 25);  // 22 junctions of three ridges, 2 ridge ends, 1 sharp turn
 }
