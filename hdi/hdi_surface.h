@@ -28,9 +28,8 @@ namespace hdimesh::hdi
 struct HdiOptions
 {
     using Weight = WeightFunction;
-    /// n: input nodes per fit (the paper: 10-20; at most 256). 12 with interpolating weights: on
-    /// data/sphere480.mesh (156 nodes) every edge midpoint lands within 7e-4 of the unit sphere;
-    /// 16 gives 1.3e-3 (wider windows, where a quadratic is a worse sphere).
+    /// n: input nodes per fit (the paper: 10-20; at most 256). Fewer keep the window small,
+    /// where a quadratic patch fits a curved surface best.
     int neighbours = 12;
     Weight weight = Weight::Interpolating;  ///< w(s), s = d / rho
     double window_factor = 1.1;             ///< rho = window_factor * distance to the n-th node

@@ -92,8 +92,7 @@ KnnIndex::KnnIndex(const std::vector<Eigen::Vector3d>& points) : impl_(std::make
     for (std::size_t i = 0; i < points.size(); ++i)
         for (int d = 0; d < 3; ++d) impl_->coordinates[3 * i + d] = points[i][d];
     flann::Matrix<double> dataset(impl_->coordinates.data(), points.size(), 3);
-    // Leaves of 16 points: the model asks for ~16 neighbours, so a few leaves answer a query
-    // (measured on the bunny: 8, 12 and 16 are within noise, 4 is slower).
+    // Leaves of 16 points: the model asks for ~16 neighbours, so a few leaves answer a query.
     impl_->tree = std::make_unique<Tree>(dataset, flann::KDTreeSingleIndexParams(16, true));
     impl_->tree->buildIndex();
 }
