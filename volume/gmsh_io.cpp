@@ -22,7 +22,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "volume/io_detail.h"
+#include "volume/detail/io.h"
 
 namespace hdimesh::volume::io_detail
 {

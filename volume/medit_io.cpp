@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "volume/io_detail.h"
+#include "volume/detail/io.h"
 
 namespace hdimesh::volume::io_detail
 {

@@ -12,7 +12,7 @@
 
 #include "common/atomic_file.h"
 #include "common/errors.h"
-#include "volume/io_detail.h"
+#include "volume/detail/io.h"
 #include "volume/tet_tables.h"
 
 namespace hdimesh::volume

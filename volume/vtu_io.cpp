@@ -8,7 +8,7 @@
 #include <string>
 
 #include "volume/geometry.h"
-#include "volume/io_detail.h"
+#include "volume/detail/io.h"
 
 namespace hdimesh::volume::io_detail
 {

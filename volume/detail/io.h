@@ -1,8 +1,8 @@
 #pragma once
 // Private machinery of the tet-mesh readers and writers (medit_io.cpp, gmsh_io.cpp, vtu_io.cpp):
 // the validation every reader ends with, the live-tet numbering every writer uses, and the
-// per-format entry points. Not part of the public API: only volume/*_io.cpp include it (it is
-// installed with the other headers because the module installs them all).
+// per-format entry points. Private (detail/): only volume/*_io.cpp include it, and it is not
+// installed.
 
 #include <ostream>
 #include <string>
