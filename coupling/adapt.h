@@ -35,14 +35,13 @@ struct AdaptOptions
     int verbosity = 1;
 };
 
+/// One refinement pass: what it split, the mesh after it, what the projection did.
 struct AdaptPassReport
 {
     int pass = 0;
     int edges_split = 0;
-    int tets = 0;
-    int vertices = 0;
-    int projected = 0;
-    int shortened = 0;
+    int tets = 0, vertices = 0;       ///< after the pass
+    int projected = 0, shortened = 0;  ///< new boundary vertices (ProjectionReport's counts)
     double min_quality = 0;
     double seconds = 0;
 };

@@ -8,7 +8,8 @@ packages=(g++ cmake make libopenmesh-dev libeigen3-dev libflann-dev doctest-dev)
 if [[ "${1:-}" == "--tests" ]]; then
     # meshio and gmsh read our outputs back as independent third-party readers;
     # numpy/scipy serve the independent checker scripts.
-    packages+=(python3 python3-numpy python3-scipy python3-meshio gmsh)
+    # clang-format checks the tree against .clang-format.
+    packages+=(python3 python3-numpy python3-scipy python3-meshio gmsh clang-format)
 fi
 
 missing=()

@@ -8,6 +8,9 @@ jobs=$(nproc)
 
 scripts/install_deps.sh --tests
 
+echo "== format"
+scripts/check_format.sh
+
 echo "== Release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j"$jobs"
