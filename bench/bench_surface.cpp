@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/features.h"
 #include "surface/remesh.h"
 #include "surface/surface_io.h"

@@ -3,7 +3,7 @@
 #include <cstdlib>
 
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 
 namespace hdimesh::surface
 {

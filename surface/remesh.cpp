@@ -13,15 +13,15 @@
 #include <memory>
 #include <queue>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/fit_curve_vertex.h"
 #include "surface/hdi_projection.h"
-#include "surface/local_ops_geometry.h"
-#include "surface/point_grid.h"
+#include "surface/detail/local_ops_geometry.h"
+#include "surface/detail/point_grid.h"
 #include "common/errors.h"
 #include "surface/surface_model.h"
 #include "surface/surface_quality.h"
-#include "surface/vector_room.h"
+#include "surface/detail/vector_room.h"
 
 namespace hdimesh::surface
 {

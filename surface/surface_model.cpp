@@ -1,4 +1,4 @@
-#include "surface/prefetch.h"
+#include "surface/detail/prefetch.h"
 #include "surface/surface_model.h"
 
 #include <algorithm>

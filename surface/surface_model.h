@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/projector.h"
 #include "surface/surface_mesh.h"
 

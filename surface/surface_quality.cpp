@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 
 namespace hdimesh::surface
 {

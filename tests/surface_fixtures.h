@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/projector.h"
 #include "surface/surface_mesh.h"
 #include "surface/surface_quality.h"

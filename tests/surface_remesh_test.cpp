@@ -14,7 +14,7 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "hdi/hdi_surface.h"
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/features.h"
 #include "surface/remesh.h"
 #include "surface/surface_io.h"

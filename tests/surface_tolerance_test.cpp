@@ -16,10 +16,10 @@
 // uninitialized) VectorT: a -Wmaybe-uninitialized false positive once GCC inlines add_vertex here.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/features.h"
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 #include "surface_fixtures.h"
 #include "surface/remesh.h"
 #include "surface/surface_io.h"

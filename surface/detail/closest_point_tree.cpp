@@ -1,6 +1,6 @@
-#include "surface/prefetch.h"
-#include "surface/closest_point_tree.h"
-#include "surface/vector_room.h"
+#include "surface/detail/prefetch.h"
+#include "surface/detail/closest_point_tree.h"
+#include "surface/detail/vector_room.h"
 
 #include <algorithm>
 #include <cassert>

@@ -2,9 +2,9 @@
 #include <cmath>
 #include <vector>
 
-#include "surface/prefetch.h"
+#include "surface/detail/prefetch.h"
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 
 namespace hdimesh::surface
 {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/local_ops.h"
 #include "surface/surface_mesh.h"
 #include "surface/surface_quality.h"
