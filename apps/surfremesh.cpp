@@ -12,7 +12,7 @@
 #include <iostream>
 
 #include "apps/cli.h"
-#include "surface/remesh.h"
+#include "surface/remesh_surface.h"
 #include "surface/sizing.h"
 #include "common/errors.h"
 #include "surface/surface_io.h"

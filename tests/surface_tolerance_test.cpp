@@ -21,7 +21,7 @@
 #include "surface/local_ops.h"
 #include "surface/detail/local_ops_geometry.h"
 #include "surface_fixtures.h"
-#include "surface/remesh.h"
+#include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
 #pragma GCC diagnostic pop
@@ -214,15 +214,15 @@ TEST_CASE("refinement to a tolerance brings a coarse sphere within it both ways,
     const std::vector<Vec3d> points = sphere_points(300);
     auto run = [&](double tolerance) {
         SurfaceMesh mesh = icosahedron();
-        RemeshOptions options;
-        options.size = [](const Vec3d&) { return 1.0; };
-        options.iterations = 3;
-        options.tolerance = tolerance;
-        options.model_points = points;
-        options.refine_short_edge_budget = 1.0;  // no size target to keep here
-        options.refine_min_length_ratio = 0.1;
-        options.refine_rounds = 20;
-        const RemeshReport report = remesh(mesh, options, sphere);
+        SurfaceRemeshOptions options;
+        options.loop.size = [](const Vec3d&) { return 1.0; };
+        options.loop.iterations = 3;
+        options.tolerance.tolerance = tolerance;
+        options.tolerance.model_points = points;
+        options.refinement.short_edge_budget = 1.0;  // no size target to keep here
+        options.tolerance.min_length_ratio = 0.1;
+        options.refinement.rounds = 20;
+        const RemeshReport report = remesh_surface(mesh, options, sphere);
         CHECK(euler(mesh) == 2);
         CHECK(boundary_loops(mesh) == 0);
         check_manifold(mesh);
@@ -250,31 +250,31 @@ TEST_CASE("after the polish, snaps and the angle repair keep the tolerance: with
     const std::vector<Vec3d> points = sphere_points(300);
     auto run = [&](double snap_min_angle_deg) {
         SurfaceMesh mesh = icosahedron();
-        RemeshOptions options;
-        options.size = [](const Vec3d&) { return 1.0; };
-        options.iterations = 3;
-        options.tolerance = 0.04;
-        options.model_points = points;
+        SurfaceRemeshOptions options;
+        options.loop.size = [](const Vec3d&) { return 1.0; };
+        options.loop.iterations = 3;
+        options.tolerance.tolerance = 0.04;
+        options.tolerance.model_points = points;
         // No split before the polish (a spent budget), any number after it: the far places
         // are all left to the final refinement, where the snaps are.
-        options.refine_reference_size = 1.0;
-        options.refine_short_edge_budget = 0.0;
-        options.refine_final_short_edge_budget = 1.0;
-        options.refine_min_length_ratio = 0.1;
-        options.refine_rounds = 20;
-        options.snap_min_angle_deg = snap_min_angle_deg;
+        options.tolerance.reference_size = 1.0;
+        options.refinement.short_edge_budget = 0.0;
+        options.refinement.final_short_edge_budget = 1.0;
+        options.tolerance.min_length_ratio = 0.1;
+        options.refinement.rounds = 20;
+        options.tolerance.snap_min_angle_deg = snap_min_angle_deg;
         // Both paths start the final refinement from the same mesh (nothing before it reads
         // the snap angle); the whole mesh polished, as when this comparison was set up. With the
         // polish only at triangles under Qe 0.7 (the default) this sphere's snap path ends with
         // 111 vertices against 107: snaps save vertices on most meshes, not on every one.
-        options.polish_below_quality = 2.0;
-        const RemeshReport report = remesh(mesh, options, sphere);
+        options.polish.below_quality = 2.0;
+        const RemeshReport report = remesh_surface(mesh, options, sphere);
         CHECK(euler(mesh) == 2);
         check_manifold(mesh);
         for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
         const auto deviation = sphere_deviation(mesh, points);
-        CHECK(deviation[0] <= options.tolerance + 1e-12);
-        CHECK(deviation[1] <= options.tolerance + 1e-12);
+        CHECK(deviation[0] <= options.tolerance.tolerance + 1e-12);
+        CHECK(deviation[1] <= options.tolerance.tolerance + 1e-12);
         double min_angle = 180.0;
         for (auto f : mesh.faces())
         {
@@ -297,13 +297,13 @@ TEST_CASE("the refinement's short-edge budget stops it: no split once the budget
 {
     const SphereProjector sphere(Vec3d(0, 0, 0), 1.0);
     SurfaceMesh mesh = icosahedron();
-    RemeshOptions options;
-    options.size = [](const Vec3d&) { return 1.0; };
-    options.iterations = 3;
-    options.tolerance = 0.04;
-    options.refine_reference_size = 1.0;
-    options.refine_short_edge_budget = 0.0;  // every edge shorter than 0.66 is over budget
-    const RemeshReport report = remesh(mesh, options, sphere);
+    SurfaceRemeshOptions options;
+    options.loop.size = [](const Vec3d&) { return 1.0; };
+    options.loop.iterations = 3;
+    options.tolerance.tolerance = 0.04;
+    options.tolerance.reference_size = 1.0;
+    options.refinement.short_edge_budget = 0.0;  // every edge shorter than 0.66 is over budget
+    const RemeshReport report = remesh_surface(mesh, options, sphere);
     CHECK(report.refinement_splits == 0);
     CHECK(euler(mesh) == 2);
 }
