@@ -67,7 +67,7 @@ void Cleanup::collapse_short_for_reference()
         {
             const EdgeHandle e(index);
             if (mesh_.status(e).deleted() ||
-                size_quality(mesh_.calc_edge_length(e), tolerance_.reference_size) >= 0.66)
+                size_quality(mesh_.calc_edge_length(e), tolerance_.reference_size) >= kSizeQualityThreshold)
                 continue;
             // Curve edges keep the loop's sizes: a longer chord of a curved ridge leaves it.
             if (ctx_.is_feature(e)) continue;
@@ -121,7 +121,7 @@ std::size_t Cleanup::collapse_short_keeping_tolerance()
         {
             const EdgeHandle e(index);
             if (mesh_.status(e).deleted() || ctx_.is_feature(e) ||
-                size_quality(mesh_.calc_edge_length(e), tolerance_.reference_size) >= 0.66)
+                size_quality(mesh_.calc_edge_length(e), tolerance_.reference_size) >= kSizeQualityThreshold)
                 continue;
             for (int i = 0; i < 2; ++i)
             {

@@ -20,7 +20,7 @@ std::size_t ToleranceKeeper::count_short_edges() const
 {
     std::size_t n = 0;
     for (auto e : mesh_.edges())
-        if (!mesh_.status(e).deleted() && size_quality(mesh_.calc_edge_length(e), reference_size(e)) < 0.66) ++n;
+        if (!mesh_.status(e).deleted() && size_quality(mesh_.calc_edge_length(e), reference_size(e)) < kSizeQualityThreshold) ++n;
     return n;
 }
 
@@ -58,8 +58,8 @@ void ToleranceKeeper::set_move_limits(VertexHandle v, const Vec3d* target, doubl
                                                              : mesh_.property(ctx_.props.vertex_size, v);
     limits.tolerance = options_.tolerance;
     limits.min_angle_deg = options_.snap_min_angle_deg;
-    limits.min_length = 0.66 * size;
-    limits.max_length = size / 0.66;
+    limits.min_length = kSizeQualityThreshold * size;
+    limits.max_length = size / kSizeQualityThreshold;
     limits.floor_length = options_.min_length_ratio * size;
     double reach = 0.0;
     for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
@@ -145,7 +145,7 @@ bool ToleranceKeeper::collapse_keeping_tolerance(HalfedgeHandle h, CollapseFor p
     // and 86 of those passed the collapse's layers).
     const double size = options_.reference_size > 0.0 ? options_.reference_size : run_.edge_size(mesh_.edge_handle(h));
     const bool for_budget = purpose == CollapseFor::Budget;
-    const double max_length = for_budget ? kReferenceCollapseLength * size : size / 0.66;
+    const double max_length = for_budget ? kReferenceCollapseLength * size : size / kSizeQualityThreshold;
     const bool require_gain = !for_budget;
     const double min_angle = for_budget ? kReferenceCollapseMinAngle : 0.0;
     if (collapse_shape_status(ctx_, h, max_length, require_gain, min_angle) != OpStatus::Done) return false;
@@ -203,7 +203,7 @@ bool ToleranceKeeper::shift(VertexHandle v, const ShiftOptions& options, Keep ke
     auto short_star_edges = [&](const Vec3d& at) {
         int n = 0;
         for (auto h : mesh_.voh_range(v))
-            if (size_quality((mesh_.point(mesh_.to_vertex_handle(h)) - at).norm(), reference_size(mesh_.edge_handle(h))) < 0.66)
+            if (size_quality((mesh_.point(mesh_.to_vertex_handle(h)) - at).norm(), reference_size(mesh_.edge_handle(h))) < kSizeQualityThreshold)
                 ++n;
         return n;
     };

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/size_quality.h"
 #include "surface/surface_mesh.h"
 
 namespace hdimesh::surface
@@ -46,11 +47,12 @@ inline Vec3d triangle_normal(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 }
 /// Qe of a face of the mesh.
 double face_qe(const SurfaceMesh& mesh, FaceHandle f);
-/// Edge size quality Qt = min(h/L, L/h) with h the average of the two end sizes.
+/// Edge size quality Qt = min(h/L, L/h) (common/size_quality.h), 0 for a length or size ≤ 0.
+/// The surface's h is the mean of the edge's two end sizes, not the size at its midpoint.
 inline double size_quality(double length, double size)
 {
     if (length <= 0.0 || size <= 0.0) return 0.0;
-    return length < size ? length / size : size / length;
+    return hdimesh::size_quality(length, size);
 }
 
 /// The topology a remesher must keep: counts, connected components (through edges) and loops
