@@ -18,13 +18,11 @@ namespace
 
 // A curve vertex slid at a narrow corner keeps its edges within this band: up to 1.5 times the
 // larger of the local and the reference size (Qt ≥ 0.66 against a uniform size), down to 0.3 of
-// the local size. Measured on the issue-6 models: spot's narrow corners (16.7° between the
-// input's first chords) reach 20.2° (19.8° with a band of 0.45..1.75 times the local size),
-// fandisk's (19.4°) 20.0°.
+// the local size: one long edge costs less than a needle at a corner (docs/tuning.md).
 constexpr double kSlideMaxLength = 1.5;
 constexpr double kSlideMinLength = 0.3;
-// Slide rounds: measured, spot's nose corners slide in every one of 8 rounds (2-12 vertices,
-// 16.9° -> 20.2°); fandisk, cheburashka and the bunny stop after one, rocker-arm has none.
+// Slide rounds: a slide on one side of a narrow corner lets the other side slide further
+// (docs/tuning.md).
 constexpr int kSlideRounds = 8;
 // Sweeps of the curve fit (each vertex's best place moves with its neighbours').
 constexpr int kCurveFitSweeps = 4;
@@ -162,8 +160,8 @@ std::size_t Cleanup::collapse_short_keeping_tolerance()
 // (fit_curve_vertex), in sweeps over the curves while something moves: a vertex's best
 // place depends on its curve neighbours'. A vertex is tried again in a later sweep only when
 // a vertex within two rings of it moved since its last try: its fit reads nothing farther
-// (its star, the 2-ring patch, its witnesses and hint), so it would end as before (measured:
-// the later sweeps, which move a few vertices of tens, cost as much as the first).
+// (its star, the 2-ring patch, its witnesses and hint), so it would end as before; the later
+// sweeps, which move few vertices, then cost little.
 std::size_t Cleanup::fit_curves()
 {
     std::size_t moved = 0;
@@ -202,8 +200,8 @@ std::size_t Cleanup::fit_curves()
 // The live faces with an angle under the cleanup's (face_angle_below), in handle order: the
 // scan of all faces the first time, after that the faces found last time and those at the
 // vertices changed since (a face gets a new angle only when a vertex of it moves or it is
-// made anew, and every such change is noted): the same faces, at a fraction of the cost
-// (rocker-arm's cleanup ran 8 full scans that found 2 triangles each).
+// made anew, and every such change is noted): the same faces, at a fraction of the cost of
+// a full scan per round that finds a few triangles.
 std::vector<FaceHandle> Cleanup::faces_under_cleanup_angle()
 {
     std::vector<FaceHandle> bad;
@@ -269,7 +267,7 @@ bool Cleanup::face_angle_below(FaceHandle f, double degrees) const
 // max(tolerance, before), see the *_keeping_tolerance operators; no vertex removal, which
 // has no such check), except on a triangle under the snap's angle bound, which gets the
 // plain cure when the tolerance-keeping one fails (the refinement after the cleanup looks
-// at the tolerance again; without it cheburashka's min angle fell to 17.5°).
+// at the tolerance again; without it the worst angle falls, docs/tuning.md).
 void Cleanup::cleanup_worst_triangles(Keep keep)
 {
     ShiftOptions smart;
@@ -419,10 +417,9 @@ std::size_t Cleanup::repair_small_angles()
 
 // The last word for needles with a curve vertex: that vertex slides along its curve
 // (slide_curve_vertex), which every balancing step before would undo. The needle filling a
-// narrow sector between two curves at a corner (fandisk's 19.4°, spot's nose at 16.7°
-// between the input's first chords) is cured only this way, and the slides in the
-// neighbouring needles make room for it: measured, restricting the slides to the corner's
-// own triangle left spot at 19.0°.
+// narrow sector between two curves at a corner is cured only this way, and the slides in the
+// neighbouring needles make room for it: all the small-angle faces slide, not the corner's
+// own triangle alone (docs/tuning.md).
 void Cleanup::slide_curve_vertices_of_needles()
 {
     // Rounds: a slide on one side lets the other side slide further.

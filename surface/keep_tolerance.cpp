@@ -47,8 +47,7 @@ const PointGrid& ToleranceKeeper::model_point_grid()
 // The limits of a witnessed move of v (a snap, a curve fit): the star's edges in the Qt band
 // of the reference size (or of v's size), an edge already short allowed down to the
 // refinement's own shortest (a staircase boundary needs a vertex on each stair corner;
-// measured for the snap, uniform Hausdorff/diag: rocker-arm 1.813e-3 -> 1.745e-3,
-// cheburashka 2.127e-3 -> 1.718e-3; a floor of 0.45 h: 1.930e-3, 1.802e-3), and as witnesses
+// docs/tuning.md), and as witnesses
 // the model points within the star's reach (its longest edge plus `margin`) of v and of
 // `target` if given, in index order.
 void ToleranceKeeper::set_move_limits(VertexHandle v, const Vec3d* target, double margin, WitnessedMoveOptions& limits)
@@ -140,9 +139,8 @@ bool ToleranceKeeper::collapse_keeping_tolerance(HalfedgeHandle h, CollapseFor p
     const double bound = options_.tolerance;
     const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
     if (ctx_.vertex_class(a) != VertexClass::Smooth || mesh_.is_boundary(a)) return false;
-    // The collapse's own layers first: the tolerance checks below are the expensive part
-    // (measured, rocker-arm's budget collapses: of 954 candidates, 411 kept the tolerance
-    // and 86 of those passed the collapse's layers).
+    // The collapse's own layers first: the tolerance checks below are the expensive part,
+    // and most candidates fail the layers.
     const double size = options_.reference_size > 0.0 ? options_.reference_size : run_.edge_size(mesh_.edge_handle(h));
     const bool for_budget = purpose == CollapseFor::Budget;
     const double max_length = for_budget ? kReferenceCollapseLength * size : size / kSizeQualityThreshold;
@@ -209,9 +207,8 @@ bool ToleranceKeeper::shift(VertexHandle v, const ShiftOptions& options, Keep ke
     };
     ShiftOptions keeping = options;
     // The state before the move is gathered here, when a move is asked (the mesh is still
-    // as before it): most smart shifts stop at their quality test and never ask (the
-    // budget collapses' settling spent a third of its time on the patches, witnesses and
-    // samples of shifts that did not move).
+    // as before it): most smart shifts stop at their quality test and never ask, and a shift
+    // that does not move needs no patch, witnesses or samples.
     keeping.accept = [&](const Vec3d& after) {
         const Vec3d before = mesh_.point(v);
         if (keep_lengths && short_star_edges(after) > short_star_edges(before)) return false;

@@ -112,10 +112,9 @@ void split_long_edges(RemeshRun& run)
 // Nothing moves between passes, so an edge refused in one pass is refused again in the next
 // unless a later collapse touched an end's ring (a collapse's outcome reads the rings of its
 // ends only): such an edge is not tried again. Not with a caller's allow_collapse hook, whose
-// answer may read more. (Measured: the later passes were half of the loop's collapse cost,
-// almost all of it refusals: a neighbour would end too far.) Likewise an edge found long
-// enough stays so until a collapse changes an end (its length and size read its ends only):
-// the later passes look at 1.5 times as many edges as the first, 99 % of them not short.
+// answer may read more. (The later passes were mostly such refusals: a neighbour would end
+// too far.) Likewise an edge found long enough stays so until a collapse changes an end (its
+// length and size read its ends only): almost every edge a later pass looks at is not short.
 void collapse_short_edges(RemeshRun& run)
 {
     SurfaceMesh& mesh = run.mesh;
@@ -196,7 +195,7 @@ std::size_t flip_edges(RemeshRun& run, FlipGoal goal, const std::vector<char>* o
     // A valence table kept up to date over the pass refuses them without circulating four
     // rings per edge; try_flip repeats the test on the others and decides.
     // Per vertex its valence minus its ideal one (4 on the boundary, 6 inside), from one pass
-    // over the edges (a circulation and a boundary test per vertex were 4 % of the run).
+    // over the edges (cheaper than a circulation and a boundary test per vertex).
     std::vector<int> valence_excess;
     if (goal == FlipGoal::Valence)
     {

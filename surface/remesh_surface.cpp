@@ -199,9 +199,8 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
             options.tolerance.model_point_smooth.push_back(mesh.property(props.vertex_class, v) == VertexClass::Smooth);
         }
         // Edge midpoints too (the Hausdorff samples of the input): a crease the features dropped
-        // is farthest from the output between its vertices. With a uniform size too: measured on
-        // the issue-6 models with the crease splits and distance flips, the short-edge budget
-        // then goes to those creases (rocker-arm 2.89e-3 -> 2.48e-3 of the diagonal).
+        // is farthest from the output between its vertices. With a uniform size too: the
+        // short-edge budget then goes to those creases (docs/tuning.md).
         for (auto e : mesh.edges())
         {
             const auto h = mesh.halfedge_handle(e, 0);

@@ -2,8 +2,8 @@
 //
 // Where two curves meet at a corner with a narrow sector between them, the triangle filling the
 // sector has at most the sector's angle at the corner, and the chords from the corner set that
-// angle. A curved ridge opens up away from the corner (fandisk: 19.4° between the first input
-// segments, 21.6° between points two segments out), so moving the curve vertex next to the
+// angle. A curved ridge opens up away from the corner (its chords two segments out make a wider
+// angle than the first ones), so moving the curve vertex next to the
 // corner farther along its curve raises the worst angle there. Nodal shifting cannot find this:
 // it balances the two curve edges, which is what made the narrow triangle.
 

@@ -28,8 +28,7 @@ inline double triangle_qe_from(double lab, double lbc, double lca, double cross_
     return 2.0 * std::sqrt(3.0) * inradius / longest;
 }
 /// Qe of the triangle (a, b, c): 2√3 · inradius / longest edge; 0 for a degenerate one.
-/// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle;
-/// out of line they were 9 % of the remesher's time.)
+/// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle.)
 inline double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 {
     return triangle_qe_from((b - a).norm(), (c - b).norm(), (a - c).norm(), OpenMesh::cross(b - a, c - a).norm());

@@ -17,7 +17,7 @@ namespace
 // A refinement round splits only where the distance is at least this fraction of its worst.
 constexpr double kRefineFocus = 0.75;
 // The refinement's walk toward a model point from the face of the point before stops after
-// this many vertices (measured, cheburashka's first round: 2 on average).
+// this many vertices (a walk mostly takes a few: a longer one is the tree's job).
 constexpr int kWalkSteps = 16;
 // A far point's closest face is alone when no other face is within its distance times
 // sqrt(1 + this): far above the rounding by which the tree's search may prefer a face as close.
@@ -48,10 +48,8 @@ ToleranceRefinement::ToleranceRefinement(RemeshRun& run, ToleranceKeeper& keeper
 // Refused there (at a rim sharper than the size the new triangles turn past the split's 60°),
 // part of the way from the edge's midpoint, projected onto the model, keeping the
 // angles as a snap does: the midpoint split alone leaves the point almost as far and still
-// spends the budget (stanford-bunny's last far input vertex, on an ear rim of radius 0.4 h:
-// 4.62e-4 -> 4.51e-4 against the tolerance 4.00e-4). Only after the polish, as the snaps:
-// earlier the polish moves the vertex anyway (measured before it too: rocker-arm 1.612e-3
-// -> 2.374e-3 of the diagonal, cheburashka 1.589e-3 -> 1.731e-3, bunny min angle 15.9).
+// spends the budget. Only after the polish, as the snaps: earlier the polish moves the vertex
+// anyway (docs/tuning.md).
 OpResult ToleranceRefinement::split_toward(EdgeHandle e, const Vec3d& target, bool part_of_the_way)
 {
     OpResult r = try_split(ctx_, e, &target);
@@ -62,7 +60,7 @@ OpResult ToleranceRefinement::split_toward(EdgeHandle e, const Vec3d& target, bo
     const Vec3d pa = mesh_.point(a), pb = mesh_.point(mesh_.to_vertex_handle(h));
     const Vec3d mid = 0.5 * (pa + pb);
     // The new triangles keep no angle under the snap's bound or under the worst of the two
-    // triangles before (without: stanford-bunny's min angle 24.6 -> 19.4).
+    // triangles before (else the worst angle falls, docs/tuning.md).
     std::vector<Vec3d> opposite;
     double old_min_angle = 180.0;
     for (const auto side : {h, mesh_.opposite_halfedge_handle(h)})
@@ -168,22 +166,19 @@ bool ToleranceRefinement::any_outgoing(VertexHandle v, Visit visit) const
 
 // Output face f (if live), or else a face found from it, within the tolerance of p (invalid:
 // none is), by the arithmetic of the tree's search, on the triangles kept up to date
-// (update_face_points, face_points_: walking the mesh to each face's points was half of
-// this function's time). Which face proves p near decides nothing else: a point not proven
+// (update_face_points, face_points_: cheaper than walking the mesh to each face's points).
+// Which face proves p near decides nothing else: a point not proven
 // near here is measured by the tree, whose answer depends on the point alone.
 FaceHandle ToleranceRefinement::near_face_around(const Vec3d& p, FaceHandle f) const
 {
     if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
     // (detail::within_triangle: a triangle whose box is clearly beyond the tolerance gets
-    // no closest point; bunny: 300k of the 770k triangles asked, most of those around a face
-    // that is not near.)
+    // no closest point: most triangles asked are around a face that is not near.)
     auto within_tolerance = [&](FaceHandle g) { return detail::within_triangle(p, face_points_[g.idx()], tolerance_.tolerance); };
     if (within_tolerance(f)) return f;
     // The faces around the vertex a walk from f toward p ends at: the first refinement's
     // points in space order are mostly a few faces from the one before, where f's own
-    // vertices do not reach and the tree's search cost about 4 us a point (measured,
-    // cheburashka's first round: 3258 -> 209 searches, the round's proofs 28 -> 13 ms;
-    // stanford-bunny 5075 -> 437, 52 -> 29 ms).
+    // vertices do not reach and the tree's search costs more than a few faces' tests.
     // (Which of the faces proves p near is no matter, their order neither.)
     const VertexHandle end = vertex_toward(p, f);
     FaceHandle found;
@@ -271,8 +266,8 @@ void ToleranceRefinement::rebuild_output_tree()
 }
 
 // face_points_ brought up to the mesh: all faces at the first call of a refinement (its
-// points gathered once: the mesh's connectivity is slow to walk, 13 rounds on rocker-arm
-// gathered 2.2 % of its bench time), after that the faces at the vertices noted since.
+// points gathered once: the mesh's connectivity is slow to walk), after that the faces at
+// the vertices noted since.
 void ToleranceRefinement::update_face_points()
 {
     // A face whose points change (or that is new) is noted changed in this round.
@@ -336,8 +331,7 @@ const std::vector<std::size_t>& ToleranceRefinement::model_points_in_space_order
         keyed[i] = {morton_key(cell[0], cell[1], cell[2]), i};
     }
     // Sorted by (key, index): a stable radix sort of the keys (the indices come in
-    // increasing order), 11 bits a pass (std::sort of the pairs was half of this function's
-    // time, 10 ms on the bunny's 139k points).
+    // increasing order), 11 bits a pass (faster than std::sort of the pairs).
     std::vector<std::pair<std::uint64_t, std::size_t>> sorted(keyed.size());
     constexpr int kDigitBits = 11;
     for (int shift = 0; shift < 3 * kMortonBitsPerAxis && !keyed.empty(); shift += kDigitBits)
@@ -456,7 +450,7 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
     // After the first round only the points still far get another look. Splits bring the
     // output nearer to the model points; a flip can take it away from a point it passed near
     // and that point is not looked at again in this call (the full call after the cleanup
-    // does; after the last one, bench_surface's Hausdorff column is the check).
+    // does; after the last one, the final Hausdorff measurement is the check).
     std::vector<VertexHandle> split_vertices;  // of the last round (and ends of its distance flips)
     std::vector<VertexHandle> revisit;         // ends of the last round's candidates not tried
     // The first round looks at every model point, by rank in space order (the points, and
@@ -465,9 +459,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
     const std::size_t point_count = model_points_in_space_order().size();
     std::vector<FarHit> far_known;
     // The per-element scratch of a round: members, kept zero between rounds (the entries a
-    // round set are reset from its lists), so a round pays for what it touches only (the
-    // per-round vectors of all edges, faces and vertices cost 9 % of the refinement, half
-    // of it in page faults).
+    // round set are reset from its lists), so a round pays for what it touches only (not for
+    // vectors of all edges, faces and vertices, nor their page faults).
     RefineScratch& scratch = refine_scratch_;
     for (int round = 0; round < options_.rounds; ++round)
     {
@@ -730,7 +723,7 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             // Where splits are rationed (a size to keep), a chord across a crease first:
             // turned along it, it comes nearer at no short edge. Not when the tolerance is the
             // contract: a flip judged on its own samples may take the output away from model
-            // points it passed near (measured: the adaptive default then missed hausd).
+            // points it passed near (the adaptive default would miss hausd).
             if (options_.short_edge_budget < 1.0 && !ctx_.is_feature(e))
             {
                 const auto h = mesh_.halfedge_handle(e, 0);
@@ -786,8 +779,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         if (done == 0) break;
         // The new vertices settle: quality flips of the edges around them. Known: this may
         // turn a distance-flipped edge back (a distance flip accepts half the old quality).
-        // Protecting those edges was measured worse (rocker-arm 2.48e-3 -> 3.21e-3): the
-        // refinement's outcome is fragile there; see the issue note.
+        // Protecting those edges is worse (docs/tuning.md): the refinement's outcome is
+        // fragile there.
         // After the polish nothing checks the tolerance again: the settle flips keep it.
         for (const VertexHandle v : split_vertices)
         {

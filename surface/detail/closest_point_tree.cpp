@@ -111,8 +111,8 @@ void ClosestPointTree::build(bool lazy)
     for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
     nodes_.clear();
     // Per primitive, once: its box and its centroid sums (the split keys), so a node reads
-    // them from small arrays instead of the primitives (measured: the build was 7 % of the
-    // remesher's time on rocker-arm, which builds the output's tree every refinement round).
+    // them from small arrays instead of the primitives (the refinement builds the output's tree
+    // every round).
     // The same sums and min/max as before: the same tree.
     // (A lazy tree keeps its scratch for the splits to come, and a rebuilt one its capacity.)
     BuildScratch eager_scratch;
@@ -306,7 +306,7 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
             for (int i = n.first; i < n.first + n.count; ++i)
             {
                 // A primitive whose box is clearly farther than the best cannot win: its closest
-                // point is not computed (measured: 3 in 5 of them on the remesher's queries).
+                // point is not computed (most of them, on the remesher's queries).
                 // The margin keeps every near tie to the exact test, so the winner is unchanged:
                 // relative for distances away from zero, absolute (far above the rounding of a
                 // squared distance at p's magnitude) for points on the surface.
@@ -333,7 +333,7 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
         {
             stack[top++] = near;
             // Opened next: its children's boxes (or its primitives) are wanted soon. The trees
-            // are larger than the cache; measured: the five models' sum of cpu s 4.12 -> 3.96.
+            // are larger than the cache.
             const Node& next = nodes_[near.node];
             if (next.left >= 0)
             {
