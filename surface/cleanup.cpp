@@ -31,9 +31,7 @@ constexpr int kCurveFitSweeps = 4;
 
 Cleanup::Cleanup(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log, const ToleranceOptions& tolerance,
                  const CleanupOptions& options)
-    : run_(run),
-      keeper_(keeper),
-      tolerance_(tolerance),
+    : ToleranceStage(run, keeper, tolerance),
       options_(options),
       cleanup_angle_margin_cos_(cos_deg(options.angle_deg + 1.0))
 {

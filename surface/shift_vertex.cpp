@@ -256,15 +256,9 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
     OpResult result;
     const VertexClass cls = ctx.vertex_class(v);
     if (cls == VertexClass::Corner || mesh.is_isolated(v))
-    {
-        result.status = OpStatus::Class;
-        return result;
-    }
+        return refused(OpStatus::Class);
     if (cls == VertexClass::Smooth && mesh.is_boundary(v))
-    {
-        result.status = OpStatus::Class;  // an unclassified boundary vertex: leave it alone
-        return result;
-    }
+        return refused(OpStatus::Class);  // an unclassified boundary vertex: leave it alone
     const Vec3d p = mesh.point(v);
     const Ball ball(mesh, v);
     Vec3d optimal;
@@ -277,16 +271,10 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         if (!(n.norm() > 0.0)) return result;
         n.normalize();
         if (!optimal_point_smooth(ball, n, optimal))
-        {
-            result.status = OpStatus::Geometry;
-            return result;
-        }
+            return refused(OpStatus::Geometry);
     }
     else if (!optimal_point_curve(ctx, v, optimal))
-    {
-        result.status = OpStatus::Class;
-        return result;
-    }
+        return refused(OpStatus::Class);
 
     const double min_cos = detail::cos_deg(ctx.limits.max_normal_turn_deg);
     const double old_quality = ball.quality_before;
@@ -305,14 +293,10 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         if (new_quality < 0.0) continue;
         if (options.smart && new_quality < old_quality - 1e-12) continue;
         if (options.accept && !options.accept(q))
-        {
-            result.status = OpStatus::Geometry;
-            return result;
-        }
+            return refused(OpStatus::Geometry);
         return commit_move(ctx, v, q, projected.face);
     }
-    result.status = OpStatus::Quality;
-    return result;
+    return refused(OpStatus::Quality);
 }
 
 }  // namespace hdimesh::surface

@@ -85,24 +85,17 @@ struct SlideStar
 OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOptions& options)
 {
     SurfaceMesh& mesh = ctx.mesh;
-    OpResult result;
     // Topology and class: a ridge or boundary vertex with exactly two curve edges (a corner
     // never moves).
     const VertexClass cls = ctx.vertex_class(v);
     if (cls != VertexClass::Ridge && cls != VertexClass::Boundary)
-    {
-        result.status = OpStatus::Class;
-        return result;
-    }
+        return refused(OpStatus::Class);
     std::vector<Vec3d> curve_ends;
     for (auto h : mesh.voh_range(v))
         if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v))
             curve_ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
     if (curve_ends.size() != 2)
-    {
-        result.status = OpStatus::Class;
-        return result;
-    }
+        return refused(OpStatus::Class);
 
     const Vec3d p = mesh.point(v);
     const SlideStar star(mesh, v);
@@ -141,10 +134,7 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
             best_point = q;
         }
     if (!best_point.ok)
-    {
-        result.status = refusal;
-        return result;
-    }
+        return refused(refusal);
     return commit_move(ctx, v, best_point.point, best_point.face);
 }
 

@@ -38,7 +38,7 @@ const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
 
 ToleranceRefinement::ToleranceRefinement(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log,
                                          const ToleranceOptions& tolerance, const ToleranceRefinementOptions& options)
-    : run_(run), keeper_(keeper), tolerance_(tolerance), options_(options)
+    : ToleranceStage(run, keeper, tolerance), options_(options)
 {
     log.add(face_changes_);
     log.add(short_edge_changes_);

@@ -8,19 +8,15 @@
 
 #include "surface/detail/change_log.h"
 #include "surface/detail/keep_tolerance.h"
-#include "surface/detail/remesh_run.h"
-#include "surface/remesh_surface.h"
 
 namespace hdimesh::surface::detail
 {
 
-class Cleanup
+class Cleanup : private ToleranceStage
 {
 public:
     Cleanup(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log, const ToleranceOptions& tolerance,
             const CleanupOptions& options);
-    Cleanup(const Cleanup&) = delete;
-    Cleanup& operator=(const Cleanup&) = delete;
 
     /// Edges too short for the reference size collapsed (plain collapses, right after the loop).
     void collapse_short_for_reference();
@@ -45,12 +41,6 @@ private:
     bool improve_face(FaceHandle f, const ShiftOptions& smart, Keep keep);
     bool try_slide(VertexHandle v);
 
-    RemeshRun& run_;
-    SurfaceMesh& mesh_ = run_.mesh;
-    OperatorContext& ctx_ = run_.ctx;
-    RemeshReport& report_ = run_.report;
-    ToleranceKeeper& keeper_;
-    const ToleranceOptions& tolerance_;
     const CleanupOptions& options_;
     // Once the first small-angle scan ran (faces_under_cleanup_angle, recording from then on):
     // the faces it found last time, and the vertices changed since.

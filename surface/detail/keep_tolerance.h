@@ -69,4 +69,24 @@ private:
     std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first use
 };
 
+/// What a stage after the loop works with: the run, the witnessed operators and the tolerance.
+class ToleranceStage
+{
+protected:
+    ToleranceStage(RemeshRun& run, ToleranceKeeper& keeper, const ToleranceOptions& tolerance)
+        : run_(run), keeper_(keeper), tolerance_(tolerance)
+    {
+    }
+    // Not copyable: the stages keep references to one another.
+    ToleranceStage(const ToleranceStage&) = delete;
+    ToleranceStage& operator=(const ToleranceStage&) = delete;
+
+    RemeshRun& run_;
+    SurfaceMesh& mesh_ = run_.mesh;
+    OperatorContext& ctx_ = run_.ctx;
+    RemeshReport& report_ = run_.report;
+    ToleranceKeeper& keeper_;
+    const ToleranceOptions& tolerance_;
+};
+
 }  // namespace hdimesh::surface::detail

@@ -13,81 +13,73 @@
 #include "surface/detail/change_log.h"
 #include "surface/detail/closest_point_tree.h"
 #include "surface/detail/keep_tolerance.h"
-#include "surface/detail/remesh_run.h"
 #include "surface/detail/vector_room.h"
-#include "surface/remesh_surface.h"
 
 namespace hdimesh::surface::detail
 {
 
-class ToleranceRefinement
+// A model point farther than the tolerance from the output, and its closest output face (the
+// first in the output tree's order among equally close ones; reused in the next round only
+// when alone, where no order among ties is involved).
+struct FarHit
+{
+    double distance;
+    std::size_t point;
+    FaceHandle face;
+    bool alone;                // no other face within the distance and a margin (kAloneMargin)
+    std::uint32_t measured_in;  // the refinement round of the search
+};
+
+// ToleranceRefinement::refine's per-element scratch, all zero between rounds.
+struct RefineScratch
+{
+    std::vector<double> edge_error;
+    std::vector<std::size_t> edge_target;
+    std::vector<EdgeHandle> marked;  // the edges with edge_error > 0
+    std::vector<char> near_change, face_seen, edge_seen, snapped_now;
+    std::vector<VertexHandle> changed;  // the vertices with near_change set
+    std::vector<VertexHandle> snapped;  // the vertices with snapped_now set
+    std::vector<int> triangle_of;       // (assigned whole when used)
+
+    void grow(std::size_t vertices, std::size_t edges, std::size_t faces)
+    {
+        if (edge_error.size() < edges)
+        {
+            detail::resize_with_room(edge_error, edges, 0.0);
+            detail::resize_with_room(edge_target, edges, std::size_t{0});
+            detail::resize_with_room(edge_seen, edges, char{0});
+        }
+        if (near_change.size() < vertices)
+        {
+            detail::resize_with_room(near_change, vertices, char{0});
+            detail::resize_with_room(snapped_now, vertices, char{0});
+        }
+        if (face_seen.size() < faces) detail::resize_with_room(face_seen, faces, char{0});
+    }
+    // The end of a round: the entries it set back to zero (near_change, face_seen and
+    // edge_seen are cleared where they are used).
+    void clear_round()
+    {
+        for (const EdgeHandle e : marked) edge_error[e.idx()] = 0.0, edge_target[e.idx()] = 0;
+        marked.clear();
+        for (const VertexHandle v : snapped) snapped_now[v.idx()] = 0;
+        snapped.clear();
+    }
+};
+
+// The edges short for the reference size (count_short_edges) while a refinement runs:
+
+class ToleranceRefinement : private ToleranceStage
 {
 public:
     ToleranceRefinement(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log, const ToleranceOptions& tolerance,
                         const ToleranceRefinementOptions& options);
-    ToleranceRefinement(const ToleranceRefinement&) = delete;
-    ToleranceRefinement& operator=(const ToleranceRefinement&) = delete;
 
     /// One call of the refinement (rounds until nothing changes, the rounds or the budget run
     /// out); after_polish: the final budget, and snaps before splits. The number of changes.
     std::size_t refine(bool after_polish);
 
 private:
-    // A model point farther than the tolerance from the output, and its closest output face (the
-    // first in the output tree's order among equally close ones; reused in the next round only
-    // when alone, where no order among ties is involved).
-    struct FarHit
-    {
-        double distance;
-        std::size_t point;
-        FaceHandle face;
-        bool alone;                // no other face within the distance and a margin (kAloneMargin)
-        std::uint32_t measured_in;  // the refinement round of the search
-    };
-
-    // Whether `hit` of the round before holds in this one: its face alone close to the point,
-    // and unchanged since, and no face changed since within the distance and the margin: its
-    // face is then the only one that close and the output tree's search would find it again
-
-    // refine()'s per-element scratch, all zero between rounds.
-    struct RefineScratch
-    {
-        std::vector<double> edge_error;
-        std::vector<std::size_t> edge_target;
-        std::vector<EdgeHandle> marked;  // the edges with edge_error > 0
-        std::vector<char> near_change, face_seen, edge_seen, snapped_now;
-        std::vector<VertexHandle> changed;  // the vertices with near_change set
-        std::vector<VertexHandle> snapped;  // the vertices with snapped_now set
-        std::vector<int> triangle_of;       // (assigned whole when used)
-
-        void grow(std::size_t vertices, std::size_t edges, std::size_t faces)
-        {
-            if (edge_error.size() < edges)
-            {
-                detail::resize_with_room(edge_error, edges, 0.0);
-                detail::resize_with_room(edge_target, edges, std::size_t{0});
-                detail::resize_with_room(edge_seen, edges, char{0});
-            }
-            if (near_change.size() < vertices)
-            {
-                detail::resize_with_room(near_change, vertices, char{0});
-                detail::resize_with_room(snapped_now, vertices, char{0});
-            }
-            if (face_seen.size() < faces) detail::resize_with_room(face_seen, faces, char{0});
-        }
-        // The end of a round: the entries it set back to zero (near_change, face_seen and
-        // edge_seen are cleared where they are used).
-        void clear_round()
-        {
-            for (const EdgeHandle e : marked) edge_error[e.idx()] = 0.0, edge_target[e.idx()] = 0;
-            marked.clear();
-            for (const VertexHandle v : snapped) snapped_now[v.idx()] = 0;
-            snapped.clear();
-        }
-    };
-
-    // The edges short for the reference size (count_short_edges) while a refinement runs:
-
     OpResult split_toward(EdgeHandle e, const Vec3d& target, bool part_of_the_way);
     EdgeHandle nearest_curve_edge(FaceHandle f, std::size_t point) const;
     VertexHandle snap_toward(std::size_t point, FaceHandle face, bool smooth_point);
@@ -106,12 +98,6 @@ private:
     bool still_closest(const FarHit& hit) const;
     std::size_t short_edges_now(bool first_round);
 
-    RemeshRun& run_;
-    SurfaceMesh& mesh_ = run_.mesh;
-    OperatorContext& ctx_ = run_.ctx;
-    RemeshReport& report_ = run_.report;
-    ToleranceKeeper& keeper_;
-    const ToleranceOptions& tolerance_;
     const ToleranceRefinementOptions& options_;
     // Per model point, by rank in space order: the output face that last proved it within the
     // tolerance, or was its closest (invalid: none yet). Faces are garbage-collected at the end
