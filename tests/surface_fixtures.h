@@ -2,6 +2,7 @@
 // Models for the surface operator tests (header-only: only the surface tests need OpenMesh).
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "fixtures.h"
@@ -127,6 +128,42 @@ inline MovedStarDefects moved_star_defects(const SurfaceMesh& mesh, VertexHandle
         if (!(length >= min_length) || !(length <= max_length)) ++defects.edges_out_of_band;
     }
     return defects;
+}
+
+/// Points spread evenly over the unit sphere (a Fibonacci lattice): the "input vertices".
+inline std::vector<Vec3d> sphere_points(int n)
+{
+    std::vector<Vec3d> points;
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < n; ++i)
+    {
+        const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z);
+        points.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    }
+    return points;
+}
+
+/// V - E + F over the live elements (isolated vertices not counted).
+inline long euler(const SurfaceMesh& mesh)
+{
+    long v = 0, e = 0, f = 0;
+    for (auto x : mesh.vertices())
+        if (!mesh.status(x).deleted() && !mesh.is_isolated(x)) ++v;
+    for (auto x : mesh.edges())
+        if (!mesh.status(x).deleted()) ++e;
+    for (auto x : mesh.faces())
+        if (!mesh.status(x).deleted()) ++f;
+    return v - e + f;
+}
+
+/// Whether every live vertex is manifold and every live face has a positive Qe (not flat).
+inline bool manifold_and_nondegenerate(const SurfaceMesh& mesh)
+{
+    for (auto v : mesh.vertices())
+        if (!mesh.status(v).deleted() && !mesh.is_manifold(v)) return false;
+    for (auto f : mesh.faces())
+        if (!mesh.status(f).deleted() && !(face_qe(mesh, f) > 0.0)) return false;
+    return true;
 }
 
 }  // namespace hdimesh::surface::fixtures

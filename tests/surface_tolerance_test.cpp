@@ -57,30 +57,8 @@ void classify_flat(SurfaceMesh& mesh)
 
 using hdimesh::surface::fixtures::icosahedron;
 
-// Points spread evenly over the unit sphere (a Fibonacci lattice): the "input vertices".
-std::vector<Vec3d> sphere_points(int n)
-{
-    std::vector<Vec3d> points;
-    const double golden = M_PI * (3.0 - std::sqrt(5.0));
-    for (int i = 0; i < n; ++i)
-    {
-        const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z);
-        points.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
-    }
-    return points;
-}
-
-long euler(const SurfaceMesh& mesh)
-{
-    long v = 0, e = 0, f = 0;
-    for (auto x : mesh.vertices())
-        if (!mesh.status(x).deleted() && !mesh.is_isolated(x)) ++v;
-    for (auto x : mesh.edges())
-        if (!mesh.status(x).deleted()) ++e;
-    for (auto x : mesh.faces())
-        if (!mesh.status(x).deleted()) ++f;
-    return v - e + f;
-}
+using hdimesh::surface::fixtures::euler;
+using hdimesh::surface::fixtures::sphere_points;
 
 std::size_t boundary_loops(const SurfaceMesh& mesh)
 {
