@@ -29,8 +29,8 @@ constexpr int kCurveFitSweeps = 4;
 
 }  // namespace
 
-Cleanup::Cleanup(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log, const ToleranceOptions& tolerance,
-                 const CleanupOptions& options)
+Cleanup::Cleanup(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log,
+                 const ToleranceOptions& tolerance, const CleanupOptions& options)
     : ToleranceStage(run, keeper, tolerance),
       options_(options),
       cleanup_angle_margin_cos_(cos_deg(options.angle_deg + 1.0))
@@ -63,15 +63,18 @@ void Cleanup::collapse_short_for_reference()
         {
             const EdgeHandle e(index);
             if (mesh_.status(e).deleted() ||
-                size_quality(mesh_.calc_edge_length(e), tolerance_.reference_size) >= kSizeQualityThreshold)
+                size_quality(mesh_.calc_edge_length(e), tolerance_.reference_size) >=
+                    kSizeQualityThreshold)
                 continue;
             // Curve edges keep the loop's sizes: a longer chord of a curved ridge leaves it.
             if (ctx_.is_feature(e)) continue;
             HalfedgeHandle hs[2] = {mesh_.halfedge_handle(e, 0), mesh_.halfedge_handle(e, 1)};
-            if (run_.removal_rank(mesh_.from_vertex_handle(hs[1])) < run_.removal_rank(mesh_.from_vertex_handle(hs[0])))
+            if (run_.removal_rank(mesh_.from_vertex_handle(hs[1])) <
+                run_.removal_rank(mesh_.from_vertex_handle(hs[0])))
                 std::swap(hs[0], hs[1]);
             for (const HalfedgeHandle hh : hs)
-                if (try_collapse(ctx_, hh, max_new_length, false, kReferenceCollapseMinAngle).done())
+                if (try_collapse(ctx_, hh, max_new_length, false, kReferenceCollapseMinAngle)
+                        .done())
                 {
                     ++done;
                     break;
@@ -117,7 +120,8 @@ std::size_t Cleanup::collapse_short_keeping_tolerance()
         {
             const EdgeHandle e(index);
             if (mesh_.status(e).deleted() || ctx_.is_feature(e) ||
-                size_quality(mesh_.calc_edge_length(e), tolerance_.reference_size) >= kSizeQualityThreshold)
+                size_quality(mesh_.calc_edge_length(e), tolerance_.reference_size) >=
+                    kSizeQualityThreshold)
                 continue;
             for (int i = 0; i < 2; ++i)
             {
@@ -130,7 +134,9 @@ std::size_t Cleanup::collapse_short_keeping_tolerance()
             }
         }
         total += done;
-        if (run_.options.verbosity > 0) std::fprintf(stderr, "remesh: budget collapse pass %d: %zu collapses\n", pass + 1, done);
+        if (run_.options.verbosity > 0)
+            std::fprintf(stderr, "remesh: budget collapse pass %d: %zu collapses\n", pass + 1,
+                         done);
         if (done == 0) break;
     }
     // The stars of the kept vertices settle: quality flips and smart shifts that keep the
@@ -143,11 +149,14 @@ std::size_t Cleanup::collapse_short_keeping_tolerance()
             if (mesh_.status(v).deleted()) continue;
             const std::vector<EdgeHandle> around = run_.edges_of_faces_at(v);
             for (const EdgeHandle e : around)
-                if (!mesh_.status(e).deleted() && keeper_.flip_keeping_tolerance(e)) ++report_.flips;
+                if (!mesh_.status(e).deleted() && keeper_.flip_keeping_tolerance(e))
+                    ++report_.flips;
             std::vector<VertexHandle> ring{v};
             for (auto w : mesh_.vv_range(v)) ring.push_back(w);
             for (const VertexHandle w : ring)
-                if (!mesh_.status(w).deleted() && keeper_.shift(w, smart, Keep::ToleranceAndLengths)) ++report_.shifts;
+                if (!mesh_.status(w).deleted() &&
+                    keeper_.shift(w, smart, Keep::ToleranceAndLengths))
+                    ++report_.shifts;
         }
     report_.collapses += total;
     return total;
@@ -171,7 +180,9 @@ std::size_t Cleanup::fit_curves()
         for (auto v : mesh_.vertices())
         {
             const VertexClass cls = ctx_.vertex_class(v);
-            if (mesh_.status(v).deleted() || (cls != VertexClass::Ridge && cls != VertexClass::Boundary)) continue;
+            if (mesh_.status(v).deleted() ||
+                (cls != VertexClass::Ridge && cls != VertexClass::Boundary))
+                continue;
             if (!unsettled[v.idx()]) continue;
             unsettled[v.idx()] = 0;
             // The witnesses within the star's own reach: the curve around v is what it fits.
@@ -188,7 +199,8 @@ std::size_t Cleanup::fit_curves()
             }
         }
         moved += done;
-        if (run_.options.verbosity > 0) std::fprintf(stderr, "remesh: curve fit sweep %d: %zu moves\n", sweep + 1, done);
+        if (run_.options.verbosity > 0)
+            std::fprintf(stderr, "remesh: curve fit sweep %d: %zu moves\n", sweep + 1, done);
         if (done == 0) break;
     }
     report_.shifts += moved;
@@ -209,7 +221,8 @@ std::vector<FaceHandle> Cleanup::faces_under_cleanup_angle()
         for (int index = 0; index < face_count; ++index)
         {
             const FaceHandle f(index);
-            if (!mesh_.status(f).deleted() && face_angle_below(f, options_.angle_deg)) bad.push_back(f);
+            if (!mesh_.status(f).deleted() && face_angle_below(f, options_.angle_deg))
+                bad.push_back(f);
         }
         angle_changes_.recording = true;
     }
@@ -222,13 +235,15 @@ std::vector<FaceHandle> Cleanup::faces_under_cleanup_angle()
         std::sort(suspects.begin(), suspects.end());
         suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
         for (const FaceHandle f : suspects)
-            if (!mesh_.status(f).deleted() && face_angle_below(f, options_.angle_deg)) bad.push_back(f);
+            if (!mesh_.status(f).deleted() && face_angle_below(f, options_.angle_deg))
+                bad.push_back(f);
     }
     angle_changes_.vertices.clear();
 #ifndef NDEBUG
     std::vector<FaceHandle> scanned;
     for (auto f : mesh_.faces())
-        if (!mesh_.status(f).deleted() && face_angle_below(f, options_.angle_deg)) scanned.push_back(f);
+        if (!mesh_.status(f).deleted() && face_angle_below(f, options_.angle_deg))
+            scanned.push_back(f);
     assert(scanned == bad);
 #endif
     faces_under_angle_ = bad;
@@ -253,7 +268,8 @@ bool Cleanup::face_angle_below(FaceHandle f, double degrees) const
     std::sort(l2, l2 + 3);  // the smallest angle is opposite the shortest side
     const double cosine = (l2[1] + l2[2] - l2[0]) / (2.0 * std::sqrt(l2[1] * l2[2]));
     // (The cleanup's bound computed once: the first scan asks it of every face.)
-    const double clearly_above = degrees == options_.angle_deg ? cleanup_angle_margin_cos_ : detail::cos_deg(degrees + 1.0);
+    const double clearly_above =
+        degrees == options_.angle_deg ? cleanup_angle_margin_cos_ : detail::cos_deg(degrees + 1.0);
     if (l2[0] > 0.0 && cosine < clearly_above) return false;
     return triangle_min_angle_deg(p[0], p[1], p[2]) < degrees;
 }
@@ -286,7 +302,8 @@ void Cleanup::cleanup_worst_triangles(Keep keep)
                 ++changed;
         }
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: cleanup round %d: %zu bad triangles, %zu improved\n", round + 1, bad.size(), changed);
+            std::fprintf(stderr, "remesh: cleanup round %d: %zu bad triangles, %zu improved\n",
+                         round + 1, bad.size(), changed);
         if (changed == 0) break;
         // Let the neighbourhood settle after the topological changes.
         for (const FaceHandle f : bad)
@@ -303,12 +320,13 @@ bool Cleanup::improve_face(FaceHandle f, const ShiftOptions& smart, Keep keep)
     const bool keep_tolerance = keep != Keep::Nothing;
     std::vector<EdgeHandle> edges;
     for (auto e : mesh_.fe_range(f)) edges.push_back(e);
-    std::sort(edges.begin(), edges.end(), [&](EdgeHandle a, EdgeHandle b) {
-        return mesh_.calc_edge_length(a) > mesh_.calc_edge_length(b);
-    });
+    std::sort(edges.begin(), edges.end(),
+              [&](EdgeHandle a, EdgeHandle b)
+              { return mesh_.calc_edge_length(a) > mesh_.calc_edge_length(b); });
     // The longest edge is opposite the largest angle: flipping it is the usual cure.
     for (const EdgeHandle e : edges)
-        if (keep_tolerance ? keeper_.flip_keeping_tolerance(e) : try_flip(ctx_, e, FlipGoal::Quality).done())
+        if (keep_tolerance ? keeper_.flip_keeping_tolerance(e)
+                           : try_flip(ctx_, e, FlipGoal::Quality).done())
         {
             ++report_.flips;
             return true;
@@ -317,8 +335,9 @@ bool Cleanup::improve_face(FaceHandle f, const ShiftOptions& smart, Keep keep)
     const EdgeHandle shortest = edges.back();
     const double h = run_.edge_size(shortest);
     for (int i = 0; i < 2; ++i)
-        if (keep_tolerance ? keeper_.collapse_keeping_tolerance(mesh_.halfedge_handle(shortest, i))
-                           : try_collapse(ctx_, mesh_.halfedge_handle(shortest, i), kTooLong * h, true).done())
+        if (keep_tolerance
+                ? keeper_.collapse_keeping_tolerance(mesh_.halfedge_handle(shortest, i))
+                : try_collapse(ctx_, mesh_.halfedge_handle(shortest, i), kTooLong * h, true).done())
         {
             ++report_.collapses;
             return true;
@@ -360,10 +379,13 @@ std::size_t Cleanup::repair_small_angles()
             if (mesh_.status(f).deleted() || !face_angle_below(f, options_.angle_deg)) continue;
             std::vector<EdgeHandle> edges;
             for (auto e : mesh_.fe_range(f)) edges.push_back(e);
-            std::sort(edges.begin(), edges.end(), [&](EdgeHandle x, EdgeHandle y) {
-                const double lx = mesh_.calc_edge_length(x), ly = mesh_.calc_edge_length(y);
-                return lx != ly ? lx > ly : x.idx() < y.idx();
-            });
+            std::sort(edges.begin(), edges.end(),
+                      [&](EdgeHandle x, EdgeHandle y)
+                      {
+                          const double lx = mesh_.calc_edge_length(x),
+                                       ly = mesh_.calc_edge_length(y);
+                          return lx != ly ? lx > ly : x.idx() < y.idx();
+                      });
             bool flipped = false;
             for (const EdgeHandle e : edges)
                 if (keeper_.flip_keeping_tolerance(e))
@@ -387,14 +409,18 @@ std::size_t Cleanup::repair_small_angles()
             {
                 if (!moves) break;
                 const VertexClass cls = ctx_.vertex_class(v);
-                if (cls == VertexClass::Corner || (cls == VertexClass::Smooth && mesh_.is_boundary(v))) continue;
+                if (cls == VertexClass::Corner ||
+                    (cls == VertexClass::Smooth && mesh_.is_boundary(v)))
+                    continue;
                 Vec3d sum(0, 0, 0);
                 int n = 0;
                 for (auto h : mesh_.voh_range(v))
-                    if (cls == VertexClass::Smooth || ctx_.edge_curve(mesh_.edge_handle(h)) == ctx_.vertex_curve(v))
+                    if (cls == VertexClass::Smooth ||
+                        ctx_.edge_curve(mesh_.edge_handle(h)) == ctx_.vertex_curve(v))
                         sum += mesh_.point(mesh_.to_vertex_handle(h)), ++n;
                 if (n == 0) continue;
-                const ProjectedPoint balanced = ctx_.model.project_near(sum / n, cls, ctx_.vertex_curve(v), ctx_.model_face(v));
+                const ProjectedPoint balanced =
+                    ctx_.model.project_near(sum / n, cls, ctx_.vertex_curve(v), ctx_.model_face(v));
                 if (!balanced.ok) continue;
                 if (keeper_.try_snap(v, balanced.point, true))
                 {
@@ -406,8 +432,9 @@ std::size_t Cleanup::repair_small_angles()
         }
         repaired += moved;
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: angle repair round %d: %zu small-angle triangles, %zu moves\n", round + 1,
-                         bad.size(), moved);
+            std::fprintf(stderr,
+                         "remesh: angle repair round %d: %zu small-angle triangles, %zu moves\n",
+                         round + 1, bad.size(), moved);
         if (moved == 0) break;
     }
     return repaired;
@@ -427,7 +454,8 @@ void Cleanup::slide_curve_vertices_of_needles()
         // it: those under the angle at the round's start, and those a slide changes further
         // on (the others have no small angle when their turn comes).
         const std::vector<FaceHandle> bad = faces_under_cleanup_angle();
-        std::priority_queue<int, std::vector<int>, std::greater<int>> queue(std::greater<int>(), face_indices(bad));
+        std::priority_queue<int, std::vector<int>, std::greater<int>> queue(std::greater<int>(),
+                                                                            face_indices(bad));
         int last = -1;
         std::size_t done = 0;
         while (!queue.empty())
@@ -446,7 +474,9 @@ void Cleanup::slide_curve_vertices_of_needles()
                     if (g.idx() > index) queue.push(g.idx());
             }
         }
-        if (run_.options.verbosity > 0) std::fprintf(stderr, "remesh: slide round %d: %zu curve vertices slid\n", round + 1, done);
+        if (run_.options.verbosity > 0)
+            std::fprintf(stderr, "remesh: slide round %d: %zu curve vertices slid\n", round + 1,
+                         done);
         if (done == 0) break;
     }
 }

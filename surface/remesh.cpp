@@ -17,7 +17,8 @@ namespace hdimesh::surface
 namespace detail
 {
 
-RemeshRun::RemeshRun(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model, const SurfaceHooks& hooks)
+RemeshRun::RemeshRun(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model,
+                     const SurfaceHooks& hooks)
     : mesh(mesh), options(options), ctx(mesh, model, hooks, options.limits)
 {
     ctx.limits.max_model_distance = options.max_model_distance;
@@ -70,10 +71,13 @@ int RemeshRun::removal_rank(VertexHandle v) const
 {
     switch (ctx.vertex_class(v))
     {
-    case VertexClass::Smooth: return 0;
-    case VertexClass::Ridge:
-    case VertexClass::Boundary: return 1;
-    case VertexClass::Corner: return 2;
+        case VertexClass::Smooth:
+            return 0;
+        case VertexClass::Ridge:
+        case VertexClass::Boundary:
+            return 1;
+        case VertexClass::Corner:
+            return 2;
     }
     return 2;
 }
@@ -93,11 +97,13 @@ void split_long_edges(RemeshRun& run)
             if (ratio > kTooLong) candidates.emplace_back(ratio, e);
         }
         if (candidates.empty()) return;
-        std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        std::sort(candidates.begin(), candidates.end(),
+                  [](const auto& a, const auto& b) { return a.first > b.first; });
         std::size_t done = 0;
         for (const auto& [ratio, e] : candidates)
         {
-            if (mesh.status(e).deleted() || mesh.calc_edge_length(e) <= kTooLong * run.edge_size(e)) continue;
+            if (mesh.status(e).deleted() || mesh.calc_edge_length(e) <= kTooLong * run.edge_size(e))
+                continue;
             const OpResult r = try_split(run.ctx, e);
             if (!r.done()) continue;
             run.set_size(r.vertex);
@@ -139,8 +145,9 @@ void collapse_short_edges(RemeshRun& run)
             HalfedgeHandle hs[2] = {mesh.halfedge_handle(e, 0), mesh.halfedge_handle(e, 1)};
             if (skip_unchanged && std::max(refused_at[e.idx()], long_enough_at[e.idx()]) >= 0)
             {
-                const long ends_changed_at = std::max(ring_changed_at[mesh.from_vertex_handle(hs[0]).idx()],
-                                                      ring_changed_at[mesh.to_vertex_handle(hs[0]).idx()]);
+                const long ends_changed_at =
+                    std::max(ring_changed_at[mesh.from_vertex_handle(hs[0]).idx()],
+                             ring_changed_at[mesh.to_vertex_handle(hs[0]).idx()]);
                 if (long_enough_at[e.idx()] >= 0 && long_enough_at[e.idx()] >= ends_changed_at)
                 {
                     assert(mesh.calc_edge_length(e) >= kTooShort * run.edge_size(e));
@@ -150,8 +157,10 @@ void collapse_short_edges(RemeshRun& run)
                 {
                     // (The layers read the two ends' stars only; a layer reading farther would
                     // make this skip wrong, which a debug build catches here.)
-                    assert(collapse_status(run.ctx, hs[0], kTooLong * run.edge_size(e)) != OpStatus::Done &&
-                           collapse_status(run.ctx, hs[1], kTooLong * run.edge_size(e)) != OpStatus::Done);
+                    assert(collapse_status(run.ctx, hs[0], kTooLong * run.edge_size(e)) !=
+                               OpStatus::Done &&
+                           collapse_status(run.ctx, hs[1], kTooLong * run.edge_size(e)) !=
+                               OpStatus::Done);
                     continue;
                 }
             }
@@ -161,7 +170,8 @@ void collapse_short_edges(RemeshRun& run)
                 if (skip_unchanged) long_enough_at[e.idx()] = collapses;
                 continue;
             }
-            if (run.removal_rank(mesh.from_vertex_handle(hs[1])) < run.removal_rank(mesh.from_vertex_handle(hs[0])))
+            if (run.removal_rank(mesh.from_vertex_handle(hs[1])) <
+                run.removal_rank(mesh.from_vertex_handle(hs[0])))
                 std::swap(hs[0], hs[1]);
             bool collapsed = false;
             for (const HalfedgeHandle hh : hs)
@@ -215,7 +225,8 @@ std::size_t flip_edges(RemeshRun& run, FlipGoal goal, const std::vector<char>* o
         for (std::size_t i = 0; i < on_boundary.size(); ++i)
             if (on_boundary[i]) valence_excess[i] += 2;
     }
-    auto deviation = [&](VertexHandle v, int delta) { return std::abs(valence_excess[v.idx()] + delta); };
+    auto deviation = [&](VertexHandle v, int delta)
+    { return std::abs(valence_excess[v.idx()] + delta); };
     std::size_t done = 0;
     // (A flip adds no edge; one deleted when reached is skipped. The passes walk the
     // elements by index: OpenMesh's skipping iterator asks the virtual n_edges() at each
@@ -284,23 +295,27 @@ void run_iterations(RemeshRun& run)
         shift_vertices(run, false);
         ++run.report.iterations;
         if (run.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: iteration %d: %zu vertices, %zu splits, %zu collapses, %zu flips, %zu shifts\n",
-                         it + 1, run.count_vertices(), run.report.splits, run.report.collapses, run.report.flips,
-                         run.report.shifts);
+            std::fprintf(stderr,
+                         "remesh: iteration %d: %zu vertices, %zu splits, %zu collapses, %zu "
+                         "flips, %zu shifts\n",
+                         it + 1, run.count_vertices(), run.report.splits, run.report.collapses,
+                         run.report.flips, run.report.shifts);
     }
 }
 
 }  // namespace detail
 
-RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model, const SurfaceHooks& hooks)
+RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Projector& model,
+                    const SurfaceHooks& hooks)
 {
     if (!options.size) throw InputError("remesh: no size function given");
     detail::RemeshRun run(mesh, options, model, hooks);
     run.update_sizes();
     detail::run_iterations(run);
     if (options.verbosity > 0)
-        std::fprintf(stderr, "remesh: %d iterations (%.2f s, cpu %.3f s): %zu vertices\n", run.report.iterations,
-                     run.clock.wall_seconds(), run.clock.cpu_seconds(), run.count_vertices());
+        std::fprintf(stderr, "remesh: %d iterations (%.2f s, cpu %.3f s): %zu vertices\n",
+                     run.report.iterations, run.clock.wall_seconds(), run.clock.cpu_seconds(),
+                     run.count_vertices());
     mesh.garbage_collection();
     return run.report;
 }

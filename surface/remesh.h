@@ -42,7 +42,8 @@ struct RemeshOptions
 struct RemeshReport
 {
     int iterations = 0;
-    std::size_t splits = 0, collapses = 0, flips = 0, removals = 0, shifts = 0, refinement_splits = 0;
+    std::size_t splits = 0, collapses = 0, flips = 0, removals = 0, shifts = 0,
+                refinement_splits = 0;
     std::size_t refinement_snaps = 0;  // vertices moved onto far model points
 };
 

@@ -25,7 +25,8 @@ namespace
 constexpr double kAdaptiveToleranceMargin = 0.8;
 
 // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
-void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& keeper, const char* stage)
+void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& keeper,
+                  const char* stage)
 {
     if (run.options.verbosity <= 0) return;
     std::size_t short_edges = 0, long_edges = 0, edges = 0;
@@ -34,20 +35,22 @@ void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& k
         if (run.mesh.status(e).deleted()) continue;
         ++edges;
         const double length = run.mesh.calc_edge_length(e), size = run.edge_size(e);
-        if (is_too_short(length, size)) ++short_edges;
-        else if (is_too_long(length, size)) ++long_edges;
+        if (is_too_short(length, size))
+            ++short_edges;
+        else if (is_too_long(length, size))
+            ++long_edges;
     }
     std::fprintf(stderr,
-                 "remesh: after %s (%.2f s, cpu %.3f s): %zu edges, %zu too short, %zu too long, %zu short for the "
-                 "reference\n",
-                 stage, run.clock.wall_seconds(), run.clock.cpu_seconds(), edges, short_edges, long_edges,
-                 keeper.count_short_edges());
+                 "remesh: after %s (%.2f s, cpu %.3f s): %zu edges, %zu too short, %zu too long, "
+                 "%zu short for the reference\n",
+                 stage, run.clock.wall_seconds(), run.clock.cpu_seconds(), edges, short_edges,
+                 long_edges, keeper.count_short_edges());
 }
 
 }  // namespace
 
-RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& options, const Projector& model,
-                            const SurfaceHooks& hooks)
+RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& options,
+                            const Projector& model, const SurfaceHooks& hooks)
 {
     if (!options.loop.size) throw InputError("remesh: no size function given");
     // The stages share the operators' context (its hooks note each change for their caches),
@@ -104,16 +107,17 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     SurfaceRemeshResult result;
     // Verbose: the CPU time of the fixed costs before the remesher starts (features, model, sizes).
     const Stopwatch clock;
-    auto report_setup = [&](const char* stage) {
+    auto report_setup = [&](const char* stage)
+    {
         if (settings.verbosity > 0)
-            std::fprintf(stderr, "remesh_surface: after %s (%.2f s, cpu %.3f s)\n", stage, clock.wall_seconds(),
-                         clock.cpu_seconds());
+            std::fprintf(stderr, "remesh_surface: after %s (%.2f s, cpu %.3f s)\n", stage,
+                         clock.wall_seconds(), clock.cpu_seconds());
     };
     result.diagonal = bounding_box_diagonal(mesh);
     FeatureOptions features = settings.features;
     if (features.min_corner_spacing <= 0.0)
     {
-        const double h = settings.sizing.hsiz > 0.0 ? settings.sizing.hsiz
+        const double h = settings.sizing.hsiz > 0.0   ? settings.sizing.hsiz
                          : settings.sizing.hmin > 0.0 ? settings.sizing.hmin
                                                       : 0.0;
         features.min_corner_spacing = 0.5 * h;
@@ -134,13 +138,14 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         if (!(capped.hausd > 0.0)) capped.hausd = settings.uniform_hausd_fraction * result.diagonal;
         std::vector<double> local = curvature_sizes(mesh, model, capped);
         // Never below the floor (edges shorter than 0.66·hsiz fail the size criterion); on ridges
-        // down to half of it: a curved ridge must stay within its tolerance. Open boundaries of scans zig-zag,
-        // so their turning is no curvature to follow.
+        // down to half of it: a curved ridge must stay within its tolerance. Open boundaries of
+        // scans zig-zag, so their turning is no curvature to follow.
         SurfaceProperties props(mesh);
         for (auto v : mesh.vertices())
         {
             const bool ridge = mesh.property(props.vertex_class, v) == VertexClass::Ridge;
-            const double floor = (ridge ? 0.5 : 1.0) * settings.uniform_size_floor * settings.sizing.hsiz;
+            const double floor =
+                (ridge ? 0.5 : 1.0) * settings.uniform_size_floor * settings.sizing.hsiz;
             local[v.idx()] = std::max(local[v.idx()], floor);
         }
         const bool all_uniform = std::all_of(local.begin(), local.end(),
@@ -151,7 +156,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     {
         if (settings.input_sizes.size() != mesh.n_vertices())
             throw InputError("remesh_surface: " + std::to_string(settings.input_sizes.size()) +
-                                    " sizes for " + std::to_string(mesh.n_vertices()) + " vertices");
+                             " sizes for " + std::to_string(mesh.n_vertices()) + " vertices");
         std::vector<double> graded = settings.input_sizes;
         bound_and_grade(mesh, graded, settings.sizing);
         sizes = SizeMap::per_input_vertex(model, std::move(graded));
@@ -166,7 +171,8 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
 
     SurfaceRemeshOptions options;
     options.loop.size = [&sizes](const Vec3d& p) { return sizes.at(p); };
-    options.loop.size_near = [&sizes](const Vec3d& p, int face_hint) { return sizes.at(p, face_hint); };
+    options.loop.size_near = [&sizes](const Vec3d& p, int face_hint)
+    { return sizes.at(p, face_hint); };
     {
         // The remeshed surface starts as the model's own input: each vertex's first hint is a face
         // of its own (the model numbers the input faces in iteration order).
@@ -180,13 +186,19 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     }
     options.loop.iterations = settings.iterations;
     options.loop.verbosity = settings.verbosity;
-    if (settings.max_model_distance >= 0.0) options.loop.max_model_distance = settings.max_model_distance;
-    else if (settings.sizing.hausd > 0.0) options.loop.max_model_distance = settings.sizing.hausd;
-    else options.loop.max_model_distance = 0.002 * result.diagonal;
+    if (settings.max_model_distance >= 0.0)
+        options.loop.max_model_distance = settings.max_model_distance;
+    else if (settings.sizing.hausd > 0.0)
+        options.loop.max_model_distance = settings.sizing.hausd;
+    else
+        options.loop.max_model_distance = 0.002 * result.diagonal;
     // The tolerance both ways: hausd when given, else the fraction for a uniform size.
-    if (settings.sizing.hausd > 0.0) options.tolerance.tolerance = settings.sizing.hausd;
-    else if (settings.sizing.hsiz > 0.0) options.tolerance.tolerance = settings.uniform_hausd_fraction * result.diagonal;
-    else options.tolerance.tolerance = 0.002 * result.diagonal;
+    if (settings.sizing.hausd > 0.0)
+        options.tolerance.tolerance = settings.sizing.hausd;
+    else if (settings.sizing.hsiz > 0.0)
+        options.tolerance.tolerance = settings.uniform_hausd_fraction * result.diagonal;
+    else
+        options.tolerance.tolerance = 0.002 * result.diagonal;
     if (settings.refine_to_tolerance && options.tolerance.tolerance > 0.0)
     {
         const SurfaceProperties props(mesh);
@@ -196,7 +208,8 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         {
             if (mesh.is_isolated(v)) continue;
             options.tolerance.model_points.push_back(mesh.point(v));
-            options.tolerance.model_point_smooth.push_back(mesh.property(props.vertex_class, v) == VertexClass::Smooth);
+            options.tolerance.model_point_smooth.push_back(mesh.property(props.vertex_class, v) ==
+                                                           VertexClass::Smooth);
         }
         // Edge midpoints too (the Hausdorff samples of the input): a crease the features dropped
         // is farthest from the output between its vertices. With a uniform size too: the
@@ -204,15 +217,18 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         for (auto e : mesh.edges())
         {
             const auto h = mesh.halfedge_handle(e, 0);
-            const Vec3d mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+            const Vec3d mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) +
+                                     mesh.point(mesh.to_vertex_handle(h)));
             options.tolerance.model_points.push_back(mid);
-            options.tolerance.model_point_smooth.push_back(mesh.property(props.edge_curve, e) == kNoCurve && !mesh.is_boundary(e));
+            options.tolerance.model_point_smooth.push_back(
+                mesh.property(props.edge_curve, e) == kNoCurve && !mesh.is_boundary(e));
         }
     }
     if (!settings.refine_to_tolerance) options.tolerance.tolerance = 0.0;
     options.tolerance.reference_size = settings.sizing.hsiz;
     options.refinement.short_edge_budget = settings.refine_short_edge_budget;
-    options.refinement.final_short_edge_budget = std::max(settings.refine_final_short_edge_budget, settings.refine_short_edge_budget);
+    options.refinement.final_short_edge_budget =
+        std::max(settings.refine_final_short_edge_budget, settings.refine_short_edge_budget);
     if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty())
     {
         // Curvature-adaptive: the tolerance is the contract (no size target to keep), with a

@@ -87,16 +87,17 @@ struct SurfaceRemeshOptions
 /// The pipeline on `model`: `mesh` classified by detect_features, or carrying the properties of
 /// surface_mesh.h. Hooks see every change; handles stay valid until the final garbage
 /// collection at the end of the call.
-RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& options, const Projector& model,
-                            const SurfaceHooks& hooks = {});
+RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& options,
+                            const Projector& model, const SurfaceHooks& hooks = {});
 
 /// Everything surfremesh needs, for one library call from an input surface.
 struct SurfaceRemeshSettings
 {
     FeatureOptions features;
-    SizingOptions sizing;             // hsiz > 0: uniform; else curvature from hausd (default 0.002·diag)
-    std::vector<double> input_sizes;  // non-empty: a size per input vertex (--sol), bounded and graded
-    int iterations = 8;               // RemeshOptions::iterations
+    SizingOptions sizing;  // hsiz > 0: uniform; else curvature from hausd (default 0.002·diag)
+    std::vector<double>
+        input_sizes;     // non-empty: a size per input vertex (--sol), bounded and graded
+    int iterations = 8;  // RemeshOptions::iterations
     /// With a uniform size: refine below it where the curvature needs it to stay within
     /// hausd (if given) or this fraction of the bbox diagonal (≤ 0: strictly uniform).
     double uniform_hausd_fraction = 0.0016;

@@ -37,7 +37,8 @@ const Vec3d kNoPoint(std::numeric_limits<double>::quiet_NaN());
 }  // namespace
 
 ToleranceRefinement::ToleranceRefinement(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log,
-                                         const ToleranceOptions& tolerance, const ToleranceRefinementOptions& options)
+                                         const ToleranceOptions& tolerance,
+                                         const ToleranceRefinementOptions& options)
     : ToleranceStage(run, keeper, tolerance), options_(options)
 {
     log.add(face_changes_);
@@ -73,13 +74,16 @@ OpResult ToleranceRefinement::split_toward(EdgeHandle e, const Vec3d& target, bo
     const double min_angle = std::min(tolerance_.snap_min_angle_deg, old_min_angle);
     for (const double step : kSplitTowardSteps)
     {
-        const ProjectedPoint on_model =
-            ctx_.model.project_near(mid + step * (target - mid), VertexClass::Smooth, kNoCurve, ctx_.model_face(a));
+        const ProjectedPoint on_model = ctx_.model.project_near(
+            mid + step * (target - mid), VertexClass::Smooth, kNoCurve, ctx_.model_face(a));
         if (!on_model.ok) continue;
         const Vec3d& p = on_model.point;
-        if (std::any_of(opposite.begin(), opposite.end(), [&](const Vec3d& c) {
-                return triangle_min_angle_deg(pa, p, c) < min_angle || triangle_min_angle_deg(p, pb, c) < min_angle;
-            }))
+        if (std::any_of(opposite.begin(), opposite.end(),
+                        [&](const Vec3d& c)
+                        {
+                            return triangle_min_angle_deg(pa, p, c) < min_angle ||
+                                   triangle_min_angle_deg(p, pb, c) < min_angle;
+                        }))
             continue;
         const OpResult partial = try_split(ctx_, e, &p);
         if (partial.done()) return partial;
@@ -97,7 +101,10 @@ EdgeHandle ToleranceRefinement::nearest_curve_edge(FaceHandle f, std::size_t poi
     {
         if (!ctx_.is_feature(e)) continue;
         const auto h = mesh_.halfedge_handle(e, 0);
-        const double d = (closest_point_on_segment(q, mesh_.point(mesh_.from_vertex_handle(h)), mesh_.point(mesh_.to_vertex_handle(h))) - q).sqrnorm();
+        const double d = (closest_point_on_segment(q, mesh_.point(mesh_.from_vertex_handle(h)),
+                                                   mesh_.point(mesh_.to_vertex_handle(h))) -
+                          q)
+                             .sqrnorm();
         if (d < best) best = d, nearest = e;
     }
     return nearest;
@@ -125,18 +132,23 @@ VertexHandle ToleranceRefinement::snap_vertex_of_edge(EdgeHandle e, const Vec3d&
 // The first of `vertices`, nearest first, that try_snap_vertex moves toward `target`, with
 // the star's edges kept in the Qt band of the reference size and the model points around
 // the star and the target as witnesses.
-VertexHandle ToleranceRefinement::snap_one_of(std::vector<VertexHandle> vertices, const Vec3d& target, bool smooth_point)
+VertexHandle ToleranceRefinement::snap_one_of(std::vector<VertexHandle> vertices,
+                                              const Vec3d& target, bool smooth_point)
 {
-    std::sort(vertices.begin(), vertices.end(), [&](VertexHandle a, VertexHandle b) {
-        const double da = (mesh_.point(a) - target).sqrnorm(), db = (mesh_.point(b) - target).sqrnorm();
-        return da != db ? da < db : a.idx() < b.idx();  // ties by index: deterministic
-    });
+    std::sort(vertices.begin(), vertices.end(),
+              [&](VertexHandle a, VertexHandle b)
+              {
+                  const double da = (mesh_.point(a) - target).sqrnorm(),
+                               db = (mesh_.point(b) - target).sqrnorm();
+                  return da != db ? da < db : a.idx() < b.idx();  // ties by index: deterministic
+              });
     for (const VertexHandle v : vertices)
     {
         const VertexClass cls = ctx_.vertex_class(v);
         if (cls == VertexClass::Corner || (cls == VertexClass::Smooth) != smooth_point) continue;
-        const double size = tolerance_.reference_size > 0.0 ? tolerance_.reference_size
-                                                                 : mesh_.property(ctx_.props.vertex_size, v);
+        const double size = tolerance_.reference_size > 0.0
+                                ? tolerance_.reference_size
+                                : mesh_.property(ctx_.props.vertex_size, v);
         const Vec3d p = mesh_.point(v);
         if ((p - target).norm() > kMaxSnapDistance * size) continue;
         if (keeper_.try_snap(v, target, false))
@@ -174,7 +186,8 @@ FaceHandle ToleranceRefinement::near_face_around(const Vec3d& p, FaceHandle f) c
     if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
     // (detail::within_triangle: a triangle whose box is clearly beyond the tolerance gets
     // no closest point: most triangles asked are around a face that is not near.)
-    auto within_tolerance = [&](FaceHandle g) { return detail::within_triangle(p, face_points_[g.idx()], tolerance_.tolerance); };
+    auto within_tolerance = [&](FaceHandle g)
+    { return detail::within_triangle(p, face_points_[g.idx()], tolerance_.tolerance); };
     if (within_tolerance(f)) return f;
     // The faces around the vertex a walk from f toward p ends at: the first refinement's
     // points in space order are mostly a few faces from the one before, where f's own
@@ -182,11 +195,13 @@ FaceHandle ToleranceRefinement::near_face_around(const Vec3d& p, FaceHandle f) c
     // (Which of the faces proves p near is no matter, their order neither.)
     const VertexHandle end = vertex_toward(p, f);
     FaceHandle found;
-    any_outgoing(end, [&](HalfedgeHandle h) {
-        const FaceHandle g = mesh_.face_handle(h);
-        if (g.is_valid() && within_tolerance(g)) found = g;
-        return found.is_valid();
-    });
+    any_outgoing(end,
+                 [&](HalfedgeHandle h)
+                 {
+                     const FaceHandle g = mesh_.face_handle(h);
+                     if (g.is_valid() && within_tolerance(g)) found = g;
+                     return found.is_valid();
+                 });
     if (found.is_valid()) return found;
     for (auto v : mesh_.fv_range(f))
     {
@@ -212,12 +227,14 @@ VertexHandle ToleranceRefinement::vertex_toward(const Vec3d& p, FaceHandle f) co
     for (int step = 0; step < kWalkSteps; ++step)
     {
         VertexHandle next;
-        any_outgoing(v, [&](HalfedgeHandle h) {
-            const VertexHandle w = mesh_.to_vertex_handle(h);
-            const double d2 = (mesh_.point(w) - p).sqrnorm();
-            if (d2 < v_d2) v_d2 = d2, next = w;
-            return false;
-        });
+        any_outgoing(v,
+                     [&](HalfedgeHandle h)
+                     {
+                         const VertexHandle w = mesh_.to_vertex_handle(h);
+                         const double d2 = (mesh_.point(w) - p).sqrnorm();
+                         if (d2 < v_d2) v_d2 = d2, next = w;
+                         return false;
+                     });
         if (!next.is_valid()) break;
         v = next;
     }
@@ -231,7 +248,8 @@ bool ToleranceRefinement::near_by_face_of(std::size_t i)
 {
     // Proven by a face unchanged since: near_face_around would find that face again at once.
     const FaceHandle f = point_face_[i];
-    if (point_proven_in_[i] > 0 && f.is_valid() && face_changed_in_[f.idx()] <= point_proven_in_[i] && !mesh_.status(f).deleted())
+    if (point_proven_in_[i] > 0 && f.is_valid() &&
+        face_changed_in_[f.idx()] <= point_proven_in_[i] && !mesh_.status(f).deleted())
         return true;
     const FaceHandle near = near_face_around(points_in_space_order_[i], f);
     if (near.is_valid()) set_point_face(i, near, true);
@@ -275,11 +293,14 @@ void ToleranceRefinement::update_face_points()
     const std::size_t known_faces = face_points_.size();
     detail::resize_with_room(face_changed_in_, mesh_.n_faces(), std::uint32_t{0});
     faces_changed_now_.clear();
-    auto refresh = [&](FaceHandle f) {
+    auto refresh = [&](FaceHandle f)
+    {
         const std::array<Vec3d, 3> points = detail::face_points(mesh_, f);
-        if (static_cast<std::size_t>(f.idx()) < known_faces && points == face_points_[f.idx()]) return;
+        if (static_cast<std::size_t>(f.idx()) < known_faces && points == face_points_[f.idx()])
+            return;
         face_points_[f.idx()] = points;
-        if (face_changed_in_[f.idx()] != refine_round_ && !face_points_stale_) faces_changed_now_.push_back(f);
+        if (face_changed_in_[f.idx()] != refine_round_ && !face_points_stale_)
+            faces_changed_now_.push_back(f);
         face_changed_in_[f.idx()] = refine_round_;
     };
     if (face_points_stale_)
@@ -337,9 +358,11 @@ const std::vector<std::size_t>& ToleranceRefinement::model_points_in_space_order
     for (int shift = 0; shift < 3 * kMortonBitsPerAxis && !keyed.empty(); shift += kDigitBits)
     {
         std::vector<std::size_t> start((std::size_t(1) << kDigitBits) + 1, 0);
-        auto digit = [&](std::uint64_t key) { return static_cast<std::size_t>((key >> shift) & ((1u << kDigitBits) - 1)); };
+        auto digit = [&](std::uint64_t key)
+        { return static_cast<std::size_t>((key >> shift) & ((1u << kDigitBits) - 1)); };
         for (const auto& k : keyed) ++start[digit(k.first) + 1];
-        if (start[digit(keyed.front().first) + 1] == keyed.size()) continue;  // one digit: in order already
+        if (start[digit(keyed.front().first) + 1] == keyed.size())
+            continue;  // one digit: in order already
         for (std::size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
         for (const auto& k : keyed) sorted[start[digit(k.first)]++] = k;
         keyed.swap(sorted);
@@ -374,8 +397,9 @@ std::size_t ToleranceRefinement::count_live_edges() const
 bool ToleranceRefinement::still_closest(const FarHit& hit) const
 {
     const FaceHandle f = hit.face;
-    if (!hit.alone || hit.measured_in + 1 != refine_round_ || faces_changed_now_.size() > kMaxChangedFacesForReuse ||
-        mesh_.status(f).deleted() || face_changed_in_[f.idx()] > hit.measured_in)
+    if (!hit.alone || hit.measured_in + 1 != refine_round_ ||
+        faces_changed_now_.size() > kMaxChangedFacesForReuse || mesh_.status(f).deleted() ||
+        face_changed_in_[f.idx()] > hit.measured_in)
         return false;
     const Vec3d& p = tolerance_.model_points[hit.point];
     const double bound_d2 = hit.distance * hit.distance * (1.0 + kAloneMargin);
@@ -383,7 +407,8 @@ bool ToleranceRefinement::still_closest(const FarHit& hit) const
     {
         if (mesh_.status(g).deleted()) continue;
         const auto& t = face_points_[g.idx()];
-        if (!detail::clearly_beyond(p, t, bound_d2) && (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm() <= bound_d2)
+        if (!detail::clearly_beyond(p, t, bound_d2) &&
+            (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm() <= bound_d2)
             return false;
     }
     return true;
@@ -394,8 +419,11 @@ bool ToleranceRefinement::still_closest(const FarHit& hit) const
 // vertices its changes noted (an edge's length and sizes change only with an end's).
 std::size_t ToleranceRefinement::short_edges_now(bool first_round)
 {
-    auto is_short = [&](EdgeHandle e) {
-        return !mesh_.status(e).deleted() && size_quality(mesh_.calc_edge_length(e), keeper_.reference_size(e)) < kSizeQualityThreshold;
+    auto is_short = [&](EdgeHandle e)
+    {
+        return !mesh_.status(e).deleted() &&
+               size_quality(mesh_.calc_edge_length(e), keeper_.reference_size(e)) <
+                   kSizeQualityThreshold;
     };
     if (first_round || short_edge_changes_.edges_deleted)
     {
@@ -465,20 +493,25 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
     for (int round = 0; round < options_.rounds; ++round)
     {
         scratch.grow(mesh_.n_vertices(), mesh_.n_edges(), mesh_.n_faces());
-        std::vector<double>& edge_error = scratch.edge_error;  // worst distance that asks for a split
+        std::vector<double>& edge_error =
+            scratch.edge_error;  // worst distance that asks for a split
         // A model point far from the output: the new vertex goes onto it (index + 1; 0: none).
         std::vector<std::size_t>& edge_target = scratch.edge_target;
-        std::vector<EdgeHandle>& marked = scratch.marked;  // the edges given an error > 0, once each
-        auto raise_error = [&](EdgeHandle e, double distance) {
+        std::vector<EdgeHandle>& marked =
+            scratch.marked;  // the edges given an error > 0, once each
+        auto raise_error = [&](EdgeHandle e, double distance)
+        {
             if (!(distance > edge_error[e.idx()])) return false;
             if (!(edge_error[e.idx()] > 0.0)) marked.push_back(e);
             edge_error[e.idx()] = distance;
             return true;
         };
-        auto mark_edge = [&](EdgeHandle e, double distance, std::size_t target) {
+        auto mark_edge = [&](EdgeHandle e, double distance, std::size_t target)
+        {
             if (raise_error(e, distance)) edge_target[e.idx()] = target;
         };
-        auto mark_longest = [&](FaceHandle f, double distance, std::size_t target) {
+        auto mark_longest = [&](FaceHandle f, double distance, std::size_t target)
+        {
             EdgeHandle longest;
             double best = -1.0;
             for (auto e : mesh_.fe_range(f))
@@ -490,7 +523,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         // (Round 0 looks at everything: none is marked then.)
         std::vector<VertexHandle>& changed = scratch.changed;  // (after round 0)
         std::vector<char>& near_change = scratch.near_change;
-        auto mark_changed = [&](VertexHandle v) {
+        auto mark_changed = [&](VertexHandle v)
+        {
             if (near_change[v.idx()]) return;
             near_change[v.idx()] = 1;
             changed.push_back(v);
@@ -514,26 +548,35 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         }
         ++refine_round_;
         update_face_points();
-        if (near_centroid_.size() < mesh_.n_faces()) detail::resize_with_room(near_centroid_, mesh_.n_faces(), kNoPoint);
-        if (near_midpoint_.size() < mesh_.n_edges()) detail::resize_with_room(near_midpoint_, mesh_.n_edges(), kNoPoint);
+        if (near_centroid_.size() < mesh_.n_faces())
+            detail::resize_with_room(near_centroid_, mesh_.n_faces(), kNoPoint);
+        if (near_midpoint_.size() < mesh_.n_edges())
+            detail::resize_with_room(near_midpoint_, mesh_.n_edges(), kNoPoint);
         // (The centroid from the face's points kept in face_points_, in the order of
         // face_vertices: the same sum; most faces are proven near by the cache, and walking
         // the mesh to their points cost more than the test.)
-        auto check_face = [&](FaceHandle f) {
+        auto check_face = [&](FaceHandle f)
+        {
             const auto& t = face_points_[f.idx()];
             const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
             if (near_centroid_[f.idx()] == centroid) return;
-            const VertexHandle hint = mesh_.from_vertex_handle(mesh_.halfedge_handle(f));  // face_vertices' first
-            if (ctx_.near_model(centroid, hint, tolerance_.tolerance)) near_centroid_[f.idx()] = centroid;
-            else mark_longest(f, ctx_.distance_to_model(centroid, hint), 0);
+            const VertexHandle hint =
+                mesh_.from_vertex_handle(mesh_.halfedge_handle(f));  // face_vertices' first
+            if (ctx_.near_model(centroid, hint, tolerance_.tolerance))
+                near_centroid_[f.idx()] = centroid;
+            else
+                mark_longest(f, ctx_.distance_to_model(centroid, hint), 0);
         };
-        auto check_edge = [&](EdgeHandle e) {
+        auto check_edge = [&](EdgeHandle e)
+        {
             const auto h = mesh_.halfedge_handle(e, 0);
             const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
             const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
             if (near_midpoint_[e.idx()] == mid) return;
-            if (ctx_.near_model(mid, a, tolerance_.tolerance)) near_midpoint_[e.idx()] = mid;
-            else raise_error(e, ctx_.distance_to_model(mid, a));
+            if (ctx_.near_model(mid, a, tolerance_.tolerance))
+                near_midpoint_[e.idx()] = mid;
+            else
+                raise_error(e, ctx_.distance_to_model(mid, a));
         };
         if (round == 0)
         {
@@ -606,7 +649,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         {
             detail::reserve_with_room(triangle_of, mesh_.n_faces());
             triangle_of.assign(mesh_.n_faces(), -1);
-            for (std::size_t t = 0; t < face_of.size(); ++t) triangle_of[face_of[t].idx()] = static_cast<int>(t);
+            for (std::size_t t = 0; t < face_of.size(); ++t)
+                triangle_of[face_of[t].idx()] = static_cast<int>(t);
         }
         FaceHandle previous;
         for (const std::size_t r : unproven)
@@ -619,23 +663,27 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
                 set_point_face(r, previous = near, true);
                 continue;
             }
-            const auto hit = output.closest(point, previous.is_valid() ? triangle_of[previous.idx()] : -1);
+            const auto hit =
+                output.closest(point, previous.is_valid() ? triangle_of[previous.idx()] : -1);
             if (hit.primitive < 0) continue;
             const bool near_now = !(hit.distance > tolerance_.tolerance);
             set_point_face(r, previous = face_of[hit.primitive], near_now);
             if (near_now) continue;
-            const bool alone = output.alone_within(point, hit.primitive, hit.distance * hit.distance * (1.0 + kAloneMargin));
+            const bool alone = output.alone_within(
+                point, hit.primitive, hit.distance * hit.distance * (1.0 + kAloneMargin));
             far_hits.push_back({hit.distance, i, face_of[hit.primitive], alone, refine_round_});
         }
         // Farthest first: a vertex of the closest triangle snapped onto the point costs no
         // short edge; the points no snap reaches ask for a split.
-        std::sort(far_hits.begin(), far_hits.end(), [](const FarHit& a, const FarHit& b) {
-            return a.distance != b.distance ? a.distance > b.distance : a.point < b.point;
-        });
+        std::sort(far_hits.begin(), far_hits.end(),
+                  [](const FarHit& a, const FarHit& b) {
+                      return a.distance != b.distance ? a.distance > b.distance : a.point < b.point;
+                  });
         std::size_t snaps = 0;
         for (const FarHit& far : far_hits)
         {
-            const bool smooth = tolerance_.model_point_smooth.empty() || tolerance_.model_point_smooth[far.point];
+            const bool smooth =
+                tolerance_.model_point_smooth.empty() || tolerance_.model_point_smooth[far.point];
             if (!mesh_.status(far.face).deleted())
             {
                 // A snap earlier in the round moved a vertex of this triangle: its distance is
@@ -646,7 +694,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
                     still_far.push_back(far);
                     continue;
                 }
-                const VertexHandle snapped = snap ? snap_toward(far.point, far.face, smooth) : VertexHandle();
+                const VertexHandle snapped =
+                    snap ? snap_toward(far.point, far.face, smooth) : VertexHandle();
                 if (snapped.is_valid())
                 {
                     ++snaps;
@@ -659,9 +708,12 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
                 // the face's curve edge nearest to it: the new vertex goes onto the curve
                 // beside it. The longest edge may be an interior one, whose split leaves the
                 // curve's chord where it was (a scan's staircase boundary: never reached).
-                const EdgeHandle curve_edge = smooth ? EdgeHandle() : nearest_curve_edge(far.face, far.point);
-                if (curve_edge.is_valid()) mark_edge(curve_edge, far.distance, 0);
-                else mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
+                const EdgeHandle curve_edge =
+                    smooth ? EdgeHandle() : nearest_curve_edge(far.face, far.point);
+                if (curve_edge.is_valid())
+                    mark_edge(curve_edge, far.distance, 0);
+                else
+                    mark_longest(far.face, far.distance, smooth ? far.point + 1 : 0);
             }
             still_far.push_back(far);
         }
@@ -676,13 +728,16 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             if (mesh_.calc_edge_length(e) >= 2.0 * tolerance_.min_length_ratio * run_.edge_size(e))
                 candidates.emplace_back(edge_error[e.idx()], e);
             else if (run_.options.verbosity > 1)
-                std::fprintf(stderr, "remesh: refinement skips a short edge: distance %.3g, length/size %.3f\n",
-                             edge_error[e.idx()], mesh_.calc_edge_length(e) / run_.edge_size(e));
+                std::fprintf(
+                    stderr,
+                    "remesh: refinement skips a short edge: distance %.3g, length/size %.3f\n",
+                    edge_error[e.idx()], mesh_.calc_edge_length(e) / run_.edge_size(e));
         }
         // Farthest first; ties by index keep it deterministic.
-        std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
-            return a.first != b.first ? a.first > b.first : a.second.idx() < b.second.idx();
-        });
+        std::sort(
+            candidates.begin(), candidates.end(),
+            [](const auto& a, const auto& b)
+            { return a.first != b.first ? a.first > b.first : a.second.idx() < b.second.idx(); });
         // Chords off the model (no far model point behind them): an end snapped toward the
         // model point under the midpoint may bring the chord back, at no short edge.
         for (const auto& [error, e] : candidates)
@@ -693,7 +748,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             const VertexHandle a = mesh_.from_vertex_handle(he), b = mesh_.to_vertex_handle(he);
             if (snapped_end(e)) continue;
             const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
-            const ProjectedPoint on_model = ctx_.model.project_near(mid, VertexClass::Smooth, kNoCurve, ctx_.model_face(a));
+            const ProjectedPoint on_model =
+                ctx_.model.project_near(mid, VertexClass::Smooth, kNoCurve, ctx_.model_face(a));
             if (!on_model.ok) continue;
             const VertexHandle snapped = snap_vertex_of_edge(e, on_model.point);
             if (!snapped.is_valid()) continue;
@@ -704,7 +760,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         }
         report_.refinement_snaps += snaps;
         std::size_t short_edges = short_edges_now(round == 0), edges = count_live_edges();
-        std::size_t done = 0, splits = 0;  // changes of the round (splits and distance flips), splits
+        std::size_t done = 0,
+                    splits = 0;  // changes of the round (splits and distance flips), splits
         // The budget goes to the worst places first: a round splits only near the worst
         // distance; the next round sees the result.
         const double worst = candidates.empty() ? 0.0 : candidates.front().first;
@@ -713,12 +770,14 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         {
             const auto& [error, e] = candidates[next];
             if (done > 0 && error < kRefineFocus * worst) break;
-            if (budget < 1.0 && static_cast<double>(short_edges) >= budget * static_cast<double>(edges))
+            if (budget < 1.0 &&
+                static_cast<double>(short_edges) >= budget * static_cast<double>(edges))
                 break;
             if (mesh_.status(e).deleted()) continue;
             if (snapped_end(e)) continue;
             const bool boundary = mesh_.is_boundary(e);
-            const bool was_short = size_quality(mesh_.calc_edge_length(e), keeper_.reference_size(e)) < kSizeQualityThreshold;
+            const bool was_short = size_quality(mesh_.calc_edge_length(e),
+                                                keeper_.reference_size(e)) < kSizeQualityThreshold;
             // Onto the far model point if the triangles allow it, else at the projected midpoint.
             // Where splits are rationed (a size to keep), a chord across a crease first:
             // turned along it, it comes nearer at no short edge. Not when the tolerance is the
@@ -728,7 +787,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             {
                 const auto h = mesh_.halfedge_handle(e, 0);
                 const VertexHandle c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
-                const VertexHandle d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h)));
+                const VertexHandle d = mesh_.to_vertex_handle(
+                    mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h)));
                 if (try_flip(ctx_, e, FlipGoal::Distance).done())
                 {
                     ++report_.flips;
@@ -739,13 +799,17 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
                 }
             }
             OpResult r;
-            if (edge_target[e.idx()] > 0) r = split_toward(e, tolerance_.model_points[edge_target[e.idx()] - 1], snap);
+            if (edge_target[e.idx()] > 0)
+                r = split_toward(e, tolerance_.model_points[edge_target[e.idx()] - 1], snap);
             if (!r.done()) r = try_split(ctx_, e);
             if (!r.done())
             {
                 if (run_.options.verbosity > 1)
-                    std::fprintf(stderr, "remesh: refinement split refused (layer %d), distance %.3g, length/size %.3f\n",
-                                 static_cast<int>(r.status), error, mesh_.calc_edge_length(e) / run_.edge_size(e));
+                    std::fprintf(stderr,
+                                 "remesh: refinement split refused (layer %d), distance %.3g, "
+                                 "length/size %.3f\n",
+                                 static_cast<int>(r.status), error,
+                                 mesh_.calc_edge_length(e) / run_.edge_size(e));
                 continue;
             }
             run_.set_size(r.vertex);
@@ -756,7 +820,9 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             edges += boundary ? 2 : 3;
             if (was_short) --short_edges;  // replaced by its halves, counted below
             for (auto oh : mesh_.voh_range(r.vertex))
-                if (size_quality(mesh_.calc_edge_length(mesh_.edge_handle(oh)), keeper_.reference_size(mesh_.edge_handle(oh))) < kSizeQualityThreshold)
+                if (size_quality(mesh_.calc_edge_length(mesh_.edge_handle(oh)),
+                                 keeper_.reference_size(mesh_.edge_handle(oh))) <
+                    kSizeQualityThreshold)
                     ++short_edges;
         }
         report_.splits += splits;
@@ -765,7 +831,9 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         scratch.clear_round();
         total += done;
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: refinement round %d: %zu snaps, %zu edges marked, %zu split, %zu short edges of %zu\n",
+            std::fprintf(stderr,
+                         "remesh: refinement round %d: %zu snaps, %zu edges marked, %zu split, %zu "
+                         "short edges of %zu\n",
                          round + 1, snaps, candidates.size(), splits, short_edges, edges);
         // The candidates left for later rounds are looked at again there.
         for (; next < candidates.size(); ++next)
@@ -788,7 +856,8 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             for (const EdgeHandle e : around)
             {
                 if (mesh_.status(e).deleted()) continue;
-                const bool flipped = after_polish ? keeper_.flip_keeping_tolerance(e) : try_flip(ctx_, e, FlipGoal::Quality).done();
+                const bool flipped = after_polish ? keeper_.flip_keeping_tolerance(e)
+                                                  : try_flip(ctx_, e, FlipGoal::Quality).done();
                 if (flipped) ++report_.flips;
             }
         }

@@ -29,7 +29,9 @@ bool contains(const std::vector<VertexHandle>& vertices, VertexHandle v)
 
 }  // namespace
 
-TEST_CASE("the change log notes a split's new vertex and a collapse's kept vertex in recording lists only")
+TEST_CASE(
+    "the change log notes a split's new vertex and a collapse's kept vertex in recording lists "
+    "only")
 {
     //  (0,2)---(1,2)---(2,2)
     //    |    /  |    /  |      a 2×2 grid in z = 0: split the centre's edge to (2,2), then
@@ -41,7 +43,8 @@ TEST_CASE("the change log notes a split's new vertex and a collapse's kept verte
     fixtures::mark_all_smooth(mesh);
     int given_splits = 0, given_collapses = 0;
     SurfaceHooks given;
-    given.on_split = [&](const SurfaceMesh&, VertexHandle, VertexHandle, VertexHandle) { ++given_splits; };
+    given.on_split = [&](const SurfaceMesh&, VertexHandle, VertexHandle, VertexHandle)
+    { ++given_splits; };
     given.on_collapse = [&](const SurfaceMesh&, VertexHandle, VertexHandle) { ++given_collapses; };
     ChangeLog log;
     ChangedVertices recording, idle;
@@ -78,8 +81,10 @@ TEST_CASE("the change log notes a flip's new edge ends and a move's vertex")
     //  (0,0)------(1,0)
     SurfaceMesh mesh = fixtures::triangulated_grid(1, [](int, int) { return 0.0; });
     fixtures::mark_all_smooth(mesh);
-    const VertexHandle a = fixtures::vertex_at(mesh, Vec3d(0, 0, 0)), b = fixtures::vertex_at(mesh, Vec3d(1, 1, 0));
-    const VertexHandle c = fixtures::vertex_at(mesh, Vec3d(1, 0, 0)), d = fixtures::vertex_at(mesh, Vec3d(0, 1, 0));
+    const VertexHandle a = fixtures::vertex_at(mesh, Vec3d(0, 0, 0)),
+                       b = fixtures::vertex_at(mesh, Vec3d(1, 1, 0));
+    const VertexHandle c = fixtures::vertex_at(mesh, Vec3d(1, 0, 0)),
+                       d = fixtures::vertex_at(mesh, Vec3d(0, 1, 0));
     mesh.set_point(b, Vec3d(1.6, 1.6, 0.0));
     ChangeLog log;
     ChangedVertices list;
@@ -87,7 +92,8 @@ TEST_CASE("the change log notes a flip's new edge ends and a move's vertex")
     log.add(list);
     int given_flips = 0, given_moves = 0;
     SurfaceHooks given;
-    given.on_flip = [&](const SurfaceMesh&, VertexHandle, VertexHandle, VertexHandle, VertexHandle) { ++given_flips; };
+    given.on_flip = [&](const SurfaceMesh&, VertexHandle, VertexHandle, VertexHandle, VertexHandle)
+    { ++given_flips; };
     given.on_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++given_moves; };
     const fixtures::PlaneProjector plane;
     OperatorContext ctx(mesh, plane, log.wrap(given));

@@ -35,7 +35,9 @@ double min_angle(const SurfaceMesh& mesh)
 
 }  // namespace
 
-TEST_CASE("the cleanup raises the worst angle of a spoiled grid and keeps it flat, its rim and its topology")
+TEST_CASE(
+    "the cleanup raises the worst angle of a spoiled grid and keeps it flat, its rim and its "
+    "topology")
 {
     //  (0,6) ------------ (6,6)     a 6×6 grid of unit squares in z = 0, its rim boundary
     //    |    /    /    /   |       curve 0; the interior vertex (3,3) pushed by (0.7, 0.6)
@@ -47,17 +49,20 @@ TEST_CASE("the cleanup raises the worst angle of a spoiled grid and keeps it fla
         SurfaceProperties props(mesh);
         for (auto v : mesh.vertices())
         {
-            mesh.property(props.vertex_class, v) = mesh.is_boundary(v) ? VertexClass::Boundary : VertexClass::Smooth;
+            mesh.property(props.vertex_class, v) =
+                mesh.is_boundary(v) ? VertexClass::Boundary : VertexClass::Smooth;
             mesh.property(props.vertex_curve, v) = mesh.is_boundary(v) ? 0 : kNoCurve;
         }
-        for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
+        for (auto e : mesh.edges())
+            mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
     }
     const VertexHandle spoiled = fixtures::vertex_at(mesh, Vec3d(3, 3, 0));
     mesh.set_point(spoiled, Vec3d(3.7, 3.6, 0.0));
     const double before = min_angle(mesh);
     REQUIRE(before < 27.0);
-    const std::size_t rim_before = std::count_if(mesh.vertices_begin(), mesh.vertices_end(),
-                                                 [&](VertexHandle v) { return mesh.is_boundary(v); });
+    const std::size_t rim_before =
+        std::count_if(mesh.vertices_begin(), mesh.vertices_end(),
+                      [&](VertexHandle v) { return mesh.is_boundary(v); });
 
     const fixtures::PlaneProjector plane;
     RemeshOptions loop;

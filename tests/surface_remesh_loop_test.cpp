@@ -37,7 +37,8 @@ double share_in_band(const SurfaceMesh& mesh, double h)
 
 }  // namespace
 
-TEST_CASE("the loop on the icosahedron at h = 0.3: edges into band, on the sphere, closed and manifold")
+TEST_CASE(
+    "the loop on the icosahedron at h = 0.3: edges into band, on the sphere, closed and manifold")
 {
     //        *            the icosahedron (12 vertices, edges ≈ 1.05) on the unit sphere,
     //      / | \          remeshed at a size of 0.3: every edge is too long at the start
@@ -55,14 +56,17 @@ TEST_CASE("the loop on the icosahedron at h = 0.3: edges into band, on the spher
     CHECK(report.refinement_splits == 0);  // no refinement in the loop
     CHECK(euler(mesh) == 2);
     CHECK(manifold_and_nondegenerate(mesh));
-    for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
+    for (auto v : mesh.vertices())
+        CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
     CHECK(share_in_band(mesh, h) > 0.95);
     // The size property holds the size the loop judged each vertex by.
     const SurfaceProperties props(mesh);
     for (auto v : mesh.vertices()) CHECK(mesh.property(props.vertex_size, v) == h);
 }
 
-TEST_CASE("the loop on a flat grid keeps its rim: boundary vertices stay on the boundary curve and corners stay put")
+TEST_CASE(
+    "the loop on a flat grid keeps its rim: boundary vertices stay on the boundary curve and "
+    "corners stay put")
 {
     //  (0,4)-------(4,4)     a 4×4 grid of unit squares in z = 0 at a size of 0.5: the rim is
     //    |  /  /  /  |       boundary curve 0, its four corners are corners; the loop splits
@@ -77,10 +81,12 @@ TEST_CASE("the loop on a flat grid keeps its rim: boundary vertices stay on the 
             if (!mesh.is_boundary(v)) continue;
             const Vec3d p = mesh.point(v);
             const bool corner = (p[0] == 0.0 || p[0] == 4.0) && (p[1] == 0.0 || p[1] == 4.0);
-            mesh.property(props.vertex_class, v) = corner ? VertexClass::Corner : VertexClass::Boundary;
+            mesh.property(props.vertex_class, v) =
+                corner ? VertexClass::Corner : VertexClass::Boundary;
             mesh.property(props.vertex_curve, v) = corner ? kNoCurve : 0;
         }
-        for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
+        for (auto e : mesh.edges())
+            mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
     }
     const fixtures::PlaneProjector plane;
     RemeshOptions options;

@@ -16,7 +16,8 @@
 
 using namespace hdimesh::surface;
 
-TEST_CASE("the refinement alone brings the icosahedron within the tolerance of the sphere both ways")
+TEST_CASE(
+    "the refinement alone brings the icosahedron within the tolerance of the sphere both ways")
 {
     //      *          the icosahedron (edges ≈ 1.05) at size 1: no edge is too long, but its
     //    / | \        faces sink up to 0.2 below the unit sphere and pass far from the sphere
@@ -46,7 +47,8 @@ TEST_CASE("the refinement alone brings the icosahedron within the tolerance of t
     CHECK(fixtures::euler(mesh) == 2);
     CHECK(fixtures::manifold_and_nondegenerate(mesh));
     double output_off = 0.0, points_off = 0.0;
-    for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
+    for (auto v : mesh.vertices())
+        CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
     for (auto f : mesh.faces())
     {
         Vec3d centroid(0, 0, 0);
@@ -56,10 +58,12 @@ TEST_CASE("the refinement alone brings the icosahedron within the tolerance of t
     for (auto e : mesh.edges())
     {
         const auto h = mesh.halfedge_handle(e, 0);
-        const Vec3d mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+        const Vec3d mid =
+            0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
         output_off = std::max(output_off, 1.0 - mid.norm());
     }
-    for (const Vec3d& p : tolerance.model_points) points_off = std::max(points_off, fixtures::distance_to_mesh(mesh, p));
+    for (const Vec3d& p : tolerance.model_points)
+        points_off = std::max(points_off, fixtures::distance_to_mesh(mesh, p));
     CHECK(output_off <= tolerance.tolerance + 1e-12);
     CHECK(points_off <= tolerance.tolerance + 1e-12);
 }

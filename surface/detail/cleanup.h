@@ -15,8 +15,8 @@ namespace hdimesh::surface::detail
 class Cleanup : private ToleranceStage
 {
 public:
-    Cleanup(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log, const ToleranceOptions& tolerance,
-            const CleanupOptions& options);
+    Cleanup(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log,
+            const ToleranceOptions& tolerance, const CleanupOptions& options);
 
     /// Edges too short for the reference size collapsed (plain collapses, right after the loop).
     void collapse_short_for_reference();

@@ -15,9 +15,11 @@
 namespace hdimesh::surface::detail
 {
 
-/// After the loop, a collapse for the reference size may leave edges up to this times it (Qt ≥ 0.69)...
+/// After the loop, a collapse for the reference size may leave edges up to this times it (Qt ≥
+/// 0.69)...
 inline constexpr double kReferenceCollapseLength = 1.45;
-/// ... and no triangle with an angle under this (they happen beside ridges, where nothing repairs them).
+/// ... and no triangle with an angle under this (they happen beside ridges, where nothing repairs
+/// them).
 inline constexpr double kReferenceCollapseMinAngle = 30.0;
 
 /// What a change in the repair stages after the polish must keep.
@@ -40,7 +42,9 @@ enum class CollapseFor
 class ToleranceKeeper
 {
 public:
-    ToleranceKeeper(RemeshRun& run, const ToleranceOptions& options) : run_(run), options_(options) {}
+    ToleranceKeeper(RemeshRun& run, const ToleranceOptions& options) : run_(run), options_(options)
+    {
+    }
     ToleranceKeeper(const ToleranceKeeper&) = delete;
     ToleranceKeeper& operator=(const ToleranceKeeper&) = delete;
 
@@ -51,7 +55,8 @@ public:
     /// The model points in a grid of cells of about one size, built on first use.
     const PointGrid& model_point_grid();
     /// The limits of a witnessed move of v (a snap, a curve fit).
-    void set_move_limits(VertexHandle v, const Vec3d* target, double margin, WitnessedMoveOptions& limits);
+    void set_move_limits(VertexHandle v, const Vec3d* target, double margin,
+                         WitnessedMoveOptions& limits);
     /// try_snap_vertex within the limits of a witnessed move.
     bool try_snap(VertexHandle v, const Vec3d& target, bool raise_min_angle);
     /// A quality flip of e that keeps the tolerance.
@@ -66,7 +71,8 @@ private:
     SurfaceMesh& mesh_ = run_.mesh;
     OperatorContext& ctx_ = run_.ctx;
     const ToleranceOptions& options_;
-    std::unique_ptr<PointGrid> model_point_grid_;  // of options_.model_points, built at the first use
+    std::unique_ptr<PointGrid>
+        model_point_grid_;  // of options_.model_points, built at the first use
 };
 
 /// What a stage after the loop works with: the run, the witnessed operators and the tolerance.

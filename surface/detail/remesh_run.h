@@ -71,7 +71,8 @@ inline bool is_marked(VertexHandle v, const std::vector<char>& marks)
 inline bool has_marked_end(const SurfaceMesh& mesh, EdgeHandle e, const std::vector<char>& marks)
 {
     const auto h = mesh.halfedge_handle(e, 0);
-    return is_marked(mesh.from_vertex_handle(h), marks) || is_marked(mesh.to_vertex_handle(h), marks);
+    return is_marked(mesh.from_vertex_handle(h), marks) ||
+           is_marked(mesh.to_vertex_handle(h), marks);
 }
 
 }  // namespace hdimesh::surface::detail

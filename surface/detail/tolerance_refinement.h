@@ -26,7 +26,7 @@ struct FarHit
     double distance;
     std::size_t point;
     FaceHandle face;
-    bool alone;                // no other face within the distance and a margin (kAloneMargin)
+    bool alone;                 // no other face within the distance and a margin (kAloneMargin)
     std::uint32_t measured_in;  // the refinement round of the search
 };
 
@@ -72,7 +72,8 @@ struct RefineScratch
 class ToleranceRefinement : private ToleranceStage
 {
 public:
-    ToleranceRefinement(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log, const ToleranceOptions& tolerance,
+    ToleranceRefinement(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log,
+                        const ToleranceOptions& tolerance,
                         const ToleranceRefinementOptions& options);
 
     /// One call of the refinement (rounds until nothing changes, the rounds or the budget run
@@ -84,7 +85,8 @@ private:
     EdgeHandle nearest_curve_edge(FaceHandle f, std::size_t point) const;
     VertexHandle snap_toward(std::size_t point, FaceHandle face, bool smooth_point);
     VertexHandle snap_vertex_of_edge(EdgeHandle e, const Vec3d& target);
-    VertexHandle snap_one_of(std::vector<VertexHandle> vertices, const Vec3d& target, bool smooth_point);
+    VertexHandle snap_one_of(std::vector<VertexHandle> vertices, const Vec3d& target,
+                             bool smooth_point);
     FaceHandle near_face_around(const Vec3d& p, FaceHandle f) const;
     VertexHandle vertex_toward(const Vec3d& p, FaceHandle f) const;
     template <class Visit>
@@ -108,7 +110,8 @@ private:
     // proof holds while its face has not changed since.
     std::uint32_t refine_round_ = 0;
     std::vector<std::uint32_t> point_proven_in_, face_changed_in_;
-    std::vector<FaceHandle> faces_changed_now_;  // the faces changed in this round (after a call's first)
+    std::vector<FaceHandle>
+        faces_changed_now_;  // the faces changed in this round (after a call's first)
     // model_points_in_space_order(): rank -> index, index -> rank, rank -> point.
     std::vector<std::size_t> space_order_, rank_in_space_order_;
     std::vector<Vec3d> points_in_space_order_;
