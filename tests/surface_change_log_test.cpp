@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <vector>
 
-// OpenMesh's PropertyT<Vec3d>::push_back copies a default-constructed (deliberately
-// uninitialized) VectorT: a -Wmaybe-uninitialized false positive once GCC inlines add_vertex here.
+// (The fixtures' add_vertex, inlined here, trips GCC's -Wmaybe-uninitialized on OpenMesh's
+// deliberately uninitialized VectorT, first included below: a false positive.)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "surface/detail/change_log.h"
@@ -16,8 +16,8 @@
 #pragma GCC diagnostic pop
 
 using namespace hdimesh::surface;
-using hdimesh::surface::detail::ChangedVertices;
-using hdimesh::surface::detail::ChangeLog;
+using detail::ChangedVertices;
+using detail::ChangeLog;
 
 namespace
 {

@@ -43,19 +43,7 @@ TEST_CASE(
     //    |    /    /    /   |       curve 0; the interior vertex (3,3) pushed by (0.7, 0.6)
     //    |   /   X->   /    |       toward (4,4), which leaves needles around it
     //  (0,0) ------------ (6,0)
-    SurfaceMesh mesh = fixtures::triangulated_grid(6, [](int, int) { return 0.0; });
-    fixtures::mark_all_smooth(mesh);
-    {
-        SurfaceProperties props(mesh);
-        for (auto v : mesh.vertices())
-        {
-            mesh.property(props.vertex_class, v) =
-                mesh.is_boundary(v) ? VertexClass::Boundary : VertexClass::Smooth;
-            mesh.property(props.vertex_curve, v) = mesh.is_boundary(v) ? 0 : kNoCurve;
-        }
-        for (auto e : mesh.edges())
-            mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
-    }
+    SurfaceMesh mesh = fixtures::flat_grid_with_rim(6, false);
     const VertexHandle spoiled = fixtures::vertex_at(mesh, Vec3d(3, 3, 0));
     mesh.set_point(spoiled, Vec3d(3.7, 3.6, 0.0));
     const double before = min_angle(mesh);

@@ -91,6 +91,27 @@ SurfaceMesh triangulated_grid(int n, Height height)
     return mesh;
 }
 
+/// The n×n flat grid (triangulated_grid at z = 0), classified: the rim boundary curve 0 (its
+/// four corners Corner when `corners`), the rest smooth, face ref 1.
+inline SurfaceMesh flat_grid_with_rim(int n, bool corners)
+{
+    SurfaceMesh mesh = triangulated_grid(n, [](int, int) { return 0.0; });
+    mark_all_smooth(mesh);
+    SurfaceProperties props(mesh);
+    const double far = static_cast<double>(n);
+    for (auto v : mesh.vertices())
+    {
+        if (!mesh.is_boundary(v)) continue;
+        const Vec3d p = mesh.point(v);
+        const bool corner = corners && (p[0] == 0.0 || p[0] == far) && (p[1] == 0.0 || p[1] == far);
+        mesh.property(props.vertex_class, v) = corner ? VertexClass::Corner : VertexClass::Boundary;
+        mesh.property(props.vertex_curve, v) = corner ? kNoCurve : 0;
+    }
+    for (auto e : mesh.edges())
+        mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
+    return mesh;
+}
+
 /// The icosahedron on the unit sphere (hdimesh::fixtures::icosphere(0)), outward, every vertex
 /// smooth, no curves, face ref 1.
 inline SurfaceMesh icosahedron()
@@ -111,7 +132,8 @@ struct MovedStarDefects
 {
     int folded = 0, small_angles = 0, edges_out_of_band = 0;
 };
-inline MovedStarDefects moved_star_defects(const SurfaceMesh& mesh, VertexHandle v, double min_angle_deg, double min_length,
+inline MovedStarDefects moved_star_defects(const SurfaceMesh& mesh, VertexHandle v,
+                                           double min_angle_deg, double min_length,
                                            double max_length)
 {
     MovedStarDefects defects;

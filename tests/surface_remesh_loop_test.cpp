@@ -72,22 +72,7 @@ TEST_CASE(
     //    |  /  /  /  |       boundary curve 0, its four corners are corners; the loop splits
     //    | /  /  /   |       every edge, the rim's along the rim
     //  (0,0)-------(4,0)
-    SurfaceMesh mesh = fixtures::triangulated_grid(4, [](int, int) { return 0.0; });
-    fixtures::mark_all_smooth(mesh);
-    {
-        SurfaceProperties props(mesh);
-        for (auto v : mesh.vertices())
-        {
-            if (!mesh.is_boundary(v)) continue;
-            const Vec3d p = mesh.point(v);
-            const bool corner = (p[0] == 0.0 || p[0] == 4.0) && (p[1] == 0.0 || p[1] == 4.0);
-            mesh.property(props.vertex_class, v) =
-                corner ? VertexClass::Corner : VertexClass::Boundary;
-            mesh.property(props.vertex_curve, v) = corner ? kNoCurve : 0;
-        }
-        for (auto e : mesh.edges())
-            mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
-    }
+    SurfaceMesh mesh = fixtures::flat_grid_with_rim(4, true);
     const fixtures::PlaneProjector plane;
     RemeshOptions options;
     options.size = [](const Vec3d&) { return 0.5; };
