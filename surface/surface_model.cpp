@@ -1,4 +1,3 @@
-#include "surface/detail/prefetch.h"
 #include "surface/surface_model.h"
 
 #include <algorithm>
@@ -11,6 +10,8 @@
 #include <Eigen/Dense>
 
 #include "common/errors.h"
+#include "surface/detail/closest_point_tree.h"
+#include "surface/detail/prefetch.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -141,6 +142,10 @@ double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& st
 
 }  // namespace
 
+SurfaceModel::~SurfaceModel() = default;
+
+std::size_t SurfaceModel::curve_count() const { return curves_.size(); }
+
 SurfaceModel::SurfaceModel(const SurfaceMesh& input)
 {
     // The model numbers input vertices and faces by handle index: a mesh with deleted elements
@@ -188,7 +193,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         face_normal_by_index[f.idx()] = face_normals_.back();
         model_face_by_index[f.idx()] = static_cast<int>(face_vertices_.size()) - 1;
     }
-    triangles_ = ClosestPointTree::from_triangles(std::move(tris));
+    triangles_ = std::make_unique<const ClosestPointTree>(ClosestPointTree::from_triangles(std::move(tris)));
     face_neighbours_.reserve(face_vertices_.size());
     for (auto f : input.faces())
     {
@@ -431,7 +436,7 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
         }
         face_hint = descent.face;  // where the descent stopped: a tight bound for the search
     }
-    const auto hit = triangles_.closest(p, face_hint);
+    const auto hit = triangles_->closest(p, face_hint);
     if (hit.primitive < 0) return out;
     out.point = hit.point;
     out.normal = foot_normal(hit.primitive, hit.point);
@@ -502,7 +507,7 @@ bool SurfaceModel::near_model(const Vec3d& p, double distance, int face_hint) co
         if ((descent.foot - p).norm() <= distance) return true;
         face_hint = descent.face;
     }
-    const auto hit = triangles_.closest(p, face_hint);
+    const auto hit = triangles_->closest(p, face_hint);
     return hit.primitive < 0 || hit.distance <= distance;
 }
 
