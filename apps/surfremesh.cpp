@@ -14,7 +14,7 @@
 #include "common/errors.h"
 #include "common/sol_io.h"
 #include "common/stage_timer.h"
-#include "surface/remesh.h"
+#include "surface/remesh_surface.h"
 #include "surface/sizing.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"

@@ -31,9 +31,9 @@
 #include <string>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/features.h"
-#include "surface/remesh.h"
+#include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
 #include "surface/surface_model.h"
 #include "surface/surface_quality.h"

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/closest_point_tree.h"
+#include "surface/detail/local_ops_geometry.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface

@@ -56,6 +56,14 @@ struct OpResult
     bool done() const { return status == OpStatus::Done; }
 };
 
+/// An operator's answer when the layer `why` refuses: nothing changed, no vertex.
+inline OpResult refused(OpStatus why)
+{
+    OpResult result;
+    result.status = why;
+    return result;
+}
+
 /// Geometric limits shared by every operator.
 struct OperatorLimits
 {

@@ -2,8 +2,8 @@
 //
 // Where two curves meet at a corner with a narrow sector between them, the triangle filling the
 // sector has at most the sector's angle at the corner, and the chords from the corner set that
-// angle. A curved ridge opens up away from the corner (fandisk: 19.4° between the first input
-// segments, 21.6° between points two segments out), so moving the curve vertex next to the
+// angle. A curved ridge opens up away from the corner (its chords two segments out make a wider
+// angle than the first ones), so moving the curve vertex next to the
 // corner farther along its curve raises the worst angle there. Nodal shifting cannot find this:
 // it balances the two curve edges, which is what made the narrow triangle.
 
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 
 namespace hdimesh::surface
 {
@@ -85,24 +85,17 @@ struct SlideStar
 OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOptions& options)
 {
     SurfaceMesh& mesh = ctx.mesh;
-    OpResult result;
     // Topology and class: a ridge or boundary vertex with exactly two curve edges (a corner
     // never moves).
     const VertexClass cls = ctx.vertex_class(v);
     if (cls != VertexClass::Ridge && cls != VertexClass::Boundary)
-    {
-        result.status = OpStatus::Class;
-        return result;
-    }
+        return refused(OpStatus::Class);
     std::vector<Vec3d> curve_ends;
     for (auto h : mesh.voh_range(v))
         if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v))
             curve_ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
     if (curve_ends.size() != 2)
-    {
-        result.status = OpStatus::Class;
-        return result;
-    }
+        return refused(OpStatus::Class);
 
     const Vec3d p = mesh.point(v);
     const SlideStar star(mesh, v);
@@ -141,10 +134,7 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
             best_point = q;
         }
     if (!best_point.ok)
-    {
-        result.status = refusal;
-        return result;
-    }
+        return refused(refusal);
     return commit_move(ctx, v, best_point.point, best_point.face);
 }
 

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -18,9 +18,8 @@ namespace
 constexpr double kMaxSnapTurnDeg = 60.0;
 // No triangle of the star turns farther than this from the model under it (its centroid's
 // projection): a fold. Not from the model at the target: on the rounded rim of a flange thinner
-// than the size (rocker-arm, radius 0.31 h), a triangle down a flank from a vertex on the crest
-// is at ~90° to the crest's normal and the snap the rim needs was refused (Hausdorff/diag
-// 1.94e-3 at its input vertex, against the tolerance 1.6e-3).
+// than the size, a triangle down a flank from a vertex on the crest is at ~90° to the crest's
+// normal, and the snap the rim needs would be refused (docs/tuning.md).
 constexpr double kMaxTurnFromModelDeg = 85.0;
 // A repair must raise the star's smallest angle by this much (not a move of rounding noise).
 constexpr double kMinAngleGainDeg = 0.1;

@@ -1,7 +1,7 @@
 #include <algorithm>
 
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface

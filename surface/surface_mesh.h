@@ -109,36 +109,23 @@ struct SurfaceProperties
 
     explicit SurfaceProperties(SurfaceMesh& mesh)
     {
-        if (!mesh.get_property_handle(vertex_class, property_names::vertex_class))
-        {
-            mesh.add_property(vertex_class, property_names::vertex_class);
-            for (auto v : mesh.vertices()) mesh.property(vertex_class, v) = VertexClass::Smooth;
-        }
-        if (!mesh.get_property_handle(vertex_curve, property_names::vertex_curve))
-        {
-            mesh.add_property(vertex_curve, property_names::vertex_curve);
-            for (auto v : mesh.vertices()) mesh.property(vertex_curve, v) = kNoCurve;
-        }
-        if (!mesh.get_property_handle(vertex_size, property_names::vertex_size))
-        {
-            mesh.add_property(vertex_size, property_names::vertex_size);
-            for (auto v : mesh.vertices()) mesh.property(vertex_size, v) = 0.0;
-        }
-        if (!mesh.get_property_handle(edge_curve, property_names::edge_curve))
-        {
-            mesh.add_property(edge_curve, property_names::edge_curve);
-            for (auto e : mesh.edges()) mesh.property(edge_curve, e) = kNoCurve;
-        }
-        if (!mesh.get_property_handle(face_ref, property_names::face_ref))
-        {
-            mesh.add_property(face_ref, property_names::face_ref);
-            for (auto f : mesh.faces()) mesh.property(face_ref, f) = 0;
-        }
-        if (!mesh.get_property_handle(vertex_model_face, property_names::vertex_model_face))
-        {
-            mesh.add_property(vertex_model_face, property_names::vertex_model_face);
-            for (auto v : mesh.vertices()) mesh.property(vertex_model_face, v) = -1;
-        }
+        get_or_add(mesh, vertex_class, property_names::vertex_class, VertexClass::Smooth, mesh.vertices());
+        get_or_add(mesh, vertex_curve, property_names::vertex_curve, kNoCurve, mesh.vertices());
+        get_or_add(mesh, vertex_size, property_names::vertex_size, 0.0, mesh.vertices());
+        get_or_add(mesh, edge_curve, property_names::edge_curve, kNoCurve, mesh.edges());
+        get_or_add(mesh, face_ref, property_names::face_ref, 0, mesh.faces());
+        get_or_add(mesh, vertex_model_face, property_names::vertex_model_face, -1, mesh.vertices());
+    }
+
+private:
+    // `handle` of the property `name`, added with `initial` on every element of `elements` if missing.
+    template <class Handle, class Value, class Elements>
+    static void get_or_add(SurfaceMesh& mesh, Handle& handle, const char* name, const Value& initial,
+                           Elements elements)
+    {
+        if (mesh.get_property_handle(handle, name)) return;
+        mesh.add_property(handle, name);
+        for (auto element : elements) mesh.property(handle, element) = initial;
     }
 };
 

@@ -1,4 +1,3 @@
-#include "surface/prefetch.h"
 #include "surface/surface_model.h"
 
 #include <algorithm>
@@ -11,6 +10,8 @@
 #include <Eigen/Dense>
 
 #include "common/errors.h"
+#include "surface/detail/closest_point_tree.h"
+#include "surface/detail/prefetch.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -20,9 +21,8 @@ namespace
 
 // A vertex placed by project_near takes the foot its descent from the hint reached when that
 // foot is within this fraction of its face's shortest edge (a vertex moved in the tangent plane
-// is); farther, the search decides. Measured on the remesher's placements (cheburashka,
-// rocker-arm, stanford-bunny, uniform and adaptive: 0.97 million): below 1e-2 (95 % of them)
-// no local foot was farther than the global one; between 1e-2 and 1e-1, 6 of 52 thousand.
+// is); farther, the search decides. Below it a local foot is the global one in practice
+// (docs/tuning.md).
 constexpr double kPlacementFraction = 1e-2;
 
 Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
@@ -31,8 +31,8 @@ Eigen::Vector3d to_eigen(const Vec3d& p) { return {p[0], p[1], p[2]}; }
 // neighbours[offsets[v] .. offsets[v + 1]) in OpenMesh's vv_range order (the order of the 2-ring,
 // hence of the fit's sums), and area_normals[v] the sum of its faces' normals times their areas
 // in vf_range order (both circulators walk v's outgoing halfedges from the same one; the faces
-// are those of the halfedges that have one). Measured on stanford-bunny: circulating the 2-ring
-// of every vertex anew (seven circulations per vertex) was half of quadric_curvature's own time.
+// are those of the halfedges that have one). Circulating the 2-ring of every vertex anew
+// (seven circulations per vertex) cost more than the fit itself.
 struct VertexStars
 {
     std::vector<int> offsets, neighbours;
@@ -99,15 +99,14 @@ double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& st
     const Eigen::Vector3d origin = to_eigen(points[v]);
     // The least-squares fit by its 5×5 normal equations, in coordinates scaled by the ring's
     // size (so the matrix is well scaled whatever the model's units); a rank-revealing solve of
-    // fixed size. (A QR of the whole ring matrix was a third of the model's build on the bunny.)
+    // fixed size. (A QR of the whole ring matrix cost much more.)
     double scale = 0.0;
     for (const int idx : ring) scale = std::max(scale, (to_eigen(points[idx]) - origin).norm());
     if (!(scale > 0.0)) return 0.0;
     // The lower triangle of row·rowᵀ summed, element by element as Eigen's rank-one update of
-    // a selfadjoint view does it (the same products and sums; its generic dynamic-size kernel
-    // was a sixth of quadric_curvature's time on the bunny), in named scalars: an array of the
-    // row's entries was stored and read back as pairs, which waited on the stores (measured on
-    // the bunny: quadric_curvature's own samples 8 % fewer, the best of four runs each).
+    // a selfadjoint view does it (the same products and sums, without its generic dynamic-size
+    // kernel), in named scalars: an array of the row's entries was stored and read back as
+    // pairs, which waited on the stores.
     double xxxx = 0, xxxy = 0, xxyy = 0, xxx = 0, xxy = 0;  // (x², xy, y², x, y) times x²
     double xyxy = 0, xyyy = 0, xyx = 0, xyy = 0;            // ... times xy
     double yyyy = 0, yyx = 0, yyy = 0;                      // ... times y²
@@ -142,6 +141,10 @@ double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& st
 }
 
 }  // namespace
+
+SurfaceModel::~SurfaceModel() = default;
+
+std::size_t SurfaceModel::curve_count() const { return curves_.size(); }
 
 SurfaceModel::SurfaceModel(const SurfaceMesh& input)
 {
@@ -190,7 +193,7 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         face_normal_by_index[f.idx()] = face_normals_.back();
         model_face_by_index[f.idx()] = static_cast<int>(face_vertices_.size()) - 1;
     }
-    triangles_ = ClosestPointTree::from_triangles(std::move(tris));
+    triangles_ = std::make_unique<const ClosestPointTree>(ClosestPointTree::from_triangles(std::move(tris)));
     face_neighbours_.reserve(face_vertices_.size());
     for (auto f : input.faces())
     {
@@ -309,8 +312,7 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
     out.foot = foot_on(face);
     double d2 = (out.foot - p).sqrnorm();
     // The face the last step came from: its foot was farther than the present one, so it
-    // cannot be nearer than it (the same decision without its foot; measured: 17 % of the
-    // feet a descent computed on stanford-bunny).
+    // cannot be nearer than it (the same decision without its foot).
     int came_from = -1;
     for (int step = 0; step < kMaxDescentSteps && !(d2 <= stop_d2); ++step)
     {
@@ -321,18 +323,16 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         double next_d2 = d2;
         // A descent with a stop distance (near_model's proof search) steps to the first nearer
         // neighbour instead of the nearest: its caller's answer does not depend on the path
-        // (a face within the distance proves it; else the exact search decides). Measured on
-        // near_model's calls of a stanford-bunny run replayed: 4.2 feet per descent when each
-        // step computed all its neighbours' feet, 12 % of its time saved. (Such a descent may end
+        // (a face within the distance proves it; else the exact search decides): fewer feet per
+        // descent than computing all its neighbours' at each step. (Such a descent may end
         // at kMaxDescentSteps more often; the exact search decides then.)
         bool found_nearer = false;
         auto consider = [&](int g) {
             if (g == came_from || found_nearer) return;
             // A face whose plane is clearly farther than the nearest foot so far cannot have a
             // nearer foot (its triangle lies in that plane): the same decision without its foot.
-            // Measured: 36 to 60 % of the neighbours' feet of the remesher's descents.
-            // (Not in a proof search, which steps to the first nearer face: there the bound cost
-            // more than it saved, near_model's time +10 % on stanford-bunny.)
+            // (Not in a proof search, which steps to the first nearer face: there the bound
+            // costs more than it saves.)
             if (!proof_search)
             {
                 const FacePlane& plane = face_planes_[g];
@@ -436,7 +436,7 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
         }
         face_hint = descent.face;  // where the descent stopped: a tight bound for the search
     }
-    const auto hit = triangles_.closest(p, face_hint);
+    const auto hit = triangles_->closest(p, face_hint);
     if (hit.primitive < 0) return out;
     out.point = hit.point;
     out.normal = foot_normal(hit.primitive, hit.point);
@@ -507,7 +507,7 @@ bool SurfaceModel::near_model(const Vec3d& p, double distance, int face_hint) co
         if ((descent.foot - p).norm() <= distance) return true;
         face_hint = descent.face;
     }
-    const auto hit = triangles_.closest(p, face_hint);
+    const auto hit = triangles_->closest(p, face_hint);
     return hit.primitive < 0 || hit.distance <= distance;
 }
 

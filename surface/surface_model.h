@@ -8,12 +8,13 @@
 #include <memory>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
 #include "surface/projector.h"
 #include "surface/surface_mesh.h"
 
 namespace hdimesh::surface
 {
+
+class ClosestPointTree;  // surface/detail: not installed
 
 class SurfaceModel final : public Projector
 {
@@ -22,6 +23,7 @@ public:
     /// (InputError otherwise). The model copies the geometry it needs; `input` may be
     /// modified or destroyed afterwards.
     explicit SurfaceModel(const SurfaceMesh& input);
+    ~SurfaceModel() override;
 
     /// A smooth-surface projection (e.g. the HDI model) used for smooth vertices instead of the
     /// closest point on the input triangles. Returning ok == false falls back to the triangles.
@@ -67,7 +69,7 @@ public:
     /// rounding only.
     double interpolate(const Vec3d& p, const std::vector<double>& per_input_vertex, int face_hint = -1) const;
     double diagonal() const { return diagonal_; }
-    std::size_t curve_count() const { return curves_.size(); }
+    std::size_t curve_count() const;
 
 private:
     // A face's plane for the descent's lower bound on the distance to the face: |normal · p -
@@ -109,7 +111,9 @@ private:
     // vertex_face_offsets_[v + 1]).
     std::vector<int> vertex_face_offsets_, vertex_faces_;
     std::vector<double> curvature_;
-    ClosestPointTree triangles_;
+    // The input's triangles and each curve's segments, for closest points (by pointer: the tree
+    // is private machinery, its header not installed).
+    std::unique_ptr<const ClosestPointTree> triangles_;
     std::vector<ClosestPointTree> curves_;
     std::vector<std::vector<Vec3d>> curve_normals_;  // per segment: mean of the adjacent face normals
     std::vector<std::vector<int>> curve_faces_;      // per segment: an adjacent input face (a hint)

@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 
 namespace hdimesh::surface
 {
@@ -148,7 +148,7 @@ QualityReport measure_quality(const SurfaceMesh& mesh, double uniform_size)
         ++measured;
         const double len = mesh.calc_edge_length(e);
         const double qt = size_quality(len, h);
-        if (qt >= 0.66) ++good_qt;
+        if (qt >= kSizeQualityThreshold) ++good_qt;
         else if (len > h) ++too_long;
         else ++too_short;
     }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/size_quality.h"
 #include "surface/surface_mesh.h"
 
 namespace hdimesh::surface
@@ -27,8 +28,7 @@ inline double triangle_qe_from(double lab, double lbc, double lca, double cross_
     return 2.0 * std::sqrt(3.0) * inradius / longest;
 }
 /// Qe of the triangle (a, b, c): 2√3 · inradius / longest edge; 0 for a degenerate one.
-/// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle;
-/// out of line they were 9 % of the remesher's time.)
+/// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle.)
 inline double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 {
     return triangle_qe_from((b - a).norm(), (c - b).norm(), (a - c).norm(), OpenMesh::cross(b - a, c - a).norm());
@@ -46,11 +46,12 @@ inline Vec3d triangle_normal(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 }
 /// Qe of a face of the mesh.
 double face_qe(const SurfaceMesh& mesh, FaceHandle f);
-/// Edge size quality Qt = min(h/L, L/h) with h the average of the two end sizes.
+/// Edge size quality Qt = min(h/L, L/h) (common/size_quality.h), 0 for a length or size ≤ 0.
+/// The surface's h is the mean of the edge's two end sizes, not the size at its midpoint.
 inline double size_quality(double length, double size)
 {
     if (length <= 0.0 || size <= 0.0) return 0.0;
-    return length < size ? length / size : size / length;
+    return hdimesh::size_quality(length, size);
 }
 
 /// The topology a remesher must keep: counts, connected components (through edges) and loops

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/fit_curve_vertex.h"
 #include "surface/surface_quality.h"
 #include "surface_fixtures.h"

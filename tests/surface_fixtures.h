@@ -2,10 +2,11 @@
 // Models for the surface operator tests (header-only: only the surface tests need OpenMesh).
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "fixtures.h"
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/projector.h"
 #include "surface/surface_mesh.h"
 #include "surface/surface_quality.h"
@@ -90,6 +91,27 @@ SurfaceMesh triangulated_grid(int n, Height height)
     return mesh;
 }
 
+/// The n×n flat grid (triangulated_grid at z = 0), classified: the rim boundary curve 0 (its
+/// four corners Corner when `corners`), the rest smooth, face ref 1.
+inline SurfaceMesh flat_grid_with_rim(int n, bool corners)
+{
+    SurfaceMesh mesh = triangulated_grid(n, [](int, int) { return 0.0; });
+    mark_all_smooth(mesh);
+    SurfaceProperties props(mesh);
+    const double far = static_cast<double>(n);
+    for (auto v : mesh.vertices())
+    {
+        if (!mesh.is_boundary(v)) continue;
+        const Vec3d p = mesh.point(v);
+        const bool corner = corners && (p[0] == 0.0 || p[0] == far) && (p[1] == 0.0 || p[1] == far);
+        mesh.property(props.vertex_class, v) = corner ? VertexClass::Corner : VertexClass::Boundary;
+        mesh.property(props.vertex_curve, v) = corner ? kNoCurve : 0;
+    }
+    for (auto e : mesh.edges())
+        mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
+    return mesh;
+}
+
 /// The icosahedron on the unit sphere (hdimesh::fixtures::icosphere(0)), outward, every vertex
 /// smooth, no curves, face ref 1.
 inline SurfaceMesh icosahedron()
@@ -110,7 +132,8 @@ struct MovedStarDefects
 {
     int folded = 0, small_angles = 0, edges_out_of_band = 0;
 };
-inline MovedStarDefects moved_star_defects(const SurfaceMesh& mesh, VertexHandle v, double min_angle_deg, double min_length,
+inline MovedStarDefects moved_star_defects(const SurfaceMesh& mesh, VertexHandle v,
+                                           double min_angle_deg, double min_length,
                                            double max_length)
 {
     MovedStarDefects defects;
@@ -127,6 +150,42 @@ inline MovedStarDefects moved_star_defects(const SurfaceMesh& mesh, VertexHandle
         if (!(length >= min_length) || !(length <= max_length)) ++defects.edges_out_of_band;
     }
     return defects;
+}
+
+/// Points spread evenly over the unit sphere (a Fibonacci lattice): the "input vertices".
+inline std::vector<Vec3d> sphere_points(int n)
+{
+    std::vector<Vec3d> points;
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < n; ++i)
+    {
+        const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z);
+        points.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    }
+    return points;
+}
+
+/// V - E + F over the live elements (isolated vertices not counted).
+inline long euler(const SurfaceMesh& mesh)
+{
+    long v = 0, e = 0, f = 0;
+    for (auto x : mesh.vertices())
+        if (!mesh.status(x).deleted() && !mesh.is_isolated(x)) ++v;
+    for (auto x : mesh.edges())
+        if (!mesh.status(x).deleted()) ++e;
+    for (auto x : mesh.faces())
+        if (!mesh.status(x).deleted()) ++f;
+    return v - e + f;
+}
+
+/// Whether every live vertex is manifold and every live face has a positive Qe (not flat).
+inline bool manifold_and_nondegenerate(const SurfaceMesh& mesh)
+{
+    for (auto v : mesh.vertices())
+        if (!mesh.status(v).deleted() && !mesh.is_manifold(v)) return false;
+    for (auto f : mesh.faces())
+        if (!mesh.status(f).deleted() && !(face_qe(mesh, f) > 0.0)) return false;
+    return true;
 }
 
 }  // namespace hdimesh::surface::fixtures

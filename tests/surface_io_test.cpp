@@ -11,7 +11,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "surface/remesh.h"
+#include "surface/remesh_surface.h"
 #include "common/errors.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"

@@ -23,9 +23,9 @@
 #include <random>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 #include "surface/surface_model.h"
 #include "surface_fixtures.h"
 

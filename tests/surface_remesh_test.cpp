@@ -14,9 +14,9 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "hdi/hdi_surface.h"
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/features.h"
-#include "surface/remesh.h"
+#include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
 #include "surface/surface_model.h"
 #include "surface/surface_quality.h"
@@ -99,11 +99,12 @@ TEST_CASE("a coarse sphere remeshed to h = 0.2 on the analytic sphere: sizes in 
 {
     SurfaceMesh mesh = sphere(2);  // 128 triangles, edges about 0.39..0.77
     SphereProjector model(Vec3d(0, 0, 0), 1.0);
-    RemeshOptions options;
+    // The pipeline without a tolerance: the loop, the polish and the cleanup.
+    SurfaceRemeshOptions options;
     const double h = 0.2;
-    options.size = [h](const Vec3d&) { return h; };
-    options.iterations = 8;
-    const RemeshReport report = remesh(mesh, options, model);
+    options.loop.size = [h](const Vec3d&) { return h; };
+    options.loop.iterations = 8;
+    const RemeshReport report = remesh_surface(mesh, options, model);
     CHECK(report.splits > 0);
     const SurfaceTopology t = measure_topology(mesh);
     CHECK(t.euler() == 2);
@@ -331,13 +332,13 @@ TEST_CASE("the polish works where a triangle misses Qe 0.7: nothing moves elsewh
     };
     const hdimesh::surface::fixtures::PlaneProjector plane;
     auto polish_once = [&](double below_quality, SurfaceMesh& mesh) {
-        RemeshOptions options;
-        options.size = [](const Vec3d&) { return 1.0; };
-        options.iterations = 0;
-        options.polish_passes = 1;
-        options.cleanup_rounds = 0;
-        options.polish_below_quality = below_quality;
-        return remesh(mesh, options, plane);
+        SurfaceRemeshOptions options;
+        options.loop.size = [](const Vec3d&) { return 1.0; };
+        options.loop.iterations = 0;
+        options.polish.passes = 1;
+        options.cleanup.rounds = 0;
+        options.polish.below_quality = below_quality;
+        return remesh_surface(mesh, options, plane);
     };
     auto worst_qe = [](const SurfaceMesh& mesh) {
         double worst = 1.0;

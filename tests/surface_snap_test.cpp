@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/local_ops.h"
-#include "surface/point_grid.h"
+#include "surface/detail/point_grid.h"
 #include "surface/surface_quality.h"
 #include "surface_fixtures.h"
 

@@ -16,12 +16,12 @@
 // uninitialized) VectorT: a -Wmaybe-uninitialized false positive once GCC inlines add_vertex here.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/features.h"
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 #include "surface_fixtures.h"
-#include "surface/remesh.h"
+#include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
 #pragma GCC diagnostic pop
@@ -57,30 +57,8 @@ void classify_flat(SurfaceMesh& mesh)
 
 using hdimesh::surface::fixtures::icosahedron;
 
-// Points spread evenly over the unit sphere (a Fibonacci lattice): the "input vertices".
-std::vector<Vec3d> sphere_points(int n)
-{
-    std::vector<Vec3d> points;
-    const double golden = M_PI * (3.0 - std::sqrt(5.0));
-    for (int i = 0; i < n; ++i)
-    {
-        const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z);
-        points.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
-    }
-    return points;
-}
-
-long euler(const SurfaceMesh& mesh)
-{
-    long v = 0, e = 0, f = 0;
-    for (auto x : mesh.vertices())
-        if (!mesh.status(x).deleted() && !mesh.is_isolated(x)) ++v;
-    for (auto x : mesh.edges())
-        if (!mesh.status(x).deleted()) ++e;
-    for (auto x : mesh.faces())
-        if (!mesh.status(x).deleted()) ++f;
-    return v - e + f;
-}
+using hdimesh::surface::fixtures::euler;
+using hdimesh::surface::fixtures::sphere_points;
 
 std::size_t boundary_loops(const SurfaceMesh& mesh)
 {
@@ -214,15 +192,15 @@ TEST_CASE("refinement to a tolerance brings a coarse sphere within it both ways,
     const std::vector<Vec3d> points = sphere_points(300);
     auto run = [&](double tolerance) {
         SurfaceMesh mesh = icosahedron();
-        RemeshOptions options;
-        options.size = [](const Vec3d&) { return 1.0; };
-        options.iterations = 3;
-        options.tolerance = tolerance;
-        options.model_points = points;
-        options.refine_short_edge_budget = 1.0;  // no size target to keep here
-        options.refine_min_length_ratio = 0.1;
-        options.refine_rounds = 20;
-        const RemeshReport report = remesh(mesh, options, sphere);
+        SurfaceRemeshOptions options;
+        options.loop.size = [](const Vec3d&) { return 1.0; };
+        options.loop.iterations = 3;
+        options.tolerance.tolerance = tolerance;
+        options.tolerance.model_points = points;
+        options.refinement.short_edge_budget = 1.0;  // no size target to keep here
+        options.tolerance.min_length_ratio = 0.1;
+        options.refinement.rounds = 20;
+        const RemeshReport report = remesh_surface(mesh, options, sphere);
         CHECK(euler(mesh) == 2);
         CHECK(boundary_loops(mesh) == 0);
         check_manifold(mesh);
@@ -250,31 +228,31 @@ TEST_CASE("after the polish, snaps and the angle repair keep the tolerance: with
     const std::vector<Vec3d> points = sphere_points(300);
     auto run = [&](double snap_min_angle_deg) {
         SurfaceMesh mesh = icosahedron();
-        RemeshOptions options;
-        options.size = [](const Vec3d&) { return 1.0; };
-        options.iterations = 3;
-        options.tolerance = 0.04;
-        options.model_points = points;
+        SurfaceRemeshOptions options;
+        options.loop.size = [](const Vec3d&) { return 1.0; };
+        options.loop.iterations = 3;
+        options.tolerance.tolerance = 0.04;
+        options.tolerance.model_points = points;
         // No split before the polish (a spent budget), any number after it: the far places
         // are all left to the final refinement, where the snaps are.
-        options.refine_reference_size = 1.0;
-        options.refine_short_edge_budget = 0.0;
-        options.refine_final_short_edge_budget = 1.0;
-        options.refine_min_length_ratio = 0.1;
-        options.refine_rounds = 20;
-        options.snap_min_angle_deg = snap_min_angle_deg;
+        options.tolerance.reference_size = 1.0;
+        options.refinement.short_edge_budget = 0.0;
+        options.refinement.final_short_edge_budget = 1.0;
+        options.tolerance.min_length_ratio = 0.1;
+        options.refinement.rounds = 20;
+        options.tolerance.snap_min_angle_deg = snap_min_angle_deg;
         // Both paths start the final refinement from the same mesh (nothing before it reads
         // the snap angle); the whole mesh polished, as when this comparison was set up. With the
         // polish only at triangles under Qe 0.7 (the default) this sphere's snap path ends with
         // 111 vertices against 107: snaps save vertices on most meshes, not on every one.
-        options.polish_below_quality = 2.0;
-        const RemeshReport report = remesh(mesh, options, sphere);
+        options.polish.below_quality = 2.0;
+        const RemeshReport report = remesh_surface(mesh, options, sphere);
         CHECK(euler(mesh) == 2);
         check_manifold(mesh);
         for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
         const auto deviation = sphere_deviation(mesh, points);
-        CHECK(deviation[0] <= options.tolerance + 1e-12);
-        CHECK(deviation[1] <= options.tolerance + 1e-12);
+        CHECK(deviation[0] <= options.tolerance.tolerance + 1e-12);
+        CHECK(deviation[1] <= options.tolerance.tolerance + 1e-12);
         double min_angle = 180.0;
         for (auto f : mesh.faces())
         {
@@ -297,13 +275,13 @@ TEST_CASE("the refinement's short-edge budget stops it: no split once the budget
 {
     const SphereProjector sphere(Vec3d(0, 0, 0), 1.0);
     SurfaceMesh mesh = icosahedron();
-    RemeshOptions options;
-    options.size = [](const Vec3d&) { return 1.0; };
-    options.iterations = 3;
-    options.tolerance = 0.04;
-    options.refine_reference_size = 1.0;
-    options.refine_short_edge_budget = 0.0;  // every edge shorter than 0.66 is over budget
-    const RemeshReport report = remesh(mesh, options, sphere);
+    SurfaceRemeshOptions options;
+    options.loop.size = [](const Vec3d&) { return 1.0; };
+    options.loop.iterations = 3;
+    options.tolerance.tolerance = 0.04;
+    options.tolerance.reference_size = 1.0;
+    options.refinement.short_edge_budget = 0.0;  // every edge shorter than 0.66 is over budget
+    const RemeshReport report = remesh_surface(mesh, options, sphere);
     CHECK(report.refinement_splits == 0);
     CHECK(euler(mesh) == 2);
 }

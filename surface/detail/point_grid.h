@@ -49,8 +49,8 @@ private:
     // The cells with points, in an open-addressed table (linear probing; a power of two of
     // slots, at most half full): key and cell number (-1: an empty slot). A cell's points are
     // [cell_first_[c], cell_first_[c + 1]) of points_ / indices_, in increasing index: the
-    // points of a query's cells are contiguous (an unordered_map of vectors cost a cache miss
-    // per cell and per vector: PointGrid::within was 13 % of the budget collapses' time).
+    // points of a query's cells are contiguous (an unordered_map of vectors costs a cache miss
+    // per cell and per vector).
     std::vector<std::int64_t> slot_key_;
     std::vector<int> slot_cell_;
     std::vector<std::size_t> cell_first_;

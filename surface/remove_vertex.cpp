@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "surface/local_ops.h"
-#include "surface/local_ops_geometry.h"
+#include "surface/detail/local_ops_geometry.h"
 
 namespace hdimesh::surface
 {

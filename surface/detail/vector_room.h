@@ -1,9 +1,7 @@
 #pragma once
 // Growing a per-element array with room to spare: the remesher's refinement rounds and the output
 // tree rebuilt in each of them need a few more entries every time, and an array grown exactly to
-// its length is reallocated at the next round, its memory touched anew (page faults were an
-// eighth of the refinement's samples on stanford-bunny; a rebuild in the second round cost as
-// much as the first).
+// its length is reallocated at the next round, its memory touched anew (page faults).
 
 #include <cstddef>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "surface/point_grid.h"
+#include "surface/detail/point_grid.h"
 
 #include <algorithm>
 #include <cmath>

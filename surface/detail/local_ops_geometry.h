@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "surface/closest_point_tree.h"
+#include "surface/detail/closest_point_tree.h"
 #include "surface/local_ops.h"
 #include "surface/surface_mesh.h"
 #include "surface/surface_quality.h"
@@ -40,12 +40,11 @@ inline double qe(const std::array<Vec3d, 3>& p) { return triangle_qe(p[0], p[1],
 inline Vec3d normal(const std::array<Vec3d, 3>& p) { return triangle_normal(p[0], p[1], p[2]); }
 
 /// cos(degrees). A caller testing many triangles against one limit takes its cosine once and
-/// tests with turn_ok_cos (std::cos per tested triangle was 0.5 % of the five uniform runs).
+/// tests with turn_ok_cos (no std::cos per tested triangle).
 inline double cos_deg(double degrees) { return std::cos(degrees * M_PI / 180.0); }
 
 /// The new normal turned by at most the angle whose cosine is `min_cos` from the old one (and is
-/// not degenerate). The cosine once per operator, not per triangle: std::cos per tested triangle
-/// was 5 % of the remesher's time.
+/// not degenerate). The cosine once per operator, not per triangle: std::cos is costly.
 inline bool turn_ok_cos(const Vec3d& old_normal, const Vec3d& new_normal, double min_cos)
 {
     if (!(new_normal.sqrnorm() > 0.5)) return false;
@@ -107,8 +106,8 @@ inline double distance_to_triangle(const Vec3d& p, const std::array<Vec3d, 3>& t
 /// certainly above d2: t's bounding box is farther, by a margin far above the rounding of that
 /// measure (relative 1e-8, and 1e-8 of the coordinates' magnitude in distance: the same kind of
 /// margin as ClosestPointTree::search prunes with). The patches' distance tests skip such
-/// triangles without their closest point (measured: most triangles of a 2-ring are this far
-/// from a witness).
+/// triangles without their closest point (most triangles of a 2-ring are this far from a
+/// witness).
 inline bool clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double d2)
 {
     double box_d2 = 0.0, magnitude2 = 0.0;

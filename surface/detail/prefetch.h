@@ -1,7 +1,6 @@
 #pragma once
 // A hint to the processor to start reading memory a walk reads next: the ring walks of the
-// shift, the model's descent and the tree's search wait on memory more than they compute
-// (measured: the hint face's normal was 68 % of foot_normal's time before it was prefetched).
+// shift, the model's descent and the tree's search wait on memory more than they compute.
 
 namespace hdimesh::surface::detail
 {

@@ -1,0 +1,139 @@
+#pragma once
+// The two-sided tolerance refinement: triangles whose centroid or edge midpoints leave the model,
+// and triangles closest to a model point they pass far from, get their longest edge split (or,
+// after the polish, a vertex snapped), farthest first, within a budget of short edges. Its
+// caches (the output's triangles, the proofs that a model point is near, the model points in
+// space order, the output tree) live across its calls and are kept up to date from the change log.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "surface/detail/change_log.h"
+#include "surface/detail/closest_point_tree.h"
+#include "surface/detail/keep_tolerance.h"
+#include "surface/detail/vector_room.h"
+
+namespace hdimesh::surface::detail
+{
+
+// A model point farther than the tolerance from the output, and its closest output face (the
+// first in the output tree's order among equally close ones; reused in the next round only
+// when alone, where no order among ties is involved).
+struct FarHit
+{
+    double distance;
+    std::size_t point;
+    FaceHandle face;
+    bool alone;                 // no other face within the distance and a margin (kAloneMargin)
+    std::uint32_t measured_in;  // the refinement round of the search
+};
+
+// ToleranceRefinement::refine's per-element scratch, all zero between rounds.
+struct RefineScratch
+{
+    std::vector<double> edge_error;
+    std::vector<std::size_t> edge_target;
+    std::vector<EdgeHandle> marked;  // the edges with edge_error > 0
+    std::vector<char> near_change, face_seen, edge_seen, snapped_now;
+    std::vector<VertexHandle> changed;  // the vertices with near_change set
+    std::vector<VertexHandle> snapped;  // the vertices with snapped_now set
+    std::vector<int> triangle_of;       // (assigned whole when used)
+
+    void grow(std::size_t vertices, std::size_t edges, std::size_t faces)
+    {
+        if (edge_error.size() < edges)
+        {
+            detail::resize_with_room(edge_error, edges, 0.0);
+            detail::resize_with_room(edge_target, edges, std::size_t{0});
+            detail::resize_with_room(edge_seen, edges, char{0});
+        }
+        if (near_change.size() < vertices)
+        {
+            detail::resize_with_room(near_change, vertices, char{0});
+            detail::resize_with_room(snapped_now, vertices, char{0});
+        }
+        if (face_seen.size() < faces) detail::resize_with_room(face_seen, faces, char{0});
+    }
+    // The end of a round: the entries it set back to zero (near_change, face_seen and
+    // edge_seen are cleared where they are used).
+    void clear_round()
+    {
+        for (const EdgeHandle e : marked) edge_error[e.idx()] = 0.0, edge_target[e.idx()] = 0;
+        marked.clear();
+        for (const VertexHandle v : snapped) snapped_now[v.idx()] = 0;
+        snapped.clear();
+    }
+};
+
+// The edges short for the reference size (count_short_edges) while a refinement runs:
+
+class ToleranceRefinement : private ToleranceStage
+{
+public:
+    ToleranceRefinement(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log,
+                        const ToleranceOptions& tolerance,
+                        const ToleranceRefinementOptions& options);
+
+    /// One call of the refinement (rounds until nothing changes, the rounds or the budget run
+    /// out); after_polish: the final budget, and snaps before splits. The number of changes.
+    std::size_t refine(bool after_polish);
+
+private:
+    OpResult split_toward(EdgeHandle e, const Vec3d& target, bool part_of_the_way);
+    EdgeHandle nearest_curve_edge(FaceHandle f, std::size_t point) const;
+    VertexHandle snap_toward(std::size_t point, FaceHandle face, bool smooth_point);
+    VertexHandle snap_vertex_of_edge(EdgeHandle e, const Vec3d& target);
+    VertexHandle snap_one_of(std::vector<VertexHandle> vertices, const Vec3d& target,
+                             bool smooth_point);
+    FaceHandle near_face_around(const Vec3d& p, FaceHandle f) const;
+    VertexHandle vertex_toward(const Vec3d& p, FaceHandle f) const;
+    template <class Visit>
+    bool any_outgoing(VertexHandle v, Visit visit) const;
+    bool near_by_face_of(std::size_t i);
+    void set_point_face(std::size_t i, FaceHandle f, bool proves_near);
+    void rebuild_output_tree();
+    void update_face_points();
+    const std::vector<std::size_t>& model_points_in_space_order();
+    std::size_t count_live_edges() const;
+    bool still_closest(const FarHit& hit) const;
+    std::size_t short_edges_now(bool first_round);
+
+    const ToleranceRefinementOptions& options_;
+    // Per model point, by rank in space order: the output face that last proved it within the
+    // tolerance, or was its closest (invalid: none yet). Faces are garbage-collected at the end
+    // of the pipeline only: handles hold across the whole call.
+    std::vector<FaceHandle> point_face_;
+    // The refinement rounds, counted over all calls (0: none): the round in which point_face_
+    // proved a point near (0: it does not), and the last in which a face's points changed; a
+    // proof holds while its face has not changed since.
+    std::uint32_t refine_round_ = 0;
+    std::vector<std::uint32_t> point_proven_in_, face_changed_in_;
+    std::vector<FaceHandle>
+        faces_changed_now_;  // the faces changed in this round (after a call's first)
+    // model_points_in_space_order(): rank -> index, index -> rank, rank -> point.
+    std::vector<std::size_t> space_order_, rank_in_space_order_;
+    std::vector<Vec3d> points_in_space_order_;
+    // Per output face / edge: the centroid / midpoint last proven within the tolerance of the
+    // model (kNoPoint: none).
+    std::vector<Vec3d> near_centroid_, near_midpoint_;
+    // While a refinement runs: the points of each output face (by handle index; stale for a
+    // deleted one), and the vertices whose faces changed since they were last brought up.
+    std::vector<std::array<Vec3d, 3>> face_points_;
+    bool face_points_stale_ = true;  // all to be gathered again (each refinement's first round)
+    ChangedVertices face_changes_;
+    RefineScratch refine_scratch_;
+    // The refinement's tree of the output (rebuild_output_tree), its triangles' faces, and the
+    // storage its triangles are gathered in.
+    ClosestPointTree output_tree_;
+    std::vector<FaceHandle> output_tree_faces_;
+    std::vector<std::array<Vec3d, 3>> output_tree_triangles_;
+    // While a refinement runs: which edges were short for the reference size at the last count
+    // (short_edges_now), how many, and the vertices changed since.
+    std::vector<char> edge_is_short_;
+    std::size_t short_edge_count_ = 0;
+    ChangedVertices short_edge_changes_;  // (edges_deleted: the next count is a full one)
+};
+
+}  // namespace hdimesh::surface::detail

@@ -1,0 +1,247 @@
+#include "surface/remesh_surface.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "common/errors.h"
+#include "common/size_quality.h"
+#include "common/stage_timer.h"
+#include "surface/detail/change_log.h"
+#include "surface/detail/cleanup.h"
+#include "surface/detail/keep_tolerance.h"
+#include "surface/detail/remesh_run.h"
+#include "surface/detail/tolerance_refinement.h"
+#include "surface/hdi_projection.h"
+#include "surface/surface_model.h"
+#include "surface/surface_quality.h"
+
+namespace hdimesh::surface
+{
+namespace
+{
+
+// The curvature-adaptive size refines to this fraction of hausd, to end within hausd.
+constexpr double kAdaptiveToleranceMargin = 0.8;
+
+// Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
+void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& keeper,
+                  const char* stage)
+{
+    if (run.options.verbosity <= 0) return;
+    std::size_t short_edges = 0, long_edges = 0, edges = 0;
+    for (auto e : run.mesh.edges())
+    {
+        if (run.mesh.status(e).deleted()) continue;
+        ++edges;
+        const double length = run.mesh.calc_edge_length(e), size = run.edge_size(e);
+        if (is_too_short(length, size))
+            ++short_edges;
+        else if (is_too_long(length, size))
+            ++long_edges;
+    }
+    std::fprintf(stderr,
+                 "remesh: after %s (%.2f s, cpu %.3f s): %zu edges, %zu too short, %zu too long, "
+                 "%zu short for the reference\n",
+                 stage, run.clock.wall_seconds(), run.clock.cpu_seconds(), edges, short_edges,
+                 long_edges, keeper.count_short_edges());
+}
+
+}  // namespace
+
+RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& options,
+                            const Projector& model, const SurfaceHooks& hooks)
+{
+    if (!options.loop.size) throw InputError("remesh: no size function given");
+    // The stages share the operators' context (its hooks note each change for their caches),
+    // the sizes and the report.
+    detail::ChangeLog log;
+    detail::RemeshRun run(mesh, options.loop, model, log.wrap(hooks));
+    detail::ToleranceKeeper keeper(run, options.tolerance);
+    detail::ToleranceRefinement refinement(run, keeper, log, options.tolerance, options.refinement);
+    detail::Cleanup cleanup(run, keeper, log, options.tolerance, options.cleanup);
+    auto stage_done = [&](const char* stage) { report_stage(run, keeper, stage); };
+
+    // The sizes into band: split, collapse, flip, shift.
+    run.update_sizes();
+    detail::run_iterations(run);
+    stage_done("iterations");
+    // Against a uniform size, the loop's bound on new edges (to converge) left short ones.
+    cleanup.collapse_short_for_reference();
+    stage_done("reference collapses");
+    // Where the sizes alone stray from the model; no snaps yet: the polish would move them back.
+    refinement.refine(false);
+    stage_done("refinement");
+    // Quality flips and smart shifts where a triangle misses the quality goal.
+    cleanup.polish(options.polish);
+    stage_done("polish");
+    // The worst triangles: flips, collapses, removals, shifts.
+    cleanup.cleanup_worst_triangles();
+    stage_done("cleanup");
+    // Short edges the polish and cleanup made, so the final budget goes to far places.
+    cleanup.collapse_short_keeping_tolerance();
+    stage_done("budget collapses");
+    // Curve vertices onto an open boundary's stair corners first: the budget then goes elsewhere.
+    cleanup.fit_curves();
+    // The polish moved vertices; the cleanup after new splits may again: a last refinement.
+    if (refinement.refine(true) > 0)
+    {
+        cleanup.cleanup_worst_triangles(detail::Keep::Tolerance);
+        refinement.refine(true);
+    }
+    // A needle at a narrow corner between two curves: its curve vertex slid, the only cure.
+    cleanup.slide_curve_vertices_of_needles();
+    // Where the tolerance is the contract, the refinement has the last word after the slides.
+    if (options.refinement.short_edge_budget >= 1.0) refinement.refine(true);
+    // The last splits may leave needles: a repair that keeps what they reached.
+    cleanup.repair_small_angles();
+    // Again after the last splits, whose chords may cut the next zig.
+    cleanup.fit_curves();
+    stage_done("final refinement");
+    mesh.garbage_collection();
+    return run.report;
+}
+
+SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings)
+{
+    SurfaceRemeshResult result;
+    // Verbose: the CPU time of the fixed costs before the remesher starts (features, model, sizes).
+    const Stopwatch clock;
+    auto report_setup = [&](const char* stage)
+    {
+        if (settings.verbosity > 0)
+            std::fprintf(stderr, "remesh_surface: after %s (%.2f s, cpu %.3f s)\n", stage,
+                         clock.wall_seconds(), clock.cpu_seconds());
+    };
+    result.diagonal = bounding_box_diagonal(mesh);
+    FeatureOptions features = settings.features;
+    if (features.min_corner_spacing <= 0.0)
+    {
+        const double h = settings.sizing.hsiz > 0.0   ? settings.sizing.hsiz
+                         : settings.sizing.hmin > 0.0 ? settings.sizing.hmin
+                                                      : 0.0;
+        features.min_corner_spacing = 0.5 * h;
+    }
+    result.features = detect_features(mesh, features);
+    report_setup("features");
+    SurfaceModel model(mesh);
+    if (settings.use_hdi) attach_hdi_projection(model, mesh);
+    report_setup("model");
+
+    SizeMap sizes = SizeMap::uniform(settings.sizing.hsiz);
+    if (settings.sizing.hsiz > 0.0 && settings.uniform_hausd_fraction > 0.0)
+    {
+        // A uniform size, but no coarser than the curvature allows for the tolerance: a fillet
+        // narrower than h would otherwise be cut by chords (the Hausdorff target).
+        SizingOptions capped = settings.sizing;
+        capped.hmax = settings.sizing.hsiz;
+        if (!(capped.hausd > 0.0)) capped.hausd = settings.uniform_hausd_fraction * result.diagonal;
+        std::vector<double> local = curvature_sizes(mesh, model, capped);
+        // Never below the floor (edges shorter than 0.66·hsiz fail the size criterion); on ridges
+        // down to half of it: a curved ridge must stay within its tolerance. Open boundaries of
+        // scans zig-zag, so their turning is no curvature to follow.
+        SurfaceProperties props(mesh);
+        for (auto v : mesh.vertices())
+        {
+            const bool ridge = mesh.property(props.vertex_class, v) == VertexClass::Ridge;
+            const double floor =
+                (ridge ? 0.5 : 1.0) * settings.uniform_size_floor * settings.sizing.hsiz;
+            local[v.idx()] = std::max(local[v.idx()], floor);
+        }
+        const bool all_uniform = std::all_of(local.begin(), local.end(),
+                                             [&](double s) { return s >= settings.sizing.hsiz; });
+        if (!all_uniform) sizes = SizeMap::per_input_vertex(model, std::move(local));
+    }
+    if (!settings.input_sizes.empty())
+    {
+        if (settings.input_sizes.size() != mesh.n_vertices())
+            throw InputError("remesh_surface: " + std::to_string(settings.input_sizes.size()) +
+                             " sizes for " + std::to_string(mesh.n_vertices()) + " vertices");
+        std::vector<double> graded = settings.input_sizes;
+        bound_and_grade(mesh, graded, settings.sizing);
+        sizes = SizeMap::per_input_vertex(model, std::move(graded));
+        result.adaptive = true;
+    }
+    else if (!(settings.sizing.hsiz > 0.0))
+    {
+        sizes = SizeMap::per_input_vertex(model, curvature_sizes(mesh, model, settings.sizing));
+        result.adaptive = true;
+    }
+    result.uniform_size = settings.sizing.hsiz > 0.0 ? settings.sizing.hsiz : sizes.uniform_size();
+
+    SurfaceRemeshOptions options;
+    options.loop.size = [&sizes](const Vec3d& p) { return sizes.at(p); };
+    options.loop.size_near = [&sizes](const Vec3d& p, int face_hint)
+    { return sizes.at(p, face_hint); };
+    {
+        // The remeshed surface starts as the model's own input: each vertex's first hint is a face
+        // of its own (the model numbers the input faces in iteration order).
+        const SurfaceProperties props(mesh);
+        int model_face = 0;
+        for (auto f : mesh.faces())
+        {
+            for (auto v : mesh.fv_range(f)) mesh.property(props.vertex_model_face, v) = model_face;
+            ++model_face;
+        }
+    }
+    options.loop.iterations = settings.iterations;
+    options.loop.verbosity = settings.verbosity;
+    if (settings.max_model_distance >= 0.0)
+        options.loop.max_model_distance = settings.max_model_distance;
+    else if (settings.sizing.hausd > 0.0)
+        options.loop.max_model_distance = settings.sizing.hausd;
+    else
+        options.loop.max_model_distance = 0.002 * result.diagonal;
+    // The tolerance both ways: hausd when given, else the fraction for a uniform size.
+    if (settings.sizing.hausd > 0.0)
+        options.tolerance.tolerance = settings.sizing.hausd;
+    else if (settings.sizing.hsiz > 0.0)
+        options.tolerance.tolerance = settings.uniform_hausd_fraction * result.diagonal;
+    else
+        options.tolerance.tolerance = 0.002 * result.diagonal;
+    if (settings.refine_to_tolerance && options.tolerance.tolerance > 0.0)
+    {
+        const SurfaceProperties props(mesh);
+        options.tolerance.model_points.reserve(mesh.n_vertices() + mesh.n_edges());
+        options.tolerance.model_point_smooth.reserve(mesh.n_vertices() + mesh.n_edges());
+        for (auto v : mesh.vertices())
+        {
+            if (mesh.is_isolated(v)) continue;
+            options.tolerance.model_points.push_back(mesh.point(v));
+            options.tolerance.model_point_smooth.push_back(mesh.property(props.vertex_class, v) ==
+                                                           VertexClass::Smooth);
+        }
+        // Edge midpoints too (the Hausdorff samples of the input): a crease the features dropped
+        // is farthest from the output between its vertices. With a uniform size too: the
+        // short-edge budget then goes to those creases (docs/tuning.md).
+        for (auto e : mesh.edges())
+        {
+            const auto h = mesh.halfedge_handle(e, 0);
+            const Vec3d mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) +
+                                     mesh.point(mesh.to_vertex_handle(h)));
+            options.tolerance.model_points.push_back(mid);
+            options.tolerance.model_point_smooth.push_back(
+                mesh.property(props.edge_curve, e) == kNoCurve && !mesh.is_boundary(e));
+        }
+    }
+    if (!settings.refine_to_tolerance) options.tolerance.tolerance = 0.0;
+    options.tolerance.reference_size = settings.sizing.hsiz;
+    options.refinement.short_edge_budget = settings.refine_short_edge_budget;
+    options.refinement.final_short_edge_budget =
+        std::max(settings.refine_final_short_edge_budget, settings.refine_short_edge_budget);
+    if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty())
+    {
+        // Curvature-adaptive: the tolerance is the contract (no size target to keep), with a
+        // margin for the samples the refinement does not look at (input edge midpoints, centroids).
+        options.tolerance.tolerance *= kAdaptiveToleranceMargin;
+        options.refinement.short_edge_budget = 1.0;
+        options.refinement.final_short_edge_budget = 1.0;
+        options.tolerance.min_length_ratio = 0.15;
+        options.refinement.rounds = 20;
+    }
+    report_setup("sizes and model points");
+    result.report = remesh_surface(mesh, options, model);
+    return result;
+}
+
+}  // namespace hdimesh::surface

@@ -1,0 +1,132 @@
+#pragma once
+// surfremesh's pipeline: the move-and-split loop (remesh), then edges still too short for a
+// reference size collapsed, a refinement where the output strays from the model farther than a
+// tolerance (both ways: chords off the model, model points far from the output), a polish and a
+// cleanup of the worst triangles, and a last refinement, the changes after it keeping the
+// tolerance. Each stage's settings are its own struct; SurfaceRemeshSettings fills them all from
+// an input surface.
+
+#include <vector>
+
+#include "surface/features.h"
+#include "surface/remesh.h"
+#include "surface/sizing.h"
+#include "surface/surface_mesh.h"
+
+namespace hdimesh::surface
+{
+
+/// What the stages after the loop keep: the distance between the output and the model both
+/// ways, measured at model points, and a reference size for the short edges they may make.
+struct ToleranceOptions
+{
+    /// Geometric tolerance (> 0: on): after the loop, a triangle whose centroid or edge
+    /// midpoints stray farther from the model, or that is the closest triangle to a point of
+    /// `model_points` (the input vertices) farther away, has its longest edge split (projected
+    /// onto the model), down to edges of min_length_ratio times the local size. The sizes alone
+    /// miss a short crease or a spike narrower than an edge.
+    double tolerance = 0.0;
+    std::vector<Vec3d> model_points;
+    /// Per model point: a smooth one (a split may put its new vertex onto it; a curve point
+    /// only asks for a split at the projected midpoint). Empty: all smooth.
+    std::vector<char> model_point_smooth;
+    /// The shortest edge a refinement split or a witnessed move makes, times the size.
+    double min_length_ratio = 0.3;
+    /// > 0 (a uniform size): the size the short-edge budget and the witnessed moves' band are
+    /// judged against; edges shorter than 0.66 of it are collapsed after the loop when no new
+    /// edge gets longer than 1.45 of it and no angle under 30°. ≤ 0: the local size.
+    double reference_size = 0.0;
+    /// > 0: after the polish, before splitting, the refinement moves a vertex of the triangle
+    /// nearest a far model point (or an end of a chord far from the model) toward it
+    /// (try_snap_vertex) when no triangle of its star gets an angle under this (the curve fit
+    /// and the angle repair too). ≤ 0: no snaps, fits or repair moves.
+    double snap_min_angle_deg = 25.0;
+};
+
+/// The refinement to the tolerance (ToleranceOptions).
+struct ToleranceRefinementOptions
+{
+    int rounds = 12;
+    /// A call stops when this fraction of the edges is shorter than 0.66 of the reference size
+    /// (ToleranceOptions::reference_size, else the local size); ≥ 1: never.
+    double short_edge_budget = 0.006;
+    /// The same for the refinements after the polish, which only a repair of small angles that
+    /// keeps the tolerance follows (no cleanup that would undo the splits). < 0: the same as
+    /// short_edge_budget.
+    double final_short_edge_budget = -1.0;
+};
+
+/// The shape polish after the first refinement: quality flips and smart shifts.
+struct PolishOptions
+{
+    int passes = 3;
+    /// It works where a triangle misses this Qe (its vertices, and edges at them; ≥ 1:
+    /// everywhere): the loop left the rest well shaped, and a smart shift only raises the worst
+    /// Qe of its ball anyway.
+    double below_quality = 0.7;
+};
+
+/// The worst-triangle cleanup, the angle repair and the needle slides.
+struct CleanupOptions
+{
+    /// They work on triangles with a smaller angle than this.
+    double angle_deg = 27.0;
+    int rounds = 8;
+};
+
+/// Every stage's settings, for remesh_surface on a given model.
+struct SurfaceRemeshOptions
+{
+    RemeshOptions loop;  // its size is required
+    ToleranceOptions tolerance;
+    ToleranceRefinementOptions refinement;
+    PolishOptions polish;
+    CleanupOptions cleanup;
+};
+
+/// The pipeline on `model`: `mesh` classified by detect_features, or carrying the properties of
+/// surface_mesh.h. Hooks see every change; handles stay valid until the final garbage
+/// collection at the end of the call.
+RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& options,
+                            const Projector& model, const SurfaceHooks& hooks = {});
+
+/// Everything surfremesh needs, for one library call from an input surface.
+struct SurfaceRemeshSettings
+{
+    FeatureOptions features;
+    SizingOptions sizing;  // hsiz > 0: uniform; else curvature from hausd (default 0.002·diag)
+    std::vector<double>
+        input_sizes;     // non-empty: a size per input vertex (--sol), bounded and graded
+    int iterations = 8;  // RemeshOptions::iterations
+    /// With a uniform size: refine below it where the curvature needs it to stay within
+    /// hausd (if given) or this fraction of the bbox diagonal (≤ 0: strictly uniform).
+    double uniform_hausd_fraction = 0.0016;
+    double uniform_size_floor = 0.85;  // ... but never below this fraction of hsiz
+    /// Smooth vertices on the HDI model instead of the input facets. Off by default: it is
+    /// slower and its projections near ridges leave slivers (docs/tuning.md).
+    bool use_hdi = false;
+    double max_model_distance = -1.0;  // < 0: from hausd (or 0.002·diag for a uniform size)
+    /// Split where the output strays from the input by more than hausd (or, for a uniform size,
+    /// uniform_hausd_fraction·diag) either way (ToleranceOptions::tolerance).
+    bool refine_to_tolerance = true;
+    double refine_short_edge_budget = 0.006;  // ToleranceRefinementOptions::short_edge_budget
+    /// ToleranceRefinementOptions::final_short_edge_budget: the quality target allows 1 % of the
+    /// edges under Qt 0.66, less 0.1 % for the repair (docs/tuning.md).
+    double refine_final_short_edge_budget = 0.009;
+    int verbosity = 0;
+};
+
+struct SurfaceRemeshResult
+{
+    FeatureSummary features;
+    RemeshReport report;
+    double diagonal = 0.0;
+    double uniform_size = 0.0;  // the size used when uniform, else the mean of the input sizes
+    bool adaptive = false;
+};
+
+/// Detects features of `mesh`, builds the model from it, chooses the sizes and remeshes it in
+/// place. The vertex size property of the result holds the target size at each vertex.
+SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings);
+
+}  // namespace hdimesh::surface
