@@ -25,7 +25,8 @@ int parse_int(const std::string& flag, const std::string& text)
 {
     char* end = nullptr;
     const long value = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0') throw UsageError(flag + " expects an integer, got '" + text + "'");
+    if (text.empty() || *end != '\0')
+        throw UsageError(flag + " expects an integer, got '" + text + "'");
     return static_cast<int>(value);
 }
 
@@ -36,8 +37,8 @@ CommandLine::CommandLine(std::string program, std::string summary)
 {
 }
 
-void CommandLine::positional(const std::string& name, std::string* target,
-                             const std::string& help, bool required)
+void CommandLine::positional(const std::string& name, std::string* target, const std::string& help,
+                             bool required)
 {
     positionals_.push_back({name, help, name, [target](const std::string& v) { *target = v; }});
     positional_required_.push_back(required);
@@ -56,24 +57,23 @@ void CommandLine::flags(const std::vector<Flag>& table)
 void CommandLine::option(const std::string& name, double* target, const std::string& help,
                          bool* was_set)
 {
-    options_.push_back(
-        {name, help, "X", [name, target](const std::string& v) { *target = parse_double(name, v); },
-         was_set});
+    options_.push_back({name, help, "X",
+                        [name, target](const std::string& v) { *target = parse_double(name, v); },
+                        was_set});
 }
 
 void CommandLine::option(const std::string& name, int* target, const std::string& help,
                          bool* was_set)
 {
-    options_.push_back(
-        {name, help, "N", [name, target](const std::string& v) { *target = parse_int(name, v); },
-         was_set});
+    options_.push_back({name, help, "N",
+                        [name, target](const std::string& v) { *target = parse_int(name, v); },
+                        was_set});
 }
 
 void CommandLine::option(const std::string& name, std::string* target, const std::string& help,
                          bool* was_set)
 {
-    options_.push_back(
-        {name, help, "S", [target](const std::string& v) { *target = v; }, was_set});
+    options_.push_back({name, help, "S", [target](const std::string& v) { *target = v; }, was_set});
 }
 
 void CommandLine::parse(int argc, char** argv)

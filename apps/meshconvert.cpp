@@ -15,9 +15,10 @@ int main(int argc, char** argv)
     return cli::run("meshconvert", [&] {
         std::string input, output, msh_version = "4.1", sol_path;
         bool binary = false, no_check = false, verbose = false;
-        cli::CommandLine cl("meshconvert",
-                            "Converts a tetrahedral mesh between formats (by extension), keeping\n"
-                            "refs: .mesh .meshb .msh (2.2/4.1, ASCII/binary) in, and .vtu out too.");
+        cli::CommandLine cl(
+            "meshconvert",
+            "Converts a tetrahedral mesh between formats (by extension), keeping\n"
+            "refs: .mesh .meshb .msh (2.2/4.1, ASCII/binary) in, and .vtu out too.");
         cl.positional("IN", &input, "input mesh (.mesh .meshb .msh)");
         cl.positional("OUT", &output, "output mesh (.mesh .meshb .msh .vtu)");
         cl.option("--msh-version", &msh_version, "Gmsh version to write: 2.2 or 4.1 (default)");
@@ -34,13 +35,14 @@ int main(int argc, char** argv)
 
         const TetMesh mesh = read_mesh(input);
         if (verbose)
-            std::cout << input << ": " << mesh.num_vertices() << " vertices, " << mesh.num_live_tets()
-                      << " tetrahedra, " << mesh.triangles.size() << " triangles, "
-                      << mesh.edges.size() << " edges\n";
+            std::cout << input << ": " << mesh.num_vertices() << " vertices, "
+                      << mesh.num_live_tets() << " tetrahedra, " << mesh.triangles.size()
+                      << " triangles, " << mesh.edges.size() << " edges\n";
         // the checker's invariants are about tets: a surface-only mesh converts unchecked
         if (!no_check && mesh.num_live_tets() > 0)
             if (const auto violations = check_mesh(mesh); !violations.empty())
-                throw InputError(input + ": the mesh is not valid (not written; --no-check to force):\n" +
+                throw InputError(input +
+                                 ": the mesh is not valid (not written; --no-check to force):\n" +
                                  format_violations(violations));
 
         WriteOptions options;

@@ -16,7 +16,8 @@ namespace
 {
 
 /// The report's JSON object with the checker's verdict appended, so one object says it all.
-std::string json_with_check(const QualityReport& report, const std::vector<MeshViolation>& violations)
+std::string json_with_check(const QualityReport& report,
+                            const std::vector<MeshViolation>& violations)
 {
     std::string json = quality_report_json(report);
     const auto close = json.rfind('}');
@@ -35,11 +36,12 @@ int main(int argc, char** argv)
         std::string input, svg_path, stats_path;
         bool json = false;
         cli::SizeFlags size;
-        cli::CommandLine cl("meshstat",
-                            "Prints the quality report of a tet mesh (counts, Qe, dihedral angles,\n"
-                            "Qt of every edge against a size field when one is given) and the\n"
-                            "mesh checker's verdict. Exit code 0 when the mesh is clean, 1 when\n"
-                            "the checker finds violations or the mesh cannot be read.");
+        cli::CommandLine cl(
+            "meshstat",
+            "Prints the quality report of a tet mesh (counts, Qe, dihedral angles,\n"
+            "Qt of every edge against a size field when one is given) and the\n"
+            "mesh checker's verdict. Exit code 0 when the mesh is clean, 1 when\n"
+            "the checker finds violations or the mesh cannot be read.");
         cl.positional("IN", &input, "tet mesh (.mesh .meshb .msh)");
         size.add_to(cl, true);
         cl.flag("--json", &json, "print the report as one JSON object instead of a table");
@@ -63,7 +65,8 @@ int main(int argc, char** argv)
         else
         {
             std::cout << "mesh " << input << "\n" << format_quality_table(report);
-            std::cout << "check: " << (violations.empty() ? "clean\n" : "") << (violations.empty() ? "" : format_violations(violations));
+            std::cout << "check: " << (violations.empty() ? "clean\n" : "")
+                      << (violations.empty() ? "" : format_violations(violations));
         }
         if (!svg_path.empty()) write_quality_svg(report, svg_path);
         if (!stats_path.empty()) write_quality_json(report, stats_path);

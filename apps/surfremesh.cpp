@@ -30,20 +30,24 @@ void write_stats(const std::string& path, const QualityReport& before, const Qua
 {
     write_file_atomically(path, [&](std::ostream& out) {
         auto report = [&](const char* name, const QualityReport& r, bool last) {
-            out << "  \"" << name << "\": {\"vertices\": " << r.vertices << ", \"triangles\": " << r.faces
-                << ", \"qe_min\": " << r.qe_min << ", \"qe_mean\": " << r.qe_mean
-                << ", \"percent_qe_ge_0_7\": " << r.percent_qe_ge_07 << ", \"min_angle_deg\": " << r.min_angle_deg
+            out << "  \"" << name << "\": {\"vertices\": " << r.vertices
+                << ", \"triangles\": " << r.faces << ", \"qe_min\": " << r.qe_min
+                << ", \"qe_mean\": " << r.qe_mean
+                << ", \"percent_qe_ge_0_7\": " << r.percent_qe_ge_07
+                << ", \"min_angle_deg\": " << r.min_angle_deg
                 << ", \"max_angle_deg\": " << r.max_angle_deg
                 << ", \"percent_all_angles_ge_25\": " << r.percent_all_angles_ge_25
                 << ", \"percent_qt_ge_0_66\": " << r.percent_qt_ge_066
                 << ", \"hausdorff_to_input\": " << r.hausdorff_to_model
-                << ", \"hausdorff_from_input\": " << r.hausdorff_from_model << "}" << (last ? "\n" : ",\n");
+                << ", \"hausdorff_from_input\": " << r.hausdorff_from_model << "}"
+                << (last ? "\n" : ",\n");
         };
         out << "{\n";
         out << "  \"diagonal\": " << result.diagonal << ",\n  \"size\": " << result.uniform_size
-            << ",\n  \"adaptive\": " << (result.adaptive ? "true" : "false") << ",\n  \"seconds\": " << seconds
-            << ",\n  \"ridge_edges\": " << result.features.ridge_edges << ",\n  \"corners\": " << result.features.corners
-            << ",\n";
+            << ",\n  \"adaptive\": " << (result.adaptive ? "true" : "false")
+            << ",\n  \"seconds\": " << seconds
+            << ",\n  \"ridge_edges\": " << result.features.ridge_edges
+            << ",\n  \"corners\": " << result.features.corners << ",\n";
         report("before", before, false);
         report("after", after, true);
         out << "}\n";
@@ -60,19 +64,23 @@ int main(int argc, char** argv)
         double hausd = 0, ridge_angle = 45;
         bool use_hdi = false, has_hausd = false, no_ridges = false;
         int verbosity = 1, iterations = 8;
-        cli::CommandLine cmd("surfremesh", "Remesh a triangle surface (OBJ, OFF, STL, PLY, Medit .mesh) to a size.");
+        cli::CommandLine cmd(
+            "surfremesh", "Remesh a triangle surface (OBJ, OFF, STL, PLY, Medit .mesh) to a size.");
         cmd.positional("IN", &input, "input surface");
         cmd.option("-o", &output, "output surface (format by extension)");
         size.add_to(cmd, true);
-        cmd.option("--hausd", &hausd, "geometric tolerance: curvature-adaptive size (default 0.002*diag)", &has_hausd);
+        cmd.option("--hausd", &hausd,
+                   "geometric tolerance: curvature-adaptive size (default 0.002*diag)", &has_hausd);
         cmd.option("--ridge-angle", &ridge_angle, "ridge detection angle in degrees (default 45)");
         cmd.flags({
-            {"--hdi", &use_hdi, "smooth vertices on the HDI model instead of the input facets (experimental)"},
+            {"--hdi", &use_hdi,
+             "smooth vertices on the HDI model instead of the input facets (experimental)"},
             {"--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)"},
         });
         cmd.option("--iterations", &iterations, "remeshing iterations (default 8)");
         cmd.option("--stats", &stats, "write the before/after figures as JSON");
-        cmd.option("-v", &verbosity, "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details)");
+        cmd.option("-v", &verbosity,
+                   "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details)");
         cmd.parse(argc, argv);
         if (output.empty()) throw InputError("missing -o OUT");
         const bool has_hsiz = size.hsiz_set, has_sol = size.sol_set;
@@ -97,8 +105,10 @@ int main(int argc, char** argv)
         settings.iterations = iterations;
         settings.use_hdi = use_hdi;
         settings.verbosity = verbosity > 1 ? verbosity - 1 : 0;
-        if (has_sol) settings.input_sizes = read_sol_sizes(size.sol, static_cast<int>(mesh.n_vertices()));
-        if (!has_hsiz && !has_sol && !has_hausd && !size.hmax_set) settings.sizing.hmax = 2.0 * mean_edge_length(mesh);
+        if (has_sol)
+            settings.input_sizes = read_sol_sizes(size.sol, static_cast<int>(mesh.n_vertices()));
+        if (!has_hsiz && !has_sol && !has_hausd && !size.hmax_set)
+            settings.sizing.hmax = 2.0 * mean_edge_length(mesh);
 
         const WallStopwatch stopwatch;
         const SurfaceRemeshResult result = remesh_surface(mesh, settings);
@@ -108,18 +118,24 @@ int main(int argc, char** argv)
         if (verbosity > 0 || !stats.empty())
         {
             const double uniform = result.adaptive ? 0.0 : result.uniform_size;
-            QualityReport before = measure_quality(original, uniform > 0 ? uniform : result.uniform_size);
+            QualityReport before =
+                measure_quality(original, uniform > 0 ? uniform : result.uniform_size);
             QualityReport after = measure_quality(mesh, uniform);
             const auto d = hausdorff_distance(mesh, original);
             after.hausdorff_to_model = d[0];
             after.hausdorff_from_model = d[1];
             if (verbosity > 0)
             {
-                std::printf("surfremesh: %s -> %s in %.2f s (%s size %.4g, diag %.4g)\n", input.c_str(), output.c_str(),
-                            seconds, result.adaptive ? "adaptive, mean" : "uniform", result.uniform_size, result.diagonal);
-                std::printf("features: %zu ridge edges, %zu boundary edges, %zu corners, %zu curves (%zu noise chains dropped)\n",
-                            result.features.ridge_edges, result.features.boundary_edges, result.features.corners,
-                            result.features.curves, result.features.dropped_ridge_chains);
+                std::printf("surfremesh: %s -> %s in %.2f s (%s size %.4g, diag %.4g)\n",
+                            input.c_str(), output.c_str(), seconds,
+                            result.adaptive ? "adaptive, mean" : "uniform", result.uniform_size,
+                            result.diagonal);
+                std::printf(
+                    "features: %zu ridge edges, %zu boundary edges, %zu corners, %zu curves (%zu "
+                    "noise chains dropped)\n",
+                    result.features.ridge_edges, result.features.boundary_edges,
+                    result.features.corners, result.features.curves,
+                    result.features.dropped_ridge_chains);
                 std::printf("%s", format_quality_table(before, after).c_str());
             }
             if (!stats.empty()) write_stats(stats, before, after, result, seconds);

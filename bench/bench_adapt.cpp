@@ -50,13 +50,19 @@ int main(int argc, char** argv)
     options.verbosity = 0;
     for (int i = 1; i < argc; ++i)
     {
-        if (!std::strcmp(argv[i], "--cases") && i + 1 < argc) cases = argv[++i];
-        else if (!std::strcmp(argv[i], "--no-projection")) options.project = false;
-        else if (!std::strcmp(argv[i], "--no-optimize")) options.optimize = false;
-        else if (!std::strcmp(argv[i], "--verbose")) options.optimizer.verbosity = 2;
+        if (!std::strcmp(argv[i], "--cases") && i + 1 < argc)
+            cases = argv[++i];
+        else if (!std::strcmp(argv[i], "--no-projection"))
+            options.project = false;
+        else if (!std::strcmp(argv[i], "--no-optimize"))
+            options.optimize = false;
+        else if (!std::strcmp(argv[i], "--verbose"))
+            options.optimizer.verbosity = 2;
         else
         {
-            std::fprintf(stderr, "usage: bench_adapt [--cases ABCDE] [--no-projection] [--no-optimize] [--verbose]\n");
+            std::fprintf(stderr,
+                         "usage: bench_adapt [--cases ABCDE] [--no-projection] [--no-optimize] "
+                         "[--verbose]\n");
             return 2;
         }
     }
@@ -66,9 +72,9 @@ int main(int argc, char** argv)
                 options.optimize ? "on" : "off");
     // CPU time of the adapting thread is the figure of record (the machine may be shared);
     // wall time is printed beside it
-    std::printf("%-4s %10s %9s %8s %8s %9s %8s %9s %10s %9s %8s  %s\n", "case", "tets",
-                "vertices", "cpu s", "wall s", "tets/cpu-s", "min Qe", "Qe>=0.5", "Qt>=0.66",
-                "too long", "max|r-1|", "checker");
+    std::printf("%-4s %10s %9s %8s %8s %9s %8s %9s %10s %9s %8s  %s\n", "case", "tets", "vertices",
+                "cpu s", "wall s", "tets/cpu-s", "min Qe", "Qe>=0.5", "Qt>=0.66", "too long",
+                "max|r-1|", "checker");
     std::string splits, digests;
     for (char c : cases)
     {
@@ -77,8 +83,8 @@ int main(int argc, char** argv)
         const coupling::AdaptReport report = coupling::adapt(mesh, field, options);
         const QualityReport q = compute_quality_report(mesh, &field);
         const auto violations = check_mesh(mesh);
-        std::printf("%-4c %10d %9d %8.2f %8.2f %9.0f %8.4f %8.2f%% %9.2f%% %8.3f%% %8.1e  %s\n",
-                    c, q.tets, q.vertices, report.cpu_seconds_total, report.seconds_total,
+        std::printf("%-4c %10d %9d %8.2f %8.2f %9.0f %8.4f %8.2f%% %9.2f%% %8.3f%% %8.1e  %s\n", c,
+                    q.tets, q.vertices, report.cpu_seconds_total, report.seconds_total,
                     q.tets / report.cpu_seconds_total, q.min_qe, q.percent_qe_ge_05,
                     q.percent_qt_ge_066, q.percent_too_long,
                     fixtures::max_unit_sphere_deviation(mesh),
@@ -86,7 +92,8 @@ int main(int argc, char** argv)
         std::fflush(stdout);
         char line[200];
         std::snprintf(line, sizeof line,
-                      "%c: cpu refine %.2f s, project %.2f s, optimize %.2f s, other %.2f s; %zu passes, %s\n",
+                      "%c: cpu refine %.2f s, project %.2f s, optimize %.2f s, other %.2f s; %zu "
+                      "passes, %s\n",
                       c, report.cpu_seconds_refine, report.cpu_seconds_project,
                       report.cpu_seconds_optimize,
                       report.cpu_seconds_total - report.cpu_seconds_refine -

@@ -5,12 +5,13 @@
 // Reading includes the validation every read_mesh does (index ranges, positive volumes) and
 // the O(n) adjacency build, since that is what a user waits for.
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 #include "fixtures.h"
 #include "volume/check.h"
@@ -43,15 +44,17 @@ int main(int argc, char** argv)
 {
     const int n = argc > 1 ? std::atoi(argv[1]) : 56;
     if (n < 1) return std::fprintf(stderr, "usage: bench_io [N >= 1]\n"), 2;
-    const fs::path dir = fs::temp_directory_path() / ("hdimesh_bench_io_" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("hdimesh_bench_io_" + std::to_string(::getpid()));
     fs::create_directories(dir);
 
     const auto build_start = std::chrono::steady_clock::now();
     const TetMesh mesh = jittered_box(n);
     const double build_seconds = seconds_since(build_start);
     const double tets = mesh.num_live_tets();
-    std::printf("mesh: %d^3 Kuhn cubes, %d vertices, %.0f tets, %zu boundary triangles (built in %.2f s)\n",
-                n, mesh.num_vertices(), tets, mesh.triangles.size(), build_seconds);
+    std::printf(
+        "mesh: %d^3 Kuhn cubes, %d vertices, %.0f tets, %zu boundary triangles (built in %.2f s)\n",
+        n, mesh.num_vertices(), tets, mesh.triangles.size(), build_seconds);
 
     struct Format
     {
@@ -70,7 +73,8 @@ int main(int argc, char** argv)
         {"VTK .vtu (write)", "box.vtu", {}, false},
     };
 
-    std::printf("\n%-18s %14s %14s %12s %10s\n", "format", "write tets/s", "read tets/s", "file MB", "bytes/tet");
+    std::printf("\n%-18s %14s %14s %12s %10s\n", "format", "write tets/s", "read tets/s", "file MB",
+                "bytes/tet");
     std::size_t read_memory = 0;
     for (const Format& f : formats)
     {
@@ -86,17 +90,20 @@ int main(int argc, char** argv)
             const TetMesh back = read_mesh(path);
             const double read_seconds = seconds_since(read_start);
             if (back.num_live_tets() != mesh.num_live_tets())
-                return std::fprintf(stderr, "%s: read %d tets, wrote %.0f\n", f.file, back.num_live_tets(), tets), 1;
+                return std::fprintf(stderr, "%s: read %d tets, wrote %.0f\n", f.file,
+                                    back.num_live_tets(), tets),
+                       1;
             // after the clock: the read-back mesh passes the checker like every mesh we make
             const auto violations = check_mesh(back);
             if (!violations.empty())
                 return std::fprintf(stderr, "%s: read-back mesh fails the checker:\n%s", f.file,
-                                    format_violations(violations).c_str()), 1;
+                                    format_violations(violations).c_str()),
+                       1;
             std::snprintf(read_rate, sizeof(read_rate), "%.3g", tets / read_seconds);
             read_memory = back.memory_bytes();
         }
-        std::printf("%-18s %14.3g %14s %12.1f %10.1f\n", f.label, tets / write_seconds, read_rate, size / 1e6,
-                    size / tets);
+        std::printf("%-18s %14.3g %14s %12.1f %10.1f\n", f.label, tets / write_seconds, read_rate,
+                    size / 1e6, size / tets);
         fs::remove(path);
     }
 
@@ -107,9 +114,10 @@ int main(int argc, char** argv)
     const double adjacency_seconds = seconds_since(adjacency_start);
     std::printf("\nof each read, build_adjacency alone: %.3f s (%.3g tets/s)\n", adjacency_seconds,
                 tets / adjacency_seconds);
-    std::printf("container with adjacency: %.1f bytes/tet as built (push_back capacity), "
-                "%.1f bytes/tet as read (exact sizes)\n",
-                static_cast<double>(mesh.memory_bytes()) / tets, static_cast<double>(read_memory) / tets);
+    std::printf(
+        "container with adjacency: %.1f bytes/tet as built (push_back capacity), "
+        "%.1f bytes/tet as read (exact sizes)\n",
+        static_cast<double>(mesh.memory_bytes()) / tets, static_cast<double>(read_memory) / tets);
     fs::remove_all(dir);
     return 0;
 }

@@ -9,10 +9,10 @@
 // (-o writes each output as dir/optimized_<case>.mesh, for meshstat.py --case <case>)
 
 #include <chrono>
-#include <ctime>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <string>
 
 #include "volume/check.h"
@@ -99,24 +99,27 @@ int main(int argc, char** argv)
     std::string output_dir;
     for (int i = 1; i < argc; ++i)
     {
-        if (std::strcmp(argv[i], "-v") == 0) verbosity = 2;
-        else if (std::strcmp(argv[i], "-o") == 0 && i + 1 < argc) output_dir = argv[++i];
-        else cases = argv[i];
+        if (std::strcmp(argv[i], "-v") == 0)
+            verbosity = 2;
+        else if (std::strcmp(argv[i], "-o") == 0 && i + 1 < argc)
+            output_dir = argv[++i];
+        else
+            cases = argv[i];
     }
-    std::printf("%-4s %9s %6s %8s %8s %8s %8s %8s %10s %7s %9s %8s %8s %6s %16s\n", "case",
-                "tets", "passes", "refine", "improve", "optim", "wall", "cpu", "tets/cpu-s",
-                "min Qe", "%Qe>=0.5", "%Qt>=.66", "%long", "check", "hash");
+    std::printf("%-4s %9s %6s %8s %8s %8s %8s %8s %10s %7s %9s %8s %8s %6s %16s\n", "case", "tets",
+                "passes", "refine", "improve", "optim", "wall", "cpu", "tets/cpu-s", "min Qe",
+                "%Qe>=0.5", "%Qt>=.66", "%long", "check", "hash");
     for (char name : cases)
     {
         const CaseResult r = run_case(name, verbosity, output_dir);
         const double total = r.refine_seconds + r.improve_seconds + r.optimize_seconds;
-        std::printf("%-4c %9d %6d %8.2f %8.2f %8.2f %8.2f %8.2f %10.0f %7.4f %8.2f%% %7.2f%% %7.3f%% %6s %016llx\n",
-                    name, r.tets, r.passes, r.refine_seconds, r.improve_seconds,
-                    r.optimize_seconds, total, r.cpu_seconds, r.tets / r.cpu_seconds,
-                    r.quality.min_qe,
-                    r.quality.percent_qe_ge_05, r.quality.percent_qt_ge_066,
-                    r.quality.percent_too_long, r.violations == 0 ? "clean" : "FAIL",
-                    static_cast<unsigned long long>(r.hash));
+        std::printf(
+            "%-4c %9d %6d %8.2f %8.2f %8.2f %8.2f %8.2f %10.0f %7.4f %8.2f%% %7.2f%% %7.3f%% %6s "
+            "%016llx\n",
+            name, r.tets, r.passes, r.refine_seconds, r.improve_seconds, r.optimize_seconds, total,
+            r.cpu_seconds, r.tets / r.cpu_seconds, r.quality.min_qe, r.quality.percent_qe_ge_05,
+            r.quality.percent_qt_ge_066, r.quality.percent_too_long,
+            r.violations == 0 ? "clean" : "FAIL", static_cast<unsigned long long>(r.hash));
         std::fflush(stdout);
     }
     return 0;

@@ -12,8 +12,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -35,7 +35,8 @@ long status_kb(const std::string& key)
     std::ifstream in("/proc/self/status");
     std::string line;
     while (std::getline(in, line))
-        if (line.compare(0, key.size(), key) == 0 && line.size() > key.size() && line[key.size()] == ':')
+        if (line.compare(0, key.size(), key) == 0 && line.size() > key.size() &&
+            line[key.size()] == ':')
             return std::stol(line.substr(key.size() + 1));
     return -1;
 }
@@ -86,8 +87,10 @@ int main(int argc, char** argv)
     for (int i = 1; i < argc; ++i)
     {
         const std::string arg = argv[i];
-        if (arg == "--check") check = true;
-        else cases = arg;
+        if (arg == "--check")
+            check = true;
+        else
+            cases = arg;
     }
     const std::string path = std::string(HDIMESH_DATA_DIR) + "/sphere480.mesh";
     const TetMesh input = read_mesh(path);
@@ -107,7 +110,8 @@ int main(int argc, char** argv)
         const std::clock_t cpu_start = std::clock();
         const RefineResult result = refine(mesh, field);
         const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const long peak = status_kb("VmHWM");
         const double tets = mesh.num_tet_slots();
         const EdgeShares shares = edge_shares(mesh, field);
@@ -124,13 +128,15 @@ int main(int argc, char** argv)
         }
         std::printf("%-4c %9d %9d %6zu %8.3f %8.3f %9.0f %9.0f %8.2f %7.3f %9.1f %8.1f%s%s\n", name,
                     mesh.num_tet_slots(), mesh.num_vertices(), result.passes.size(), seconds, cpu,
-                    tets / seconds, tets / cpu, shares.too_short, shares.too_long, peak * 1024.0 / tets,
-                    (peak - rss_before) * 1024.0 / tets, result.converged ? "" : "  NOT CONVERGED",
-                    verdict.c_str());
+                    tets / seconds, tets / cpu, shares.too_short, shares.too_long,
+                    peak * 1024.0 / tets, (peak - rss_before) * 1024.0 / tets,
+                    result.converged ? "" : "  NOT CONVERGED", verdict.c_str());
         if (!peak_reset) std::printf("     (peak not reset: VmHWM covers earlier cases)\n");
         if (name == cases.back())
         {
-            std::printf("     passes of case %c: pass, edges split, tets, vertices, steiner, seconds\n", name);
+            std::printf(
+                "     passes of case %c: pass, edges split, tets, vertices, steiner, seconds\n",
+                name);
             for (const auto& p : result.passes)
                 std::printf("     %4d %10d %10d %10d %6d %8.3f\n", p.pass, p.edges_split, p.tets,
                             p.vertices, p.steiner_points, p.seconds);

@@ -6,9 +6,9 @@
 //
 // Times are process CPU seconds (single-threaded code on a shared machine).
 
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <random>
 #include <vector>
 
@@ -33,7 +33,8 @@ struct CpuClock
 double seconds_since(std::clock_t start) { return double(std::clock() - start) / CLOCKS_PER_SEC; }
 
 /// Evaluations per second of field over the points (the sum keeps the calls alive).
-double evaluations_per_second(const SizeField& field, const std::vector<Vec3>& points, double& checksum)
+double evaluations_per_second(const SizeField& field, const std::vector<Vec3>& points,
+                              double& checksum)
 {
     const auto start = CpuClock::now();
     for (const Vec3& p : points) checksum += field.size(p);
@@ -47,8 +48,9 @@ int main(int argc, char** argv)
     const int n = argc > 1 ? std::atoi(argv[1]) : 88;
     auto start = CpuClock::now();
     TetMesh mesh = fixtures::box_mesh(n, 0.2);
-    std::printf("mesh: %d^3 Kuhn cubes, %d tets, %d vertices, %zu boundary triangles (built in %.2f s)\n\n", n,
-                mesh.num_live_tets(), mesh.num_vertices(), mesh.triangles.size(), seconds_since(start));
+    std::printf(
+        "mesh: %d^3 Kuhn cubes, %d tets, %d vertices, %zu boundary triangles (built in %.2f s)\n\n",
+        n, mesh.num_live_tets(), mesh.num_vertices(), mesh.triangles.size(), seconds_since(start));
 
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> inside(0.0, 1.0), around(-0.5, 1.5);
@@ -70,10 +72,12 @@ int main(int argc, char** argv)
     const double build_seconds = seconds_since(start);
 
     std::printf("%-40s %14s\n", "size field", "evals/CPU s");
-    std::printf("%-40s %14.3g\n", "benchmark (case A)", evaluations_per_second(benchmark, inner, checksum));
+    std::printf("%-40s %14.3g\n", "benchmark (case A)",
+                evaluations_per_second(benchmark, inner, checksum));
     std::printf("%-40s %14.3g\n", "background mesh, random points inside",
                 evaluations_per_second(background, inner, checksum));
-    std::printf("%-40s %14.3g\n", "background mesh, points outside", evaluations_per_second(background, outer, checksum));
+    std::printf("%-40s %14.3g\n", "background mesh, points outside",
+                evaluations_per_second(background, outer, checksum));
     std::printf("%-40s %14.2f s\n\n", "background mesh construction (CPU)", build_seconds);
 
     std::printf("%-40s %10s\n", "operation on the whole mesh", "CPU s");
@@ -93,9 +97,11 @@ int main(int argc, char** argv)
     grade_vertex_sizes(mesh, sizes, 1.3);
     std::printf("%-40s %10.2f\n\n", "grade_vertex_sizes (hgrad 1.3)", seconds_since(start));
 
-    std::printf("edges %ld, min Qe %.4f, Qt >= 0.66: %.2f %% (benchmark) / %.2f %% (background), violations %zu\n",
-                shape.edges, shape.min_qe, with_benchmark.percent_qt_ge_066, with_background.percent_qt_ge_066,
-                violations.size());
+    std::printf(
+        "edges %ld, min Qe %.4f, Qt >= 0.66: %.2f %% (benchmark) / %.2f %% (background), "
+        "violations %zu\n",
+        shape.edges, shape.min_qe, with_benchmark.percent_qt_ge_066,
+        with_background.percent_qt_ge_066, violations.size());
     std::printf("(checksum %.6g)\n", checksum);
     return violations.empty() ? 0 : 1;
 }

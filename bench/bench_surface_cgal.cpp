@@ -201,8 +201,7 @@ void print_usage()
 Options parse_options(int argc, char** argv)
 {
     Options options;
-    auto value_of = [&](int& i) -> std::string
-    {
+    auto value_of = [&](int& i) -> std::string {
         if (i + 1 >= argc) throw std::invalid_argument(std::string(argv[i]) + " needs a value");
         return argv[++i];
     };

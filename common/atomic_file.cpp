@@ -1,5 +1,7 @@
 #include "common/atomic_file.h"
 
+#include <unistd.h>
+
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -7,7 +9,6 @@
 #include <fstream>
 #include <memory>
 #include <system_error>
-#include <unistd.h>
 
 #include "common/errors.h"
 

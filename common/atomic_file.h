@@ -12,6 +12,7 @@ namespace hdimesh
 /// Calls write(stream) on a temporary file beside path, then renames it to path; on any
 /// exception removes the temporary and rethrows. Binary mode. IoError when the temporary
 /// cannot be created, written (stream failure after write returns) or renamed.
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
 
 }  // namespace hdimesh

@@ -7,10 +7,10 @@ const char* to_string(Dimension d)
 {
     switch (d)
     {
-    case Dimension::Corner: return "corner";
-    case Dimension::Curve: return "curve";
-    case Dimension::Surface: return "surface";
-    case Dimension::Volume: return "volume";
+        case Dimension::Corner: return "corner";
+        case Dimension::Curve: return "curve";
+        case Dimension::Surface: return "surface";
+        case Dimension::Volume: return "volume";
     }
     return "?";
 }

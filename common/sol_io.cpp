@@ -38,8 +38,7 @@ std::vector<double> read_sol_ascii(const std::string& path, const std::string& d
     std::vector<double> values;
     bool seen_solution = false;
     medit::read_ascii_keywords(in, medit::EndKeyword::Required, "solution file",
-                               [&](std::string_view keyword)
-                               {
+                               [&](std::string_view keyword) {
                                    if (keyword != "SolAtVertices") return false;
                                    if (seen_solution) in.fail("second SolAtVertices section");
                                    seen_solution = true;
@@ -130,38 +129,34 @@ void write_sol(const std::vector<double>& values, const std::string& path)
     const std::string ext = sol_extension(path);
     if (values.size() > static_cast<std::size_t>(INT_MAX))
         throw InputError(path + ": too many values for a solution file");
-    write_file_atomically(
-        path,
-        [&](std::ostream& out)
+    write_file_atomically(path, [&](std::ostream& out) {
+        TextWriter w(out);
+        if (ext == ".sol")
         {
-            TextWriter w(out);
-            if (ext == ".sol")
-            {
-                w.text("MeshVersionFormatted 2\n\nDimension 3\n\nSolAtVertices\n")
-                    .integer(static_cast<long long>(values.size()))
-                    .text("\n1 1\n");
-                for (double v : values) w.real(v).character('\n');
-                w.text("\nEnd\n");
-            }
-            else
-            {
-                // version 2: int32 positions, float64 values
-                w.raw(std::int32_t{1}).raw(std::int32_t{2});
-                // each block: code, absolute position of the next block, payload
-                const std::size_t after_dimension = w.offset() + 4 + 4 + 4;
-                w.raw(std::int32_t{gmf::kDimension})
-                    .raw(static_cast<std::int32_t>(after_dimension));
-                w.raw(std::int32_t{3});
-                const std::size_t next = w.offset() + 4 + 4 + 4 + 8 + 8 * values.size();
-                w.raw(std::int32_t{gmf::kSolAtVertices}).raw(static_cast<std::int32_t>(next));
-                w.raw(static_cast<std::int32_t>(values.size()))
-                    .raw(std::int32_t{1})
-                    .raw(std::int32_t{1});
-                w.bytes(values.data(), values.size() * sizeof(double));
-                w.raw(std::int32_t{gmf::kEnd}).raw(std::int32_t{0});
-            }
-            w.flush();
-        });
+            w.text("MeshVersionFormatted 2\n\nDimension 3\n\nSolAtVertices\n")
+                .integer(static_cast<long long>(values.size()))
+                .text("\n1 1\n");
+            for (double v : values) w.real(v).character('\n');
+            w.text("\nEnd\n");
+        }
+        else
+        {
+            // version 2: int32 positions, float64 values
+            w.raw(std::int32_t{1}).raw(std::int32_t{2});
+            // each block: code, absolute position of the next block, payload
+            const std::size_t after_dimension = w.offset() + 4 + 4 + 4;
+            w.raw(std::int32_t{gmf::kDimension}).raw(static_cast<std::int32_t>(after_dimension));
+            w.raw(std::int32_t{3});
+            const std::size_t next = w.offset() + 4 + 4 + 4 + 8 + 8 * values.size();
+            w.raw(std::int32_t{gmf::kSolAtVertices}).raw(static_cast<std::int32_t>(next));
+            w.raw(static_cast<std::int32_t>(values.size()))
+                .raw(std::int32_t{1})
+                .raw(std::int32_t{1});
+            w.bytes(values.data(), values.size() * sizeof(double));
+            w.raw(std::int32_t{gmf::kEnd}).raw(std::int32_t{0});
+        }
+        w.flush();
+    });
 }
 
 }  // namespace hdimesh

@@ -1,12 +1,12 @@
 #include "coupling/adapt.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <sstream>
-
-#include <unistd.h>
 
 #include "common/stage_timer.h"
 #include "volume/reorder.h"
@@ -85,7 +85,8 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
         if (options.optimize)
         {
             const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-            row.min_quality = improve_bad_elements(mesh, field, options.optimizer).min_quality_after;
+            row.min_quality =
+                improve_bad_elements(mesh, field, options.optimizer).min_quality_after;
         }
         else
         {
@@ -108,7 +109,8 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     if (options.optimize)
     {
         const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-        mesh.compact();  // renumbering needs a compact mesh; the passes leave it so, this makes sure
+        mesh.compact();  // renumbering needs a compact mesh; the passes leave it so, this makes
+                         // sure
         renumber_spatially(mesh);
         optimize_mesh(mesh, field, options.optimizer);
     }
@@ -118,7 +120,8 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
             const StageTimer timer(report.seconds_project, report.cpu_seconds_project);
             report.final_projection = projector->project_all(mesh);
         }
-        if (options.optimize && report.final_projection.shortened + report.final_projection.projected > 0)
+        if (options.optimize &&
+            report.final_projection.shortened + report.final_projection.projected > 0)
         {
             const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
             improve_bad_elements(mesh, field, options.optimizer);

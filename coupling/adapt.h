@@ -40,7 +40,7 @@ struct AdaptPassReport
 {
     int pass = 0;
     int edges_split = 0;
-    int tets = 0, vertices = 0;       ///< after the pass
+    int tets = 0, vertices = 0;        ///< after the pass
     int projected = 0, shortened = 0;  ///< new boundary vertices (ProjectionReport's counts)
     double min_quality = 0;
     double seconds = 0;

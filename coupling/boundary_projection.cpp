@@ -60,7 +60,8 @@ BoundaryProjector::BoundaryProjector(const TetMesh& mesh, const ProjectionOption
             features.ridge_edges.push_back({a->second, b->second});
     }
     for (int v : mesh.corners)
-        if (auto it = mesh2model.find(v); it != mesh2model.end()) features.corners.push_back(it->second);
+        if (auto it = mesh2model.find(v); it != mesh2model.end())
+            features.corners.push_back(it->second);
     std::sort(features.corners.begin(), features.corners.end());
     features.corners.erase(std::unique(features.corners.begin(), features.corners.end()),
                            features.corners.end());

@@ -15,8 +15,8 @@ namespace hdimesh::coupling
 
 struct ProjectionOptions
 {
-    hdi::HdiOptions model;          ///< the meshfree model's neighbours, weights, tolerances
-    hdi::FeatureOptions features;   ///< feature detection on the input boundary (as the surface's)
+    hdi::HdiOptions model;         ///< the meshfree model's neighbours, weights, tolerances
+    hdi::FeatureOptions features;  ///< feature detection on the input boundary (as the surface's)
     /// A move that would push a tet's quality below this is shortened (halved until valid).
     double min_quality_after_move = 1e-3;
     int max_halvings = 6;
@@ -24,9 +24,9 @@ struct ProjectionOptions
 
 struct ProjectionReport
 {
-    int projected = 0;    ///< vertices moved all the way onto the model
-    int shortened = 0;    ///< vertices moved only part of the way (an incident tet would invert)
-    int failed = 0;       ///< the model gave no projection (status Failed)
+    int projected = 0;  ///< vertices moved all the way onto the model
+    int shortened = 0;  ///< vertices moved only part of the way (an incident tet would invert)
+    int failed = 0;     ///< the model gave no projection (status Failed)
     double max_remaining_distance = 0;  ///< of the shortened vertices, from the model
 };
 

@@ -110,9 +110,9 @@ std::vector<KeyedSide> sorted_sides(const std::vector<Triangle3>& triangles)
             if (a == b) continue;  // a degenerate triangle's collapsed side is no edge
             sides.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t)});
         }
-    std::sort(sides.begin(), sides.end(),
-              [](const KeyedSide& x, const KeyedSide& y)
-              { return x.key != y.key ? x.key < y.key : x.triangle < y.triangle; });
+    std::sort(sides.begin(), sides.end(), [](const KeyedSide& x, const KeyedSide& y) {
+        return x.key != y.key ? x.key < y.key : x.triangle < y.triangle;
+    });
     return sides;
 }
 
@@ -133,8 +133,7 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
                 incidences.push_back({tri[at(i)], static_cast<int>(t)});  // once per triangle
         }
     table.vertex_triangles = make_rows(point_count, incidences);
-    auto vertex_edge_rows = [&]()
-    {
+    auto vertex_edge_rows = [&]() {
         std::vector<std::pair<int, EdgeEnds>> ends;
         ends.reserve(2 * table.edges.size());
         for (std::size_t e = 0; e < table.edges.size(); ++e)
@@ -151,8 +150,7 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
     if (given.empty())
     {
         // an edge is new unless a triangle up to this one (a's triangles, ascending) has it
-        auto known_edge = [&](int t, int a, int b)
-        {
+        auto known_edge = [&](int t, int a, int b) {
             for (int k = 0; k < table.vertex_triangles.size(a); ++k)
             {
                 const int u = table.vertex_triangles.row(a)[k];
@@ -239,12 +237,8 @@ class FeatureGraph
 public:
     FeatureGraph(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
                  const EdgeTable& table, const FeatureOptions& options, std::vector<char> sharp)
-        : points_(points),
-          triangles_(triangles),
-          table_(table),
-          options_(options),
-          sharp_(std::move(sharp)),
-          open_vertex_(points.size(), 0)
+        : points_(points), triangles_(triangles), table_(table), options_(options),
+          sharp_(std::move(sharp)), open_vertex_(points.size(), 0)
     {
         for (int e = 0; e < static_cast<int>(table_.edges.size()); ++e)
             if (table_.open(e))
@@ -322,9 +316,9 @@ public:
         for (const auto& [turn, v] : turn_corners)
         {
             const Vec3& p = points_[at(v)];
-            const bool crowded = std::any_of(
-                kept.begin(), kept.end(),
-                [&](const Vec3& q) { return length(q - p) < options_.min_corner_spacing; });
+            const bool crowded = std::any_of(kept.begin(), kept.end(), [&](const Vec3& q) {
+                return length(q - p) < options_.min_corner_spacing;
+            });
             if (crowded) continue;
             corner_[at(v)] = 1;
             kept.push_back(p);
@@ -504,8 +498,7 @@ std::pair<int, int> chain_ends(const Chain& c, const EdgeTable& table)
 {
     const EdgeEnds& first = table.edges[at(c.edges.front())];
     if (c.edges.size() == 1) return {first[0], first[1]};
-    auto free_end = [&](const EdgeEnds& e, int neighbour)
-    {
+    auto free_end = [&](const EdgeEnds& e, int neighbour) {
         const EdgeEnds& n = table.edges[at(neighbour)];
         const bool shared = n[0] == e[0] || n[1] == e[0];
         return shared ? e[1] : e[0];
@@ -723,8 +716,7 @@ std::vector<FeatureChain> feature_chains(const FeatureSet& features, int point_c
     std::vector<char> used(edges.size(), 0);
     std::vector<FeatureChain> chains;
     // Follows unused edges from `start` through `first` until a break vertex or back at start.
-    auto walk = [&](int start, int first_incidence)
-    {
+    auto walk = [&](int start, int first_incidence) {
         FeatureChain chain;
         chain.vertices.push_back(start);
         int current = start;

@@ -1,15 +1,14 @@
 #include "hdi/hdi_surface.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <string>
-
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
-#include <Eigen/QR>
 
 #include "common/errors.h"
 #include "hdi/knn.h"
@@ -24,16 +23,16 @@ struct HdiSurface::Model
     HdiOptions options;
     std::vector<Vec3> points;
     std::vector<Triangle3> triangles;
-    FeatureSet features;                // as given, plus open boundaries and completed corners
-    std::vector<FeatureChain> chains;   // feature lines cut at corners
-    std::vector<char> corner;           // per point
+    FeatureSet features;               // as given, plus open boundaries and completed corners
+    std::vector<FeatureChain> chains;  // feature lines cut at corners
+    std::vector<char> corner;          // per point
     double scale = 0;
-    KnnIndex knn;                       // over every point
+    KnnIndex knn;  // over every point
 
     // Smooth sides: a node has one (patch, normal) per smooth patch it touches.
     std::vector<int> triangle_patch;
     std::vector<Vec3> face_normal;
-    std::vector<int> side_begin;        // CSR over points
+    std::vector<int> side_begin;  // CSR over points
     std::vector<int> side_patch;
     std::vector<Vec3> side_normal;
     // The hot data of each node in one cache line: its position and its first side, so that
@@ -46,15 +45,15 @@ struct HdiSurface::Model
         int sides;    // 0: no triangle touches the node; > 1: a ridge node, see side_begin...
     };
     std::vector<NodeRecord> node_record;
-    std::vector<int> incident_begin;    // CSR over points: triangles around each point
+    std::vector<int> incident_begin;  // CSR over points: triangles around each point
     std::vector<int> incident_triangles;
     bool several_patches = false;
 
     // Feature lines: a kd-tree over their nodes, and per node the segments (chain, j) touching it,
     // segment j of a chain joining its vertices j and j + 1 (mod size when closed).
-    std::vector<int> line_node;         // point index of each line node
+    std::vector<int> line_node;  // point index of each line node
     KnnIndex line_knn;
-    std::vector<int> segment_begin;     // CSR over line nodes
+    std::vector<int> segment_begin;  // CSR over line nodes
     std::vector<std::array<int, 2>> segments;
 };
 
@@ -67,12 +66,13 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 constexpr double relative_rank_threshold = 1e-10;
 constexpr int spare_candidates = 4;  // queried past n so later iterations can reuse the search
-constexpr double min_hermite_cosine = 0.2;  // a node normal this tilted from the plane gives no slope row
+constexpr double min_hermite_cosine =
+    0.2;  // a node normal this tilted from the plane gives no slope row
 
 /// Per-thread buffers of one query; they only grow, so a query allocates nothing once warm.
 struct Scratch
 {
-    std::vector<int> candidate;        // the kd-tree's answer: nearest input nodes of the search point
+    std::vector<int> candidate;  // the kd-tree's answer: nearest input nodes of the search point
     std::vector<double> candidate_d2;
     // The admissible candidates (on the query's side, normal agreeing), nearest to the current
     // point first; a fit uses the first n. Positions and normals are copied so the fit reads
@@ -143,21 +143,28 @@ int side_count(const Model& m, int v) { return m.side_begin[at(v) + 1] - m.side_
 /// one patch) that patch and the nearest node's normal are used directly. Near a ridge the
 /// triangles around every candidate node are searched: the nearest nodes alone can all lie on the
 /// other side when that side is more finely meshed.
-void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Vec3& reference_normal)
+void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch,
+                 Vec3& reference_normal)
 {
     const int first = s.candidate[0];
     const int candidate_count = static_cast<int>(s.candidate.size());
     bool ambiguous = false;
-    if (m.several_patches && side_count(m, first) == 1) {
+    if (m.several_patches && side_count(m, first) == 1)
+    {
         const int first_patch = m.side_patch[at(m.side_begin[at(first)])];
-        for (int i = 0; i < candidate_count && !ambiguous; ++i) {
+        for (int i = 0; i < candidate_count && !ambiguous; ++i)
+        {
             const int v = s.candidate[at(i)];
-            ambiguous = side_count(m, v) != 1 || m.side_patch[at(m.side_begin[at(v)])] != first_patch;
+            ambiguous =
+                side_count(m, v) != 1 || m.side_patch[at(m.side_begin[at(v)])] != first_patch;
         }
-    } else {
+    }
+    else
+    {
         ambiguous = m.several_patches || side_count(m, first) != 1;
     }
-    if (!ambiguous) {
+    if (!ambiguous)
+    {
         patch = m.side_patch[at(m.side_begin[at(first)])];
         reference_normal = m.side_normal[at(m.side_begin[at(first)])];
         return;
@@ -166,17 +173,22 @@ void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Ve
     // triangle x stands highest above: the one it was pushed off, whose side it projects into.
     double best = std::numeric_limits<double>::infinity();
     double best_height = 0;
-    for (int i = 0; i < candidate_count; ++i) {
+    for (int i = 0; i < candidate_count; ++i)
+    {
         const int v = s.candidate[at(i)];
-        for (int k = m.incident_begin[at(v)]; k < m.incident_begin[at(v) + 1]; ++k) {
+        for (int k = m.incident_begin[at(v)]; k < m.incident_begin[at(v) + 1]; ++k)
+        {
             const int t = m.incident_triangles[at(k)];
             if (m.face_normal[at(t)].squaredNorm() == 0) continue;
             const Triangle3& tri = m.triangles[at(t)];
-            const double d2 = squared_distance_to_triangle(x, m.points[at(tri[0])], m.points[at(tri[1])], m.points[at(tri[2])]);
+            const double d2 = squared_distance_to_triangle(
+                x, m.points[at(tri[0])], m.points[at(tri[1])], m.points[at(tri[2])]);
             const double height = std::abs((x - m.points[at(tri[0])]).dot(m.face_normal[at(t)]));
-            const bool nearer = best == std::numeric_limits<double>::infinity() || d2 < best * (1 - 1e-9);
+            const bool nearer =
+                best == std::numeric_limits<double>::infinity() || d2 < best * (1 - 1e-9);
             const bool tied_and_higher = d2 <= best * (1 + 1e-9) && height > best_height;
-            if (nearer || tied_and_higher) {
+            if (nearer || tied_and_higher)
+            {
                 best = std::min(best, d2);
                 best_height = height;
                 patch = m.triangle_patch[at(t)];
@@ -185,7 +197,8 @@ void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Ve
         }
     }
     if (best == std::numeric_limits<double>::infinity())  // no triangle around: a point cloud
-        for (int i = 0; i < candidate_count; ++i) {
+        for (int i = 0; i < candidate_count; ++i)
+        {
             const int v = s.candidate[at(i)];
             if (side_count(m, v) == 0) continue;
             patch = m.side_patch[at(m.side_begin[at(v)])];
@@ -198,7 +211,8 @@ void choose_side(const Model& m, const Vec3& x, const Scratch& s, int& patch, Ve
 void insertion_sort_nodes(Scratch& s)
 {
     for (std::size_t i = 1; i < s.node.size(); ++i)
-        for (std::size_t j = i; j > 0 && s.node_d2[j - 1] > s.node_d2[j]; --j) {
+        for (std::size_t j = i; j > 0 && s.node_d2[j - 1] > s.node_d2[j]; --j)
+        {
             std::swap(s.node_d2[j - 1], s.node_d2[j]);
             std::swap(s.node[j - 1], s.node[j]);
             std::swap(s.node_point[j - 1], s.node_point[j]);
@@ -213,7 +227,8 @@ void filter_admissible(const Model& m, int patch, const Vec3& reference_normal, 
     s.node_d2.clear();
     s.node_point.clear();
     s.node_normal.clear();
-    for (std::size_t i = 0; i < s.candidate.size(); ++i) {
+    for (std::size_t i = 0; i < s.candidate.size(); ++i)
+    {
         const int v = s.candidate[i];
         const Vec3* normal = side_normal_of(m, v, patch);
         if (!normal || normal->dot(reference_normal) < m.options.normal_agreement) continue;
@@ -246,22 +261,27 @@ public:
     {
         const int total = m_.knn.size();
         const int wanted = m_.options.neighbours;
-        if (searched_) {
+        if (searched_)
+        {
             const double moved = (x - search_point_).norm();
-            if (complete_ || nth_distance_ + 2 * moved <= farthest_distance_) {
-                for (std::size_t i = 0; i < s_.node.size(); ++i) s_.node_d2[i] = (s_.node_point[i] - x).squaredNorm();
+            if (complete_ || nth_distance_ + 2 * moved <= farthest_distance_)
+            {
+                for (std::size_t i = 0; i < s_.node.size(); ++i)
+                    s_.node_d2[i] = (s_.node_point[i] - x).squaredNorm();
                 insertion_sort_nodes(s_);
                 return std::min(wanted, static_cast<int>(s_.node.size()));
             }
         }
         int count = std::min(total, wanted + spare_candidates);
-        while (true) {
+        while (true)
+        {
             s_.candidate.resize(at(count));
             s_.candidate_d2.resize(at(count));
             const int found = m_.knn.nearest(x, count, s_.candidate.data(), s_.candidate_d2.data());
             s_.candidate.resize(at(found));
             s_.candidate_d2.resize(at(found));
-            if (!searched_) {
+            if (!searched_)
+            {
                 if (found == 0) return 0;
                 if (!side_fixed_) choose_side(m_, x, s_, patch_, reference_normal_);
                 searched_ = true;
@@ -302,7 +322,8 @@ struct MongePatch
     bool linear = false;
 };
 
-bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& patch, bool hermite = true)
+bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& patch,
+                     bool hermite = true)
 {
     const HdiOptions& o = m.options;
     patch.rho = o.window_factor * std::sqrt(s.node_d2[at(count - 1)]);
@@ -313,7 +334,8 @@ bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& pa
     double weight_sum = 0;
     Vec3 weighted_sum = Vec3::Zero();
     Vec3 normal_sum = Vec3::Zero();
-    for (int i = 0; i < used; ++i) {
+    for (int i = 0; i < used; ++i)
+    {
         const double w = diffuse_weight(o.weight, std::sqrt(s.node_d2[at(i)]) * inverse_rho);
         weights[i] = w;
         weight_sum += w;
@@ -325,7 +347,8 @@ bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& pa
 
     Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();  // P^T W P, eq. 7
     Vec3 offsets[256];                                  // (x_i - xd) / rho
-    for (int i = 0; i < used; ++i) {
+    for (int i = 0; i < used; ++i)
+    {
         offsets[i] = (s.node_point[at(i)] - patch.origin) * inverse_rho;
         scatter.noalias() += weights[i] * offsets[i] * offsets[i].transpose();
     }
@@ -342,9 +365,10 @@ bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& pa
     // are the monomials u^a v^b (a + b <= 4); the slope rows r_u = <0, 1, 0, 2u, v, 0> and
     // r_v = <0, 0, 1, 0, u, 2v> need moments up to degree 2 only.
     double height[5][5] = {};  // height[a][b] = sum w u^a v^b, a + b <= 4
-    double slope[3][3] = {};   // slope[a][b] = sum w u^a v^b over nodes with a slope row, a + b <= 2
+    double slope[3][3] = {};  // slope[a][b] = sum w u^a v^b over nodes with a slope row, a + b <= 2
     Vector6d right_side = Vector6d::Zero();
-    for (int i = 0; i < used; ++i) {
+    for (int i = 0; i < used; ++i)
+    {
         const double w = weights[i];
         const Vec3& d = offsets[i];
         const double u = d.dot(patch.e1), v = d.dot(patch.e2), z = d.dot(patch.n);
@@ -383,7 +407,8 @@ bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& pa
     Matrix6d normal_matrix;
     for (int i = 0; i < 6; ++i)
         for (int j = 0; j <= i; ++j)
-            normal_matrix(i, j) = height[exponent_u[i] + exponent_u[j]][exponent_v[i] + exponent_v[j]];
+            normal_matrix(i, j) =
+                height[exponent_u[i] + exponent_u[j]][exponent_v[i] + exponent_v[j]];
     // sum w (r_u r_uᵀ + r_v r_vᵀ), lower triangle, written out.
     normal_matrix(1, 1) += slope[0][0];
     normal_matrix(2, 2) += slope[0][0];
@@ -402,7 +427,9 @@ bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& pa
     // the pivots span more than 1 / relative_rank_threshold.
     const Eigen::LDLT<Matrix6d, Eigen::Lower> ldlt(normal_matrix);
     const auto pivots = ldlt.vectorD().cwiseAbs();
-    if (ldlt.info() == Eigen::Success && pivots.minCoeff() > relative_rank_threshold * pivots.maxCoeff()) {
+    if (ldlt.info() == Eigen::Success &&
+        pivots.minCoeff() > relative_rank_threshold * pivots.maxCoeff())
+    {
         patch.a = ldlt.solve(right_side);
         patch.linear = false;
         return true;
@@ -411,10 +438,11 @@ bool fit_monge_patch(const Model& m, const Scratch& s, int count, MongePatch& pa
     patch.linear = true;
     patch.a.setZero();
     Eigen::Matrix3d linear_matrix;
-    linear_matrix << height[0][0], height[1][0], height[0][1],
-                     height[1][0], height[2][0] + slope[0][0], height[1][1],
-                     height[0][1], height[1][1], height[0][2] + slope[0][0];
-    const Vec3 linear_right_side = right_side.head<3>();  // the slope rows add to entries 1 and 2 only
+    linear_matrix << height[0][0], height[1][0], height[0][1], height[1][0],
+        height[2][0] + slope[0][0], height[1][1], height[0][1], height[1][1],
+        height[0][2] + slope[0][0];
+    const Vec3 linear_right_side =
+        right_side.head<3>();  // the slope rows add to entries 1 and 2 only
     Eigen::ColPivHouseholderQR<Eigen::Matrix3d> linear_qr(linear_matrix);
     linear_qr.setThreshold(relative_rank_threshold);
     if (linear_qr.rank() == 3) patch.a.head<3>() = linear_qr.solve(linear_right_side);
@@ -456,13 +484,15 @@ std::array<int, 2> nearest_segment(const Model& m, const Vec3& x)
     std::array<int, 2> best{-1, -1};
     double best_d2 = std::numeric_limits<double>::infinity();
     for (int i = 0; i < found; ++i)
-        for (int k = m.segment_begin[at(indices[i])]; k < m.segment_begin[at(indices[i]) + 1]; ++k) {
+        for (int k = m.segment_begin[at(indices[i])]; k < m.segment_begin[at(indices[i]) + 1]; ++k)
+        {
             const auto [chain, j] = m.segments[at(k)];
             const std::vector<int>& line = m.chains[at(chain)].vertices;
             const Vec3& a = m.points[at(line[at(j)])];
             const Vec3& b = m.points[at(line[(at(j) + 1) % line.size()])];
             const double distance2 = (x - closest_point_on_segment(x, a, b)).squaredNorm();
-            if (distance2 < best_d2) {
+            if (distance2 < best_d2)
+            {
                 best_d2 = distance2;
                 best = {chain, j};
             }
@@ -486,7 +516,8 @@ double distance2_to_segment(const Model& m, const FeatureChain& chain, int j, co
 void fill_node_records(Model& m)
 {
     m.node_record.resize(m.points.size());
-    for (std::size_t v = 0; v < m.points.size(); ++v) {
+    for (std::size_t v = 0; v < m.points.size(); ++v)
+    {
         Model::NodeRecord& record = m.node_record[v];
         record.point = m.points[v];
         record.sides = m.side_begin[v + 1] - m.side_begin[v];
@@ -504,16 +535,19 @@ void refine_side_normals(Model& m)
     Scratch& scratch = thread_scratch();
     std::vector<Vec3> refined = m.side_normal;
     for (int v = 0; v < static_cast<int>(m.points.size()); ++v)
-        for (int side = m.side_begin[at(v)]; side < m.side_begin[at(v) + 1]; ++side) {
+        for (int side = m.side_begin[at(v)]; side < m.side_begin[at(v) + 1]; ++side)
+        {
             NeighbourSearch search(m, scratch);
             search.fix_side(m.side_patch[at(side)], m.side_normal[at(side)]);
             const Vec3& x = m.points[at(v)];
             const int count = search.gather(x);
             MongePatch patch;
-            if (count < 6 || !fit_monge_patch(m, scratch, count, patch, false) || patch.linear) continue;
+            if (count < 6 || !fit_monge_patch(m, scratch, count, patch, false) || patch.linear)
+                continue;
             Projection at_node;
             evaluate_monge_patch(patch, x, at_node);
-            if (at_node.normal.dot(m.side_normal[at(side)]) > 0.5) refined[at(side)] = at_node.normal;
+            if (at_node.normal.dot(m.side_normal[at(side)]) > 0.5)
+                refined[at(side)] = at_node.normal;
         }
     m.side_normal = std::move(refined);
 }
@@ -530,25 +564,29 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
     const int n = static_cast<int>(points.size());
     if (options.neighbours < 3 || options.neighbours > 256)
         throw InputError("hdi: HdiOptions::neighbours must be in [3, 256]");
-    if (!(options.window_factor >= 1.0)) throw InputError("hdi: HdiOptions::window_factor must be at least 1");
-    if (options.max_iterations < 1) throw InputError("hdi: HdiOptions::max_iterations must be at least 1");
+    if (!(options.window_factor >= 1.0))
+        throw InputError("hdi: HdiOptions::window_factor must be at least 1");
+    if (options.max_iterations < 1)
+        throw InputError("hdi: HdiOptions::max_iterations must be at least 1");
     if (!(options.tolerance > 0)) throw InputError("hdi: HdiOptions::tolerance must be positive");
     if (options.ridge_neighbours < 2 || options.ridge_neighbours > 64)
         throw InputError("hdi: HdiOptions::ridge_neighbours must be in [2, 64]");
     if (given_normals && given_normals->size() != points.size())
-        throw InputError("hdi: " + std::to_string(given_normals->size()) + " normals given for "
-                         + std::to_string(points.size()) + " points");
+        throw InputError("hdi: " + std::to_string(given_normals->size()) + " normals given for " +
+                         std::to_string(points.size()) + " points");
     check_triangle_indices(triangles, n);
     auto check_vertex = [n](int v, const char* what) {
         if (v < 0 || v >= n)
-            throw InputError(std::string("hdi: feature ") + what + " names vertex " + std::to_string(v)
-                             + " but there are " + std::to_string(n) + " points");
+            throw InputError(std::string("hdi: feature ") + what + " names vertex " +
+                             std::to_string(v) + " but there are " + std::to_string(n) + " points");
     };
-    for (const auto& e : features.ridge_edges) {
+    for (const auto& e : features.ridge_edges)
+    {
         check_vertex(e[0], "ridge edge");
         check_vertex(e[1], "ridge edge");
     }
-    for (const auto& e : features.boundary_edges) {
+    for (const auto& e : features.boundary_edges)
+    {
         check_vertex(e[0], "boundary edge");
         check_vertex(e[1], "boundary edge");
     }
@@ -577,7 +615,8 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
     {
         std::vector<std::array<int, 2>> all = m->features.ridge_edges;
         all.insert(all.end(), m->features.boundary_edges.begin(), m->features.boundary_edges.end());
-        for (const auto& e : normalized(all)) {
+        for (const auto& e : normalized(all))
+        {
             ++degree[at(e[0])];
             ++degree[at(e[1])];
         }
@@ -596,9 +635,11 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
     const std::size_t triangle_count = m->triangles.size();
     m->triangle_patch = smooth_patches(m->triangles, m->features);
     m->face_normal.resize(triangle_count);
-    for (std::size_t t = 0; t < triangle_count; ++t) {
+    for (std::size_t t = 0; t < triangle_count; ++t)
+    {
         const Triangle3& tri = m->triangles[t];
-        m->face_normal[t] = triangle_normal(m->points[at(tri[0])], m->points[at(tri[1])], m->points[at(tri[2])]);
+        m->face_normal[t] =
+            triangle_normal(m->points[at(tri[0])], m->points[at(tri[1])], m->points[at(tri[2])]);
     }
     struct Contribution
     {
@@ -607,18 +648,23 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
     };
     std::vector<Contribution> contributions;
     contributions.reserve(3 * triangle_count);
-    for (std::size_t t = 0; t < triangle_count; ++t) {
+    for (std::size_t t = 0; t < triangle_count; ++t)
+    {
         const Triangle3& tri = m->triangles[t];
         const Vec3& fn = m->face_normal[t];
         if (fn.squaredNorm() == 0) continue;
-        for (std::size_t c = 0; c < 3; ++c) {
+        for (std::size_t c = 0; c < 3; ++c)
+        {
             const Vec3& p = m->points[at(tri[c])];
             const Vec3& q = m->points[at(tri[(c + 1) % 3])];
             const Vec3& r = m->points[at(tri[(c + 2) % 3])];
             double weight;
-            if (options.normal_weighting == NormalWeighting::Area) {
+            if (options.normal_weighting == NormalWeighting::Area)
+            {
                 weight = 0.5 * (q - p).cross(r - p).norm();
-            } else {
+            }
+            else
+            {
                 const Vec3 u = q - p, v = r - p;
                 weight = std::atan2(u.cross(v).norm(), u.dot(v));
             }
@@ -627,17 +673,20 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
     }
     if (m->triangles.empty() && given_normals)  // a pure point cloud: one patch
         for (int v = 0; v < n; ++v) contributions.push_back({v, 0, (*given_normals)[at(v)]});
-    std::sort(contributions.begin(), contributions.end(), [](const Contribution& a, const Contribution& b) {
-        return a.vertex < b.vertex || (a.vertex == b.vertex && a.patch < b.patch);
-    });
+    std::sort(contributions.begin(), contributions.end(),
+              [](const Contribution& a, const Contribution& b) {
+                  return a.vertex < b.vertex || (a.vertex == b.vertex && a.patch < b.patch);
+              });
     m->side_begin.assign(at(n) + 1, 0);
-    for (std::size_t i = 0; i < contributions.size();) {
+    for (std::size_t i = 0; i < contributions.size();)
+    {
         std::size_t j = i;
         Vec3 sum = Vec3::Zero();
-        while (j < contributions.size() && contributions[j].vertex == contributions[i].vertex
-               && contributions[j].patch == contributions[i].patch)
+        while (j < contributions.size() && contributions[j].vertex == contributions[i].vertex &&
+               contributions[j].patch == contributions[i].patch)
             sum += contributions[j++].normal;
-        if (sum.squaredNorm() > 0) {
+        if (sum.squaredNorm() > 0)
+        {
             m->side_patch.push_back(contributions[i].patch);
             m->side_normal.push_back(sum.normalized());
             ++m->side_begin[at(contributions[i].vertex) + 1];
@@ -649,8 +698,10 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
         for (int v = 0; v < n; ++v)
             if (side_count(*m, v) == 1 && (*given_normals)[at(v)].squaredNorm() > 0)
                 m->side_normal[at(m->side_begin[at(v)])] = (*given_normals)[at(v)].normalized();
-    const int patch_count = m->triangle_patch.empty()
-        ? 1 : *std::max_element(m->triangle_patch.begin(), m->triangle_patch.end()) + 1;
+    const int patch_count =
+        m->triangle_patch.empty()
+            ? 1
+            : *std::max_element(m->triangle_patch.begin(), m->triangle_patch.end()) + 1;
     m->several_patches = patch_count > 1;
 
     m->incident_begin.assign(at(n) + 1, 0);
@@ -661,12 +712,14 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
     {
         std::vector<int> fill(m->incident_begin.begin(), m->incident_begin.end() - 1);
         for (std::size_t t = 0; t < triangle_count; ++t)
-            for (int v : m->triangles[t]) m->incident_triangles[at(fill[at(v)]++)] = static_cast<int>(t);
+            for (int v : m->triangles[t])
+                m->incident_triangles[at(fill[at(v)]++)] = static_cast<int>(t);
     }
 
     m->knn = KnnIndex(m->points);
     fill_node_records(*m);
-    if (options.refine_normals && !given_normals) {
+    if (options.refine_normals && !given_normals)
+    {
         refine_side_normals(*m);
         fill_node_records(*m);
     }
@@ -674,16 +727,19 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
     // Feature lines.
     std::vector<int> line_index(at(n), -1);
     std::vector<std::vector<std::array<int, 2>>> node_segments;
-    for (std::size_t c = 0; c < m->chains.size(); ++c) {
+    for (std::size_t c = 0; c < m->chains.size(); ++c)
+    {
         const FeatureChain& chain = m->chains[c];
         for (int v : chain.vertices)
-            if (line_index[at(v)] < 0) {
+            if (line_index[at(v)] < 0)
+            {
                 line_index[at(v)] = static_cast<int>(m->line_node.size());
                 m->line_node.push_back(v);
                 node_segments.emplace_back();
             }
         const int segments = segment_count(chain);
-        for (int j = 0; j < segments; ++j) {
+        for (int j = 0; j < segments; ++j)
+        {
             const int a = chain.vertices[at(j)];
             const int b = chain.vertices[(at(j) + 1) % chain.vertices.size()];
             node_segments[at(line_index[at(a)])].push_back({static_cast<int>(c), j});
@@ -691,7 +747,8 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
         }
     }
     m->segment_begin.assign(m->line_node.size() + 1, 0);
-    for (std::size_t i = 0; i < node_segments.size(); ++i) {
+    for (std::size_t i = 0; i < node_segments.size(); ++i)
+    {
         m->segment_begin[i + 1] = m->segment_begin[i] + static_cast<int>(node_segments[i].size());
         m->segments.insert(m->segments.end(), node_segments[i].begin(), node_segments[i].end());
     }
@@ -704,14 +761,15 @@ std::shared_ptr<Model> build_model(std::vector<Vec3> points, const std::vector<V
 
 }  // namespace
 
-HdiSurface::HdiSurface(std::vector<Vec3> points, std::vector<Triangle3> triangles, const FeatureSet& features,
-                       const HdiOptions& options)
+HdiSurface::HdiSurface(std::vector<Vec3> points, std::vector<Triangle3> triangles,
+                       const FeatureSet& features, const HdiOptions& options)
     : model_(build_model(std::move(points), nullptr, std::move(triangles), features, options))
 {
 }
 
-HdiSurface::HdiSurface(std::vector<Vec3> points, std::vector<Vec3> normals, std::vector<Triangle3> triangles,
-                       const FeatureSet& features, const HdiOptions& options)
+HdiSurface::HdiSurface(std::vector<Vec3> points, std::vector<Vec3> normals,
+                       std::vector<Triangle3> triangles, const FeatureSet& features,
+                       const HdiOptions& options)
     : model_(build_model(std::move(points), &normals, std::move(triangles), features, options))
 {
 }
@@ -726,10 +784,12 @@ Projection HdiSurface::project(const Vec3& x) const
     result.status = ProjectionStatus::Failed;
     Vec3 current = x;
     double previous_move = 0;
-    for (int iteration = 0; iteration < m.options.max_iterations; ++iteration) {
+    for (int iteration = 0; iteration < m.options.max_iterations; ++iteration)
+    {
         const int count = search.gather(current);
         MongePatch patch;
-        if (count < 3 || !fit_monge_patch(m, scratch, count, patch)) {
+        if (count < 3 || !fit_monge_patch(m, scratch, count, patch))
+        {
             if (iteration == 0) return result;
             break;  // keep the last good point
         }
@@ -745,7 +805,8 @@ Projection HdiSurface::project(const Vec3& x) const
         // fixed point. This saves the third fit of most projections.
         const double tolerance = m.options.tolerance * patch.rho;
         const double rate = iteration > 0 && previous_move > 0 ? move / previous_move : 1.0;
-        if (move < tolerance || (rate < 0.5 && rate / (1 - rate) * move < tolerance)) {
+        if (move < tolerance || (rate < 0.5 && rate / (1 - rate) * move < tolerance))
+        {
             result.status = patch.linear ? ProjectionStatus::LinearFallback : ProjectionStatus::Ok;
             break;
         }
@@ -788,24 +849,34 @@ Projection HdiSurface::project_to_ridge(const Vec3& x) const
     const HdiOptions& o = m.options;
 
     Vec3 current = x;
-    for (int iteration = 0; iteration < o.max_iterations; ++iteration) {
+    for (int iteration = 0; iteration < o.max_iterations; ++iteration)
+    {
         // Slide to the chain's nearest segment to the current point.
-        while (true) {
+        while (true)
+        {
             const double here = distance2_to_segment(m, chain, j, current);
             const int before = chain.closed ? (j - 1 + segments) % segments : j - 1;
             const int after = chain.closed ? (j + 1) % segments : j + 1;
-            if (before >= 0 && before != j && distance2_to_segment(m, chain, before, current) < here) j = before;
-            else if (after < segments && after != j && distance2_to_segment(m, chain, after, current) < here) j = after;
-            else break;
+            if (before >= 0 && before != j &&
+                distance2_to_segment(m, chain, before, current) < here)
+                j = before;
+            else if (after < segments && after != j &&
+                     distance2_to_segment(m, chain, after, current) < here)
+                j = after;
+            else
+                break;
         }
-        // The window: `window` consecutive line nodes centred on segment j, shifted inside an open chain.
+        // The window: `window` consecutive line nodes centred on segment j, shifted inside an open
+        // chain.
         int first = j + 1 - window / 2;
         if (!chain.closed) first = std::clamp(first, 0, size - window);
         int node[64];
         const int count = std::min(window, 64);
-        for (int i = 0; i < count; ++i) node[i] = chain.vertices[at(((first + i) % size + size) % size)];
+        for (int i = 0; i < count; ++i)
+            node[i] = chain.vertices[at(((first + i) % size + size) % size)];
 
-        if (count == 2) {  // a single segment: the line itself
+        if (count == 2)
+        {  // a single segment: the line itself
             const Vec3& a = m.points[at(node[0])];
             const Vec3& b = m.points[at(node[1])];
             result.point = closest_point_on_segment(current, a, b);
@@ -815,13 +886,15 @@ Projection HdiSurface::project_to_ridge(const Vec3& x) const
             break;
         }
         double farthest = 0;
-        for (int i = 0; i < count; ++i) farthest = std::max(farthest, (m.points[at(node[i])] - current).norm());
+        for (int i = 0; i < count; ++i)
+            farthest = std::max(farthest, (m.points[at(node[i])] - current).norm());
         const double rho = o.window_factor * farthest;
         if (!(rho > 0)) break;
         double weights[64];
         double weight_sum = 0;
         Vec3 origin = Vec3::Zero();
-        for (int i = 0; i < count; ++i) {
+        for (int i = 0; i < count; ++i)
+        {
             weights[i] = diffuse_weight(o.weight, (m.points[at(node[i])] - current).norm() / rho);
             weight_sum += weights[i];
             origin += weights[i] * m.points[at(node[i])];
@@ -829,21 +902,25 @@ Projection HdiSurface::project_to_ridge(const Vec3& x) const
         if (!(weight_sum > 0)) break;
         origin /= weight_sum;
         Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-        for (int i = 0; i < count; ++i) {
+        for (int i = 0; i < count; ++i)
+        {
             const Vec3 d = (m.points[at(node[i])] - origin) / rho;
             scatter.noalias() += weights[i] * d * d.transpose();
         }
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
         eigen.computeDirect(scatter);
-        Vec3 tangent = eigen.eigenvectors().col(2).normalized();  // largest eigenvalue: along the line
+        Vec3 tangent =
+            eigen.eigenvectors().col(2).normalized();  // largest eigenvalue: along the line
         const Vec3 chain_direction = m.points[at(node[count - 1])] - m.points[at(node[0])];
         if (tangent.dot(chain_direction) < 0) tangent = -tangent;
 
         // Offsets from the tangent line as quadratics in the scaled parameter s.
         Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
-        Eigen::Matrix3d right_side = Eigen::Matrix3d::Zero();  // column k: the k-th offset coordinate
+        Eigen::Matrix3d right_side =
+            Eigen::Matrix3d::Zero();  // column k: the k-th offset coordinate
         double s_first = 0, s_last = 0;
-        for (int i = 0; i < count; ++i) {
+        for (int i = 0; i < count; ++i)
+        {
             const Vec3 d = (m.points[at(node[i])] - origin) / rho;
             const double s = d.dot(tangent);
             const Vec3 offset = d - s * tangent;
@@ -857,30 +934,38 @@ Projection HdiSurface::project_to_ridge(const Vec3& x) const
         Eigen::ColPivHouseholderQR<Eigen::Matrix3d> qr(normal_matrix);
         qr.setThreshold(relative_rank_threshold);
         const bool linear = qr.rank() < 3;
-        if (!linear) {
+        if (!linear)
+        {
             coefficients = qr.solve(right_side);
-        } else {
+        }
+        else
+        {
             const Eigen::Matrix2d small = normal_matrix.topLeftCorner<2, 2>();
             Eigen::ColPivHouseholderQR<Eigen::Matrix2d> small_qr(small);
             small_qr.setThreshold(relative_rank_threshold);
-            if (small_qr.rank() == 2) coefficients.topRows<2>() = small_qr.solve(right_side.topRows<2>());
+            if (small_qr.rank() == 2)
+                coefficients.topRows<2>() = small_qr.solve(right_side.topRows<2>());
         }
         double s = (current - origin).dot(tangent) / rho;
         // Past the end of an open line: stop at its end node (a corner or a dangling end).
         const bool at_start = !chain.closed && first == 0 && s < std::min(s_first, s_last);
         const bool at_end = !chain.closed && first + count == size && s > std::max(s_first, s_last);
         Vec3 next;
-        if (at_start || at_end) {
+        if (at_start || at_end)
+        {
             const bool start_is_low = s_first < s_last;
             const int end_node = (at_start == start_is_low) ? node[0] : node[count - 1];
             next = m.points[at(end_node)];
             s = (next - origin).dot(tangent) / rho;
-        } else {
+        }
+        else
+        {
             const Vec3 c0 = coefficients.row(0).transpose(), c1 = coefficients.row(1).transpose(),
                        c2 = coefficients.row(2).transpose();
             next = origin + rho * (s * tangent + c0 + s * c1 + s * s * c2);
         }
-        const Vec3 derivative = tangent + coefficients.row(1).transpose() + 2 * s * coefficients.row(2).transpose();
+        const Vec3 derivative =
+            tangent + coefficients.row(1).transpose() + 2 * s * coefficients.row(2).transpose();
         const Vec3 second = 2 * coefficients.row(2).transpose() / rho;
         result.tangent = derivative.normalized();
         result.k1 = derivative.cross(second).norm() / std::pow(derivative.norm(), 3);
@@ -889,7 +974,8 @@ Projection HdiSurface::project_to_ridge(const Vec3& x) const
         result.point = next;
         current = next;
         result.status = ProjectionStatus::NotConverged;
-        if (move < o.tolerance * rho || at_start || at_end) {
+        if (move < o.tolerance * rho || at_start || at_end)
+        {
             result.status = linear ? ProjectionStatus::LinearFallback : ProjectionStatus::Ok;
             break;
         }
@@ -897,18 +983,20 @@ Projection HdiSurface::project_to_ridge(const Vec3& x) const
     // Orientation only: the sides' mean normal at the nearest line node.
     int nearest_node = chain.vertices[at(j)];
     const int other = chain.vertices[(at(j) + 1) % chain.vertices.size()];
-    if ((m.points[at(other)] - result.point).squaredNorm() < (m.points[at(nearest_node)] - result.point).squaredNorm())
+    if ((m.points[at(other)] - result.point).squaredNorm() <
+        (m.points[at(nearest_node)] - result.point).squaredNorm())
         nearest_node = other;
     Vec3 normal = Vec3::Zero();
-    for (int s = m.side_begin[at(nearest_node)]; s < m.side_begin[at(nearest_node) + 1]; ++s) normal += m.side_normal[at(s)];
+    for (int s = m.side_begin[at(nearest_node)]; s < m.side_begin[at(nearest_node) + 1]; ++s)
+        normal += m.side_normal[at(s)];
     result.normal = normal.squaredNorm() > 0 ? Vec3(normal.normalized()) : Vec3::Zero();
     return result;
 }
 
 bool HdiSurface::is_corner(int input_vertex) const
 {
-    return input_vertex >= 0 && input_vertex < static_cast<int>(model_->corner.size())
-        && model_->corner[at(input_vertex)] != 0;
+    return input_vertex >= 0 && input_vertex < static_cast<int>(model_->corner.size()) &&
+           model_->corner[at(input_vertex)] != 0;
 }
 
 const FeatureSet& HdiSurface::features() const { return model_->features; }

@@ -33,10 +33,10 @@ struct HdiOptions
     int neighbours = 12;
     Weight weight = Weight::Interpolating;  ///< w(s), s = d / rho
     double window_factor = 1.1;             ///< rho = window_factor * distance to the n-th node
-    double normal_agreement = 0.5;          ///< thin parts: drop nodes whose normal . local normal is below
-    int max_iterations = 5;                 ///< fits per projection
-    double tolerance = 1e-6;                ///< converged when the move is below tolerance * rho
-    int ridge_neighbours = 6;               ///< polyline nodes per 1-D fit of a feature line (2-64)
+    double normal_agreement = 0.5;  ///< thin parts: drop nodes whose normal . local normal is below
+    int max_iterations = 5;         ///< fits per projection
+    double tolerance = 1e-6;        ///< converged when the move is below tolerance * rho
+    int ridge_neighbours = 6;       ///< polyline nodes per 1-D fit of a feature line (2-64)
     NormalWeighting normal_weighting = NormalWeighting::Angle;  ///< node normals from the triangles
     /// Re-estimates each node normal (per smooth side) from a positions-only quadratic fit of its
     /// neighbours: face-averaged normals are first-order only, which caps the order near 2.
@@ -74,8 +74,8 @@ struct DiffusePlane
     Vec3 normal = Vec3::Zero();  ///< unit, oriented like the input's normals
     Vec3 e1 = Vec3::Zero();      ///< e1, e2, normal: a right-handed orthonormal frame
     Vec3 e2 = Vec3::Zero();
-    double window_radius = 0;    ///< rho
-    bool ok = false;             ///< false when no fit exists there (then the rest is zero)
+    double window_radius = 0;  ///< rho
+    bool ok = false;           ///< false when no fit exists there (then the rest is zero)
 };
 
 /// Thread-safe for const queries (each thread keeps its own scratch). Copies share the model.
@@ -87,14 +87,15 @@ public:
     /// as given (detect_features() or read from the input; empty for none); the surface's
     /// open-boundary edges are always added, and every vertex where feature lines branch or end
     /// becomes a corner. Throws InputError for bad indices or options.
-    HdiSurface(std::vector<Vec3> points, std::vector<Triangle3> triangles, const FeatureSet& features,
-               const HdiOptions& options = {});
+    HdiSurface(std::vector<Vec3> points, std::vector<Triangle3> triangles,
+               const FeatureSet& features, const HdiOptions& options = {});
 
     /// Same, with the node normals given (one per point). A given normal replaces the computed one
     /// at every node with a single smooth side. With no triangles at all the points are a pure
     /// point cloud: every point is a node with its given normal.
-    HdiSurface(std::vector<Vec3> points, std::vector<Vec3> normals, std::vector<Triangle3> triangles,
-               const FeatureSet& features, const HdiOptions& options = {});
+    HdiSurface(std::vector<Vec3> points, std::vector<Vec3> normals,
+               std::vector<Triangle3> triangles, const FeatureSet& features,
+               const HdiOptions& options = {});
 
     /// Projects onto the smooth surface, using only nodes on x's side of any ridge.
     Projection project(const Vec3& x) const;

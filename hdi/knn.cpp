@@ -6,9 +6,8 @@
 
 #include <algorithm>
 #include <cassert>
-#include <limits>
-
 #include <flann/flann.hpp>
+#include <limits>
 
 namespace hdimesh::hdi
 {
@@ -35,7 +34,8 @@ public:
     {
         if (squared_distance >= worst_) return;
         int slot = count_ < capacity_ ? count_++ : capacity_ - 1;
-        while (slot > 0 && squared_distances_[slot - 1] > squared_distance) {
+        while (slot > 0 && squared_distances_[slot - 1] > squared_distance)
+        {
             squared_distances_[slot] = squared_distances_[slot - 1];
             indices_[slot] = indices_[slot - 1];
             --slot;
@@ -109,12 +109,14 @@ const Eigen::Vector3d& KnnIndex::point(int index) const
     return impl_->points[static_cast<std::size_t>(index)];
 }
 
-int KnnIndex::nearest(const Eigen::Vector3d& query, int k, int* indices, double* squared_distances) const
+int KnnIndex::nearest(const Eigen::Vector3d& query, int k, int* indices,
+                      double* squared_distances) const
 {
     k = std::min(k, size());
     if (k <= 0) return 0;
     BufferResultSet result(k, indices, squared_distances);
-    impl_->tree->findNeighbors(result, query.data(), flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED, 0.0f));
+    impl_->tree->findNeighbors(result, query.data(),
+                               flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED, 0.0f));
     return result.count();
 }
 
@@ -125,7 +127,8 @@ std::vector<Neighbour> KnnIndex::nearest(const Eigen::Vector3d& query, int k) co
     std::vector<double> squared_distances(static_cast<std::size_t>(k));
     const int found = nearest(query, k, indices.data(), squared_distances.data());
     std::vector<Neighbour> result(static_cast<std::size_t>(found));
-    for (int i = 0; i < found; ++i) result[static_cast<std::size_t>(i)] = {indices[i], squared_distances[i]};
+    for (int i = 0; i < found; ++i)
+        result[static_cast<std::size_t>(i)] = {indices[i], squared_distances[i]};
     return result;
 }
 
@@ -133,10 +136,11 @@ std::vector<Neighbour> KnnIndex::within_radius(const Eigen::Vector3d& query, dou
 {
     if (size() == 0 || radius < 0) return {};
     RadiusResultSet result(radius * radius);
-    impl_->tree->findNeighbors(result, query.data(), flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED, 0.0f));
+    impl_->tree->findNeighbors(result, query.data(),
+                               flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED, 0.0f));
     std::sort(result.found.begin(), result.found.end(), [](const Neighbour& a, const Neighbour& b) {
-        return a.squared_distance < b.squared_distance
-            || (a.squared_distance == b.squared_distance && a.index < b.index);
+        return a.squared_distance < b.squared_distance ||
+               (a.squared_distance == b.squared_distance && a.index < b.index);
     });
     return std::move(result.found);
 }

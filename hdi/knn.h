@@ -2,10 +2,9 @@
 // Exact k-nearest-neighbour search over a fixed set of 3-D points (a single kd-tree).
 // FLANN stays behind this header: only Eigen types and plain arrays cross it.
 
+#include <Eigen/Core>
 #include <memory>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace hdimesh::hdi
 {

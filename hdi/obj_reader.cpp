@@ -19,26 +19,35 @@ TriangleSurface read_obj(const std::string& path)
     auto fail = [&](const std::string& what) {
         throw InputError(path + ":" + std::to_string(line_number) + ": " + what);
     };
-    while (std::getline(in, line)) {
+    while (std::getline(in, line))
+    {
         ++line_number;
         std::istringstream fields(line);
         std::string keyword;
         if (!(fields >> keyword)) continue;
-        if (keyword == "v") {
+        if (keyword == "v")
+        {
             Vec3 p;
             if (!(fields >> p.x() >> p.y() >> p.z())) fail("a vertex needs three coordinates");
             surface.points.push_back(p);
-        } else if (keyword == "f") {
+        }
+        else if (keyword == "f")
+        {
             polygon.clear();
             std::string corner;
-            while (fields >> corner) {
-                // "i", "i/t", "i//n" or "i/t/n": the vertex index is the part before the first slash.
+            while (fields >> corner)
+            {
+                // "i", "i/t", "i//n" or "i/t/n": the vertex index is the part before the first
+                // slash.
                 int index = 0;
-                try {
+                try
+                {
                     std::size_t used = 0;
                     index = std::stoi(corner, &used);
                     if (used == 0) fail("bad face corner '" + corner + "'");
-                } catch (const std::logic_error&) {
+                }
+                catch (const std::logic_error&)
+                {
                     fail("bad face corner '" + corner + "'");
                 }
                 const int count = static_cast<int>(surface.points.size());

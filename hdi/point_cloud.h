@@ -1,10 +1,9 @@
 #pragma once
 // The HDI model's input data: surface nodes, triangles, node normals, and the cloud's scale.
 
+#include <Eigen/Core>
 #include <array>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace hdimesh::hdi
 {
@@ -24,7 +23,8 @@ Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// One unit normal per point from the triangles around it (zero for a point no usable
 /// triangle touches). Throws InputError naming the triangle if an index is out of range.
-std::vector<Vec3> vertex_normals(const std::vector<Vec3>& points, const std::vector<Triangle3>& triangles,
+std::vector<Vec3> vertex_normals(const std::vector<Vec3>& points,
+                                 const std::vector<Triangle3>& triangles,
                                  NormalWeighting weighting = NormalWeighting::Angle);
 
 struct BoundingBox

@@ -23,10 +23,11 @@ inline double quartic_spline(double s)
 
 inline double diffuse_weight(WeightFunction function, double s)
 {
-    switch (function) {
-    case WeightFunction::Gaussian: return std::exp(-s * s * (1.0 / 0.16));
-    case WeightFunction::QuarticSpline: return quartic_spline(s);
-    case WeightFunction::Interpolating: return quartic_spline(s) / (s * s + 1e-4);
+    switch (function)
+    {
+        case WeightFunction::Gaussian: return std::exp(-s * s * (1.0 / 0.16));
+        case WeightFunction::QuarticSpline: return quartic_spline(s);
+        case WeightFunction::Interpolating: return quartic_spline(s) / (s * s + 1e-4);
     }
     return 0.0;
 }

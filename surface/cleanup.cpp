@@ -31,8 +31,7 @@ constexpr int kCurveFitSweeps = 4;
 
 Cleanup::Cleanup(RemeshRun& run, ToleranceKeeper& keeper, ChangeLog& log,
                  const ToleranceOptions& tolerance, const CleanupOptions& options)
-    : ToleranceStage(run, keeper, tolerance),
-      options_(options),
+    : ToleranceStage(run, keeper, tolerance), options_(options),
       cleanup_angle_margin_cos_(cos_deg(options.angle_deg + 1.0))
 {
     log.add(angle_changes_);
@@ -320,9 +319,9 @@ bool Cleanup::improve_face(FaceHandle f, const ShiftOptions& smart, Keep keep)
     const bool keep_tolerance = keep != Keep::Nothing;
     std::vector<EdgeHandle> edges;
     for (auto e : mesh_.fe_range(f)) edges.push_back(e);
-    std::sort(edges.begin(), edges.end(),
-              [&](EdgeHandle a, EdgeHandle b)
-              { return mesh_.calc_edge_length(a) > mesh_.calc_edge_length(b); });
+    std::sort(edges.begin(), edges.end(), [&](EdgeHandle a, EdgeHandle b) {
+        return mesh_.calc_edge_length(a) > mesh_.calc_edge_length(b);
+    });
     // The longest edge is opposite the largest angle: flipping it is the usual cure.
     for (const EdgeHandle e : edges)
         if (keep_tolerance ? keeper_.flip_keeping_tolerance(e)
@@ -379,13 +378,10 @@ std::size_t Cleanup::repair_small_angles()
             if (mesh_.status(f).deleted() || !face_angle_below(f, options_.angle_deg)) continue;
             std::vector<EdgeHandle> edges;
             for (auto e : mesh_.fe_range(f)) edges.push_back(e);
-            std::sort(edges.begin(), edges.end(),
-                      [&](EdgeHandle x, EdgeHandle y)
-                      {
-                          const double lx = mesh_.calc_edge_length(x),
-                                       ly = mesh_.calc_edge_length(y);
-                          return lx != ly ? lx > ly : x.idx() < y.idx();
-                      });
+            std::sort(edges.begin(), edges.end(), [&](EdgeHandle x, EdgeHandle y) {
+                const double lx = mesh_.calc_edge_length(x), ly = mesh_.calc_edge_length(y);
+                return lx != ly ? lx > ly : x.idx() < y.idx();
+            });
             bool flipped = false;
             for (const EdgeHandle e : edges)
                 if (keeper_.flip_keeping_tolerance(e))

@@ -4,8 +4,8 @@
 #include <utility>
 #include <vector>
 
-#include "surface/local_ops.h"
 #include "surface/detail/local_ops_geometry.h"
+#include "surface/local_ops.h"
 
 namespace hdimesh::surface
 {
@@ -21,11 +21,11 @@ bool class_allows_collapse(const OperatorContext& ctx, HalfedgeHandle h)
     const EdgeHandle e = mesh.edge_handle(h);
     switch (ctx.vertex_class(v0))
     {
-    case VertexClass::Corner: return false;
-    case VertexClass::Ridge:
-    case VertexClass::Boundary:
-        return ctx.edge_curve(e) != kNoCurve && ctx.edge_curve(e) == ctx.vertex_curve(v0);
-    case VertexClass::Smooth: return !mesh.is_boundary(v0);
+        case VertexClass::Corner: return false;
+        case VertexClass::Ridge:
+        case VertexClass::Boundary:
+            return ctx.edge_curve(e) != kNoCurve && ctx.edge_curve(e) == ctx.vertex_curve(v0);
+        case VertexClass::Smooth: return !mesh.is_boundary(v0);
     }
     return false;
 }
@@ -37,7 +37,9 @@ bool class_allows_collapse(const OperatorContext& ctx, HalfedgeHandle h)
 // accessors. Debian's libOpenMeshCore is built with its assertions on: each status look-up
 // inside the library builds, compares and frees a type-name string, a large part of
 // is_collapse_ok's time. A debug build checks each answer against OpenMesh's.
-bool collapse_topology_ok(SurfaceMesh& mesh, HalfedgeHandle v0v1)  // (not const: OpenMesh's test for a large ring tags vertices)
+bool collapse_topology_ok(
+    SurfaceMesh& mesh,
+    HalfedgeHandle v0v1)  // (not const: OpenMesh's test for a large ring tags vertices)
 {
     if (mesh.status(mesh.edge_handle(v0v1)).deleted()) return false;
     const HalfedgeHandle v1v0 = mesh.opposite_halfedge_handle(v0v1);
@@ -47,8 +49,10 @@ bool collapse_topology_ok(SurfaceMesh& mesh, HalfedgeHandle v0v1)  // (not const
     // face's other two edges are both on the boundary.
     auto opposite_vertex = [&](HalfedgeHandle side, bool& refused) {
         if (mesh.is_boundary(side)) return VertexHandle();
-        const HalfedgeHandle h1 = mesh.next_halfedge_handle(side), h2 = mesh.next_halfedge_handle(h1);
-        refused = mesh.is_boundary(mesh.opposite_halfedge_handle(h1)) && mesh.is_boundary(mesh.opposite_halfedge_handle(h2));
+        const HalfedgeHandle h1 = mesh.next_halfedge_handle(side),
+                             h2 = mesh.next_halfedge_handle(h1);
+        refused = mesh.is_boundary(mesh.opposite_halfedge_handle(h1)) &&
+                  mesh.is_boundary(mesh.opposite_halfedge_handle(h2));
         return mesh.to_vertex_handle(h1);
     };
     bool refused = false;
@@ -56,7 +60,9 @@ bool collapse_topology_ok(SurfaceMesh& mesh, HalfedgeHandle v0v1)  // (not const
     if (refused) return false;
     const VertexHandle vr = opposite_vertex(v1v0, refused);
     if (refused || vl == vr) return false;
-    if (mesh.is_boundary(v0) && mesh.is_boundary(v1) && !mesh.is_boundary(v0v1) && !mesh.is_boundary(v1v0)) return false;
+    if (mesh.is_boundary(v0) && mesh.is_boundary(v1) && !mesh.is_boundary(v0v1) &&
+        !mesh.is_boundary(v1v0))
+        return false;
     // No common neighbour but vl and vr: v1's ring gathered once, v0's looked up in it. A ring
     // larger than the buffer (a CAD fan of hundreds of spokes, where that lookup would cost the
     // product of the two valences) is left to OpenMesh's tagging test, linear in them.
@@ -69,11 +75,13 @@ bool collapse_topology_ok(SurfaceMesh& mesh, HalfedgeHandle v0v1)  // (not const
     }
     const auto ring_end = ring_of_v1.begin() + static_cast<std::ptrdiff_t>(ring_size);
     for (const VertexHandle w : mesh.vv_range(v0))
-        if (w != vl && w != vr && std::find(ring_of_v1.begin(), ring_end, w) != ring_end) return false;
+        if (w != vl && w != vr && std::find(ring_of_v1.begin(), ring_end, w) != ring_end)
+            return false;
     return true;
 }
 
-// Whether a face of the collapsing vertex survives a collapse onto v1 (a face of v1 too is removed).
+// Whether a face of the collapsing vertex survives a collapse onto v1 (a face of v1 too is
+// removed).
 bool survives_collapse(const SurfaceMesh& mesh, FaceHandle f, VertexHandle v1)
 {
     const auto fv = detail::face_vertices(mesh, f);
@@ -100,7 +108,8 @@ OpStatus collapse_shape_status(const OperatorContext& ctx, HalfedgeHandle h, dou
             if (w != v1 && (mesh.point(w) - p1).norm() > max_new_length) return OpStatus::Quality;
     }
     const bool topology_ok = collapse_topology_ok(mesh, h);
-    assert(topology_ok == mesh.is_collapse_ok(h));  // (which sets vertex tags: nothing here reads them)
+    assert(topology_ok ==
+           mesh.is_collapse_ok(h));  // (which sets vertex tags: nothing here reads them)
     if (!topology_ok) return OpStatus::Topology;
 
     // Geometry and quality layers: the faces of v0 that survive, with v0 moved onto v1.
@@ -115,7 +124,8 @@ OpStatus collapse_shape_status(const OperatorContext& ctx, HalfedgeHandle h, dou
         if (!turn_ok_cos(normal(before), normal(after), min_cos)) return OpStatus::Geometry;
         const double q = qe(after);
         if (q < ctx.limits.min_new_quality ||
-            (min_new_angle_deg > 0.0 && triangle_min_angle_deg(after[0], after[1], after[2]) < min_new_angle_deg))
+            (min_new_angle_deg > 0.0 &&
+             triangle_min_angle_deg(after[0], after[1], after[2]) < min_new_angle_deg))
             return OpStatus::Quality;
         new_min = std::min(new_min, q);
     }
@@ -129,11 +139,12 @@ OpStatus collapse_shape_status(const OperatorContext& ctx, HalfedgeHandle h, dou
     return OpStatus::Done;
 }
 
-OpStatus collapse_status(const OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain,
-                         double min_new_angle_deg)
+OpStatus collapse_status(const OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
+                         bool require_quality_gain, double min_new_angle_deg)
 {
     using namespace detail;
-    const OpStatus shape = collapse_shape_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
+    const OpStatus shape =
+        collapse_shape_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
     if (shape != OpStatus::Done) return shape;
     const SurfaceMesh& mesh = ctx.mesh;
     const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
@@ -144,20 +155,22 @@ OpStatus collapse_status(const OperatorContext& ctx, HalfedgeHandle h, double ma
         {
             if (!survives_collapse(mesh, f, v1)) continue;
             const auto after = face_points_with(mesh, f, v0, p1);
-            if (!ctx.near_model((after[0] + after[1] + after[2]) / 3.0, v1, ctx.limits.max_model_distance))
+            if (!ctx.near_model((after[0] + after[1] + after[2]) / 3.0, v1,
+                                ctx.limits.max_model_distance))
                 return OpStatus::Geometry;
         }
     if (ctx.hooks.allow_collapse && !ctx.hooks.allow_collapse(mesh, h)) return OpStatus::Hook;
     return OpStatus::Done;
 }
 
-OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length, bool require_quality_gain,
-                      double min_new_angle_deg)
+OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
+                      bool require_quality_gain, double min_new_angle_deg)
 {
     SurfaceMesh& mesh = ctx.mesh;
     OpResult result;
     const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
-    result.status = collapse_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
+    result.status =
+        collapse_status(ctx, h, max_new_length, require_quality_gain, min_new_angle_deg);
     if (result.status != OpStatus::Done) return result;
 
     // Commit. OpenMesh merges the edges (v0, x) and (v1, x) of the two removed faces and may keep
@@ -168,7 +181,8 @@ OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_len
         for (auto oh : mesh.voh_range(from))
         {
             const int curve = ctx.edge_curve(mesh.edge_handle(oh));
-            if (mesh.to_vertex_handle(oh) != to && curve != kNoCurve) curve_by_end.emplace_back(mesh.to_vertex_handle(oh), curve);
+            if (mesh.to_vertex_handle(oh) != to && curve != kNoCurve)
+                curve_by_end.emplace_back(mesh.to_vertex_handle(oh), curve);
         }
     mesh.collapse(h);
     for (auto oh : mesh.voh_range(v1))

@@ -71,7 +71,8 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         // (Only an excess counts: a witness within the tolerance of some triangle adds nothing.)
         patch.triangles_at(&q, patch_at);
         for (const Vec3d& w : options.witnesses)
-            if (!detail::within_triangles(w, patch_at, options.tolerance)) e.add(patch.distance(w, &q), options.tolerance);
+            if (!detail::within_triangles(w, patch_at, options.tolerance))
+                e.add(patch.distance(w, &q), options.tolerance);
         auto sample = [&](const Vec3d& s) {
             e.add(ctx.distance_beyond(s, v, options.tolerance), options.tolerance);
         };
@@ -105,18 +106,22 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         {
             const auto before = face_points(mesh, f), after = face_points_with(mesh, f, v, q);
             if (!turn_ok_cos(normal(before), normal(after), max_turn_cos) ||
-                qe(after) < ctx.limits.min_new_quality || triangle_min_angle_deg(after[0], after[1], after[2]) < min_angle)
+                qe(after) < ctx.limits.min_new_quality ||
+                triangle_min_angle_deg(after[0], after[1], after[2]) < min_angle)
                 return false;
         }
         int out_before = 0, out_after = 0;
         for (const Vec3d& w : neighbours)
         {
             const double length = (w - q).norm();
-            const double before = out_of_band((w - p).norm(), options.min_length, options.max_length);
+            const double before =
+                out_of_band((w - p).norm(), options.min_length, options.max_length);
             const double after = out_of_band(length, options.min_length, options.max_length);
             out_before += before > 0.0;
             out_after += after > 0.0;
-            const bool shorter_above_floor = options.floor_length > 0.0 && length < options.min_length && length >= options.floor_length;
+            const bool shorter_above_floor = options.floor_length > 0.0 &&
+                                             length < options.min_length &&
+                                             length >= options.floor_length;
             if (after > before && !shorter_above_floor) return false;
         }
         return out_after <= out_before;
@@ -147,7 +152,8 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
         for (int i = 1; i <= options.samples; ++i)
         {
             const double t = 0.8 * static_cast<double>(i) / static_cast<double>(options.samples);
-            const ProjectedPoint on = ctx.model.project_near(p + t * (end - p), cls, curve, ctx.model_face(v));
+            const ProjectedPoint on =
+                ctx.model.project_near(p + t * (end - p), cls, curve, ctx.model_face(v));
             if (on.ok && between(on.point)) candidates.push_back(on);
         }
 
@@ -157,7 +163,8 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
     for (const ProjectedPoint& c : candidates)
     {
         const Excess e = excess(c.point);
-        const bool better = e.worst < best.worst - gain || (e.worst <= best.worst && e.sum < best.sum - gain);
+        const bool better =
+            e.worst < best.worst - gain || (e.worst <= best.worst && e.sum < best.sum - gain);
         if (!better || !legal(c.point)) continue;
         best = e;
         best_point = c;

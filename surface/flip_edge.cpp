@@ -2,8 +2,8 @@
 #include <cassert>
 #include <cstdlib>
 
-#include "surface/local_ops.h"
 #include "surface/detail/local_ops_geometry.h"
+#include "surface/local_ops.h"
 
 namespace hdimesh::surface
 {
@@ -87,8 +87,10 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
         const int vc = ring_valence(mesh, c), vd = ring_valence(mesh, d);
         const int ta = target_valence(mesh, a), tb = target_valence(mesh, b);
         const int tc = target_valence(mesh, c), td = target_valence(mesh, d);
-        const int before = std::abs(va - ta) + std::abs(vb - tb) + std::abs(vc - tc) + std::abs(vd - td);
-        const int after = std::abs(va - 1 - ta) + std::abs(vb - 1 - tb) + std::abs(vc + 1 - tc) + std::abs(vd + 1 - td);
+        const int before =
+            std::abs(va - ta) + std::abs(vb - tb) + std::abs(vc - tc) + std::abs(vd - td);
+        const int after = std::abs(va - 1 - ta) + std::abs(vb - 1 - tb) + std::abs(vc + 1 - tc) +
+                          std::abs(vd + 1 - td);
         if (after >= before)
         {
             result.status = OpStatus::Quality;
@@ -100,36 +102,41 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
         result.status = OpStatus::Topology;
         return result;
     }
-    const std::array<Vec3d, 3> old0{pa, pb, pc}, old1{pb, pa, pd}, new0{pa, pd, pc}, new1{pd, pb, pc};
+    const std::array<Vec3d, 3> old0{pa, pb, pc}, old1{pb, pa, pd}, new0{pa, pd, pc},
+        new1{pd, pb, pc};
     const double old_min = std::min(qe(old0), qe(old1)), new_min = std::min(qe(new0), qe(new1));
-    const bool keeps_enough = goal == FlipGoal::Quality ? new_min > old_min + 1e-6 : !(new_min < 0.5 * old_min);
+    const bool keeps_enough =
+        goal == FlipGoal::Quality ? new_min > old_min + 1e-6 : !(new_min < 0.5 * old_min);
     if (new_min < ctx.limits.min_new_quality || !keeps_enough)
     {
         result.status = OpStatus::Quality;
         return result;
     }
-    const Vec3d n_old0 = normal(old0), n_old1 = normal(old1), n_new0 = normal(new0), n_new1 = normal(new1);
+    const Vec3d n_old0 = normal(old0), n_old1 = normal(old1), n_new0 = normal(new0),
+                n_new1 = normal(new1);
     Vec3d n_mean = n_old0 + n_old1;
     if (n_mean.norm() > 0.0) n_mean.normalize();
     // Geometry: neither new triangle turns much, and the pair does not fold more than it was
     // (or than a gently curved surface would).
     static const double gentle_fold_cos = cos_deg(20.0);
     const double min_cos = cos_deg(ctx.limits.max_normal_turn_deg);
-    const bool turns_little = turn_ok_cos(n_mean, n_new0, min_cos) && turn_ok_cos(n_mean, n_new1, min_cos);
+    const bool turns_little =
+        turn_ok_cos(n_mean, n_new0, min_cos) && turn_ok_cos(n_mean, n_new1, min_cos);
     // A chord across a crease the features dropped folds its pair over the crease; the distance
     // flip that lays the two triangles onto the crease's two sides turns them a lot, which is the
     // point of it (the mean of a folded pair's normals is no reference). Then each new triangle
     // must follow the model under its centroid within the turn limit.
     auto follows_model = [&](const std::array<Vec3d, 3>& t, const Vec3d& n, VertexHandle near) {
-        const ProjectedPoint foot =
-            ctx.model.project_near((t[0] + t[1] + t[2]) / 3.0, VertexClass::Smooth, kNoCurve, ctx.model_face(near));
+        const ProjectedPoint foot = ctx.model.project_near(
+            (t[0] + t[1] + t[2]) / 3.0, VertexClass::Smooth, kNoCurve, ctx.model_face(near));
         // (A degenerate input face has no normal: turn_ok_cos would take any turn.)
         return foot.ok && foot.normal.sqrnorm() > 0.5 && turn_ok_cos(foot.normal, n, min_cos);
     };
-    const bool across_crease = !turns_little && goal == FlipGoal::Distance && follows_model(new0, n_new0, c) &&
-                               follows_model(new1, n_new1, c);
+    const bool across_crease = !turns_little && goal == FlipGoal::Distance &&
+                               follows_model(new0, n_new0, c) && follows_model(new1, n_new1, c);
     if ((!turns_little && !across_crease) ||
-        OpenMesh::dot(n_new0, n_new1) < std::min(OpenMesh::dot(n_old0, n_old1), gentle_fold_cos) - 1e-12)
+        OpenMesh::dot(n_new0, n_new1) <
+            std::min(OpenMesh::dot(n_old0, n_old1), gentle_fold_cos) - 1e-12)
     {
         result.status = OpStatus::Geometry;
         return result;
@@ -139,10 +146,12 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     {
         auto farthest = [&](const Vec3d& mid, VertexHandle near, const std::array<Vec3d, 3>& t0,
                             const std::array<Vec3d, 3>& t1) {
-            return std::max({ctx.distance_to_model(mid, near), ctx.distance_to_model((t0[0] + t0[1] + t0[2]) / 3.0, near),
+            return std::max({ctx.distance_to_model(mid, near),
+                             ctx.distance_to_model((t0[0] + t0[1] + t0[2]) / 3.0, near),
                              ctx.distance_to_model((t1[0] + t1[1] + t1[2]) / 3.0, near)});
         };
-        if (!(farthest(0.5 * (pc + pd), c, new0, new1) < kDistanceFlipGain * farthest(0.5 * (pa + pb), a, old0, old1)))
+        if (!(farthest(0.5 * (pc + pd), c, new0, new1) <
+              kDistanceFlipGain * farthest(0.5 * (pa + pb), a, old0, old1)))
         {
             result.status = OpStatus::Quality;
             return result;

@@ -30,21 +30,22 @@ ProjectedPoint HdiProjector::project(const Vec3d& p, VertexClass cls, int) const
     const hdi::Vec3 x(p[0], p[1], p[2]);
     switch (cls)
     {
-    case VertexClass::Smooth: return to_projected(surface_.project(x));
-    case VertexClass::Ridge:
-    case VertexClass::Boundary: return to_projected(surface_.project_to_ridge(x));
-    case VertexClass::Corner:
-    {
-        ProjectedPoint out = to_projected(surface_.project(x));
-        out.point = p;
-        out.ok = true;
-        return out;
-    }
+        case VertexClass::Smooth: return to_projected(surface_.project(x));
+        case VertexClass::Ridge:
+        case VertexClass::Boundary: return to_projected(surface_.project_to_ridge(x));
+        case VertexClass::Corner:
+        {
+            ProjectedPoint out = to_projected(surface_.project(x));
+            out.point = p;
+            out.ok = true;
+            return out;
+        }
     }
     return {};
 }
 
-void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input, const HdiProjectionOptions& options)
+void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
+                           const HdiProjectionOptions& options)
 {
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
     OpenMesh::EPropHandleT<int> edge_curve;
@@ -76,14 +77,16 @@ void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input, const 
             features.ridge_edges.push_back({std::min(a, b), std::max(a, b)});
         }
         for (auto v : input.vertices())
-            if (input.property(vertex_class, v) == VertexClass::Corner) features.corners.push_back(v.idx());
+            if (input.property(vertex_class, v) == VertexClass::Corner)
+                features.corners.push_back(v.idx());
         std::sort(features.ridge_edges.begin(), features.ridge_edges.end());
     }
     features.boundary_edges = hdi::open_boundary_edges(triangles);
 
     hdi::HdiOptions hdi_options;
     hdi_options.neighbours = options.neighbours;
-    auto surface = std::make_shared<const hdi::HdiSurface>(std::move(points), std::move(triangles), features, hdi_options);
+    auto surface = std::make_shared<const hdi::HdiSurface>(std::move(points), std::move(triangles),
+                                                           features, hdi_options);
     const double max_deviation = options.max_deviation_fraction * model.diagonal();
     const SurfaceModel* facets = &model;
     model.set_smooth_projection([surface, facets, max_deviation](const Vec3d& p) {

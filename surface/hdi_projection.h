@@ -39,6 +39,7 @@ struct HdiProjectionOptions
 /// Builds the HDI model of `input` (classified by detect_features: its ridges, boundary curves
 /// and corners are handed to the model) and installs it as `model`'s smooth projection.
 /// The model keeps its own copy of the input; `model` must outlive nothing else.
-void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input, const HdiProjectionOptions& options = {});
+void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
+                           const HdiProjectionOptions& options = {});
 
 }  // namespace hdimesh::surface

@@ -122,8 +122,7 @@ bool ToleranceKeeper::flip_keeping_tolerance(EdgeHandle e)
             output_after.push_back(output_before.back());
         }
     auto worst_sample = [&](const Vec3d& mid, VertexHandle near, const std::array<Vec3d, 3>& t0,
-                            const std::array<Vec3d, 3>& t1)
-    {
+                            const std::array<Vec3d, 3>& t1) {
         double worst = 0.0;
         for (const Vec3d& q : {mid, (t0[0] + t0[1] + t0[2]) / 3.0, (t1[0] + t1[1] + t1[2]) / 3.0})
             worst = std::max(worst, ctx_.distance_beyond(q, near, options_.tolerance));
@@ -169,8 +168,9 @@ bool ToleranceKeeper::collapse_keeping_tolerance(HalfedgeHandle h, CollapseFor p
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
     double worst_before = 0.0, worst_after = 0.0;
-    auto sample = [&](const Vec3d& q, VertexHandle near)
-    { return ctx_.distance_beyond(q, near, options_.tolerance); };
+    auto sample = [&](const Vec3d& q, VertexHandle near) {
+        return ctx_.distance_beyond(q, near, options_.tolerance);
+    };
     for (const FaceHandle f : faces)
     {
         const auto fv = detail::face_vertices(mesh_, f);
@@ -214,11 +214,11 @@ bool ToleranceKeeper::shift(VertexHandle v, const ShiftOptions& options, Keep ke
         return shift_vertex(ctx_, v, options).done();
     const bool keep_lengths = keep == Keep::ToleranceAndLengths;
     const double bound = options_.tolerance;
-    auto worst_sample = [&](const Vec3d& at)
-    { return detail::star_samples_beyond(ctx_, v, at, bound); };
+    auto worst_sample = [&](const Vec3d& at) {
+        return detail::star_samples_beyond(ctx_, v, at, bound);
+    };
     // The star's edges short for the reference size with v at `at`.
-    auto short_star_edges = [&](const Vec3d& at)
-    {
+    auto short_star_edges = [&](const Vec3d& at) {
         int n = 0;
         for (auto h : mesh_.voh_range(v))
             if (size_quality((mesh_.point(mesh_.to_vertex_handle(h)) - at).norm(),
@@ -230,8 +230,7 @@ bool ToleranceKeeper::shift(VertexHandle v, const ShiftOptions& options, Keep ke
     // The state before the move is gathered here, when a move is asked (the mesh is still
     // as before it): most smart shifts stop at their quality test and never ask, and a shift
     // that does not move needs no patch, witnesses or samples.
-    keeping.accept = [&](const Vec3d& after)
-    {
+    keeping.accept = [&](const Vec3d& after) {
         const Vec3d before = mesh_.point(v);
         if (keep_lengths && short_star_edges(after) > short_star_edges(before)) return false;
         const double samples_after = worst_sample(after);

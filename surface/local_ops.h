@@ -22,19 +22,23 @@ struct SurfaceHooks
     /// Split of edge e with the new vertex at `point`.
     std::function<bool(const SurfaceMesh&, EdgeHandle e, const Vec3d& point)> allow_split;
     /// Edge (a, b) was split by `inserted`.
-    std::function<void(const SurfaceMesh&, VertexHandle a, VertexHandle b, VertexHandle inserted)> on_split;
+    std::function<void(const SurfaceMesh&, VertexHandle a, VertexHandle b, VertexHandle inserted)>
+        on_split;
     /// Collapse of halfedge h: its from-vertex goes away, its to-vertex stays.
     std::function<bool(const SurfaceMesh&, HalfedgeHandle h)> allow_collapse;
     std::function<void(const SurfaceMesh&, VertexHandle removed, VertexHandle kept)> on_collapse;
     /// Flip of edge e (a, b) to (c, d).
     std::function<bool(const SurfaceMesh&, EdgeHandle e)> allow_flip;
-    std::function<void(const SurfaceMesh&, VertexHandle a, VertexHandle b, VertexHandle c, VertexHandle d)> on_flip;
+    std::function<void(const SurfaceMesh&, VertexHandle a, VertexHandle b, VertexHandle c,
+                       VertexHandle d)>
+        on_flip;
     /// Move of v to `point`.
     std::function<bool(const SurfaceMesh&, VertexHandle v, const Vec3d& point)> allow_move;
     std::function<void(const SurfaceMesh&, VertexHandle v, const Vec3d& old_point)> on_move;
     /// Removal of v and retriangulation of its hole by `new_faces` (already in the mesh).
     std::function<bool(const SurfaceMesh&, VertexHandle v)> allow_remove_vertex;
-    std::function<void(const SurfaceMesh&, VertexHandle removed, const std::vector<FaceHandle>& new_faces)>
+    std::function<void(const SurfaceMesh&, VertexHandle removed,
+                       const std::vector<FaceHandle>& new_faces)>
         on_remove_vertex;
 };
 
@@ -42,11 +46,11 @@ struct SurfaceHooks
 enum class OpStatus
 {
     Done,
-    Topology,   // OpenMesh refuses, or the configuration is not manifold-safe
-    Class,      // would move a corner, take a ridge vertex off its curve, cross a feature
-    Hook,       // vetoed by an allow_* hook
-    Geometry,   // a triangle would fold or turn too much, or leave the model
-    Quality,    // legal but not better
+    Topology,  // OpenMesh refuses, or the configuration is not manifold-safe
+    Class,     // would move a corner, take a ridge vertex off its curve, cross a feature
+    Hook,      // vetoed by an allow_* hook
+    Geometry,  // a triangle would fold or turn too much, or leave the model
+    Quality,   // legal but not better
 };
 
 struct OpResult
@@ -86,7 +90,8 @@ struct OperatorContext
     const SurfaceHooks hooks;
     OperatorLimits limits;
 
-    OperatorContext(SurfaceMesh& m, const Projector& p, const SurfaceHooks& h, OperatorLimits l = {})
+    OperatorContext(SurfaceMesh& m, const Projector& p, const SurfaceHooks& h,
+                    OperatorLimits l = {})
         : mesh(m), props(m), model(p), hooks(h), limits(l)
     {
     }
@@ -101,7 +106,8 @@ struct OperatorContext
     {
         return model.near_model(p, distance, model_face(near));
     }
-    /// Distance from p (a point of a triangle at `near`) to the smooth model, searched from its face.
+    /// Distance from p (a point of a triangle at `near`) to the smooth model, searched from its
+    /// face.
     double distance_to_model(const Vec3d& p, VertexHandle near) const
     {
         return model.distance_to_surface(p, model_face(near));
@@ -117,7 +123,8 @@ struct OperatorContext
 /// The last layers of every vertex move, once its geometry and quality passed: the caller's
 /// allow_move, then the move (with `model_face` as v's new hint when ≥ 0) and on_move.
 /// Done with `vertex` = v, or Hook with nothing changed.
-inline OpResult commit_move(OperatorContext& ctx, VertexHandle v, const Vec3d& point, int model_face)
+inline OpResult commit_move(OperatorContext& ctx, VertexHandle v, const Vec3d& point,
+                            int model_face)
 {
     OpResult result;
     if (ctx.hooks.allow_move && !ctx.hooks.allow_move(ctx.mesh, v, point))
@@ -225,7 +232,8 @@ struct WitnessedMoveOptions
 {
     /// Distance to the model that counts as near, both ways (the refinement's tolerance).
     double tolerance = 0.0;
-    /// No triangle of the star gets an angle under this (a star that had one already: under its worst).
+    /// No triangle of the star gets an angle under this (a star that had one already: under its
+    /// worst).
     double min_angle_deg = 30.0;
     /// The star's edges stay within [min_length, max_length] (≤ 0: no bound); an edge out of the
     /// band before may not get farther out.
@@ -252,6 +260,7 @@ struct SnapOptions : WitnessedMoveOptions
 /// keeps its angles and edge lengths (options), its centroids and edge midpoints stay within
 /// max(tolerance, worst before) of the model, and no witness ends farther from the output.
 /// Costs no vertex and no short edge, unlike a split. A refusal reports the full move's layer.
-OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& target, const SnapOptions& options);
+OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& target,
+                         const SnapOptions& options);
 
 }  // namespace hdimesh::surface

@@ -12,7 +12,7 @@ namespace hdimesh::surface
 struct ProjectedPoint
 {
     Vec3d point{0, 0, 0};
-    Vec3d normal{0, 0, 0};   // unit surface normal at point (a ridge: either side's, or their mean)
+    Vec3d normal{0, 0, 0};  // unit surface normal at point (a ridge: either side's, or their mean)
     double k1 = 0.0, k2 = 0.0;  // principal curvatures where known (0 otherwise)
     bool ok = false;
     /// Where the model knows it: the index of the model face at (for a curve point: beside) the
@@ -33,7 +33,8 @@ public:
     /// locally from there and give the foot on the hint's own part of the model, which is
     /// project()'s unless another part passes nearer to p (a vertex then had better stay on its
     /// own sheet). Deterministic for a given hint; models without a search ignore the hint.
-    virtual ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const
+    virtual ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve,
+                                        int face_hint) const
     {
         static_cast<void>(face_hint);
         return project(p, cls, curve);

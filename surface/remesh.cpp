@@ -71,13 +71,10 @@ int RemeshRun::removal_rank(VertexHandle v) const
 {
     switch (ctx.vertex_class(v))
     {
-        case VertexClass::Smooth:
-            return 0;
+        case VertexClass::Smooth: return 0;
         case VertexClass::Ridge:
-        case VertexClass::Boundary:
-            return 1;
-        case VertexClass::Corner:
-            return 2;
+        case VertexClass::Boundary: return 1;
+        case VertexClass::Corner: return 2;
     }
     return 2;
 }
@@ -225,8 +222,9 @@ std::size_t flip_edges(RemeshRun& run, FlipGoal goal, const std::vector<char>* o
         for (std::size_t i = 0; i < on_boundary.size(); ++i)
             if (on_boundary[i]) valence_excess[i] += 2;
     }
-    auto deviation = [&](VertexHandle v, int delta)
-    { return std::abs(valence_excess[v.idx()] + delta); };
+    auto deviation = [&](VertexHandle v, int delta) {
+        return std::abs(valence_excess[v.idx()] + delta);
+    };
     std::size_t done = 0;
     // (A flip adds no edge; one deleted when reached is skipped. The passes walk the
     // elements by index: OpenMesh's skipping iterator asks the virtual n_edges() at each

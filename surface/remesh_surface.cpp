@@ -107,8 +107,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     SurfaceRemeshResult result;
     // Verbose: the CPU time of the fixed costs before the remesher starts (features, model, sizes).
     const Stopwatch clock;
-    auto report_setup = [&](const char* stage)
-    {
+    auto report_setup = [&](const char* stage) {
         if (settings.verbosity > 0)
             std::fprintf(stderr, "remesh_surface: after %s (%.2f s, cpu %.3f s)\n", stage,
                          clock.wall_seconds(), clock.cpu_seconds());
@@ -171,8 +170,9 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
 
     SurfaceRemeshOptions options;
     options.loop.size = [&sizes](const Vec3d& p) { return sizes.at(p); };
-    options.loop.size_near = [&sizes](const Vec3d& p, int face_hint)
-    { return sizes.at(p, face_hint); };
+    options.loop.size_near = [&sizes](const Vec3d& p, int face_hint) {
+        return sizes.at(p, face_hint);
+    };
     {
         // The remeshed surface starts as the model's own input: each vertex's first hint is a face
         // of its own (the model numbers the input faces in iteration order).

@@ -1,8 +1,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "surface/local_ops.h"
 #include "surface/detail/local_ops_geometry.h"
+#include "surface/local_ops.h"
 
 namespace hdimesh::surface
 {
@@ -39,7 +39,8 @@ HoleTriangulation triangulate_hole(const SurfaceMesh& mesh, const std::vector<Ve
             for (int k = i + 1; k < j; ++k)
             {
                 if (best[i][k] < 0.0 || best[k][j] < 0.0) continue;
-                const std::array<Vec3d, 3> t{mesh.point(ring[i]), mesh.point(ring[k]), mesh.point(ring[j])};
+                const std::array<Vec3d, 3> t{mesh.point(ring[i]), mesh.point(ring[k]),
+                                             mesh.point(ring[j])};
                 if (!turn_ok_cos(vertex_normal, normal(t), max_turn_cos)) continue;
                 const double q = std::min({best[i][k], best[k][j], qe(t)});
                 if (q > best[i][j])
@@ -121,7 +122,8 @@ OpResult try_remove_vertex(OperatorContext& ctx, VertexHandle v)
     }
     vertex_normal.normalize();
 
-    const HoleTriangulation hole = triangulate_hole(mesh, ring, vertex_normal, ctx.limits.max_normal_turn_deg);
+    const HoleTriangulation hole =
+        triangulate_hole(mesh, ring, vertex_normal, ctx.limits.max_normal_turn_deg);
     if (hole.worst < 0.0)
     {
         result.status = OpStatus::Geometry;
@@ -135,7 +137,8 @@ OpResult try_remove_vertex(OperatorContext& ctx, VertexHandle v)
     if (ctx.limits.max_model_distance > 0.0)
         for (const auto& t : hole.triangles)
         {
-            const Vec3d centroid = (mesh.point(ring[t[0]]) + mesh.point(ring[t[1]]) + mesh.point(ring[t[2]])) / 3.0;
+            const Vec3d centroid =
+                (mesh.point(ring[t[0]]) + mesh.point(ring[t[1]]) + mesh.point(ring[t[2]])) / 3.0;
             if (!ctx.near_model(centroid, ring[t[0]], ctx.limits.max_model_distance))
             {
                 result.status = OpStatus::Geometry;
@@ -165,7 +168,8 @@ OpResult try_remove_vertex(OperatorContext& ctx, VertexHandle v)
             const int i = std::min(t[s], t[(s + 1) % 3]), j = std::max(t[s], t[(s + 1) % 3]);
             if (j == i + 1 || (i == 0 && j == m - 1)) continue;
             const HalfedgeHandle chord = mesh.find_halfedge(ring[i], ring[j]);
-            if (chord.is_valid()) mesh.property(ctx.props.edge_curve, mesh.edge_handle(chord)) = kNoCurve;
+            if (chord.is_valid())
+                mesh.property(ctx.props.edge_curve, mesh.edge_handle(chord)) = kNoCurve;
         }
     if (ctx.hooks.on_remove_vertex) ctx.hooks.on_remove_vertex(mesh, v, new_faces);
     result.status = OpStatus::Done;

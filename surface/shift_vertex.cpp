@@ -2,9 +2,9 @@
 #include <cmath>
 #include <vector>
 
+#include "surface/detail/local_ops_geometry.h"
 #include "surface/detail/prefetch.h"
 #include "surface/local_ops.h"
-#include "surface/detail/local_ops_geometry.h"
 
 namespace hdimesh::surface
 {
@@ -17,7 +17,8 @@ bool optimal_point_curve(const OperatorContext& ctx, VertexHandle v, Vec3d& opti
     const SurfaceMesh& mesh = ctx.mesh;
     std::vector<Vec3d> ends;
     for (auto h : mesh.voh_range(v))
-        if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v)) ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
+        if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v))
+            ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
     if (ends.size() != 2) return false;
     optimal = 0.5 * (ends[0] + ends[1]);
     return true;
@@ -43,7 +44,7 @@ public:
         int a = 0, b = 0;  // the spokes after v in face order: (v, a, b) turns like the face
         int moved = 0;     // v's index in face order (detail::face_vertices)
         double outer_length = 0.0;  // |b - a|
-        Vec3d cross;                // (p1 - p0) × (p2 - p0) of the points in face order, v where it is
+        Vec3d cross;  // (p1 - p0) × (p2 - p0) of the points in face order, v where it is
         double cross_norm = 0.0;
     };
 
@@ -58,8 +59,11 @@ public:
         for (const Face& face : scratch_.faces)
         {
             if (quality_before < 0.0) break;
-            quality_before = unit_normal_ok(face) ? std::min(quality_before, qe(face, spoke(face.a).length, spoke(face.b).length, face.cross_norm))
-                                                  : -1.0;
+            quality_before =
+                unit_normal_ok(face)
+                    ? std::min(quality_before, qe(face, spoke(face.a).length, spoke(face.b).length,
+                                                  face.cross_norm))
+                    : -1.0;
         }
     }
     ~Ball() { scratch_.swap(kept()); }
@@ -77,28 +81,36 @@ public:
         // Edge k of the face goes from its point k to its point k + 1.
         switch (face.moved)
         {
-        case 0: return triangle_qe_from(length_a, face.outer_length, length_b, cross_norm);  // (v, a, b)
-        case 1: return triangle_qe_from(length_b, length_a, face.outer_length, cross_norm);  // (b, v, a)
-        default: return triangle_qe_from(face.outer_length, length_b, length_a, cross_norm);  // (a, b, v)
+            case 0:
+                return triangle_qe_from(length_a, face.outer_length, length_b,
+                                        cross_norm);  // (v, a, b)
+            case 1:
+                return triangle_qe_from(length_b, length_a, face.outer_length,
+                                        cross_norm);  // (b, v, a)
+            default:
+                return triangle_qe_from(face.outer_length, length_b, length_a,
+                                        cross_norm);  // (a, b, v)
         }
     }
 
-    // Worst Qe with v at p; -1 if a triangle turns more than the angle of cosine min_cos or degenerates.
-    // Stops early, returning a value below `refused_below`, once the worst is under it: the
-    // caller refuses any such move whatever the exact value (a smart shift's refused trials
+    // Worst Qe with v at p; -1 if a triangle turns more than the angle of cosine min_cos or
+    // degenerates. Stops early, returning a value below `refused_below`, once the worst is under
+    // it: the caller refuses any such move whatever the exact value (a smart shift's refused trials
     // were most of the polish's shifting).
     double quality(const Vec3d& p, double min_cos, double refused_below) const
     {
         // Each spoke's length is two faces' edge.
         std::vector<double>& length = scratch_.trial_lengths;
         length.resize(scratch_.spokes.size());
-        for (std::size_t j = 0; j < length.size(); ++j) length[j] = (scratch_.spokes[j].point - p).norm();
+        for (std::size_t j = 0; j < length.size(); ++j)
+            length[j] = (scratch_.spokes[j].point - p).norm();
         double worst = 1.0;
         for (const Face& face : scratch_.faces)
         {
             const Vec3d after = cross(face, p);
             const double after_norm = after.norm();
-            if (!detail::turn_ok_cross(face.cross, face.cross_norm, after, after_norm, min_cos)) return -1.0;
+            if (!detail::turn_ok_cross(face.cross, face.cross_norm, after, after_norm, min_cos))
+                return -1.0;
             worst = std::min(worst, qe(face, length[face.a], length[face.b], after_norm));
             if (worst < refused_below) return worst;
         }
@@ -110,7 +122,8 @@ private:
     {
         std::vector<Spoke> spokes;
         std::vector<Face> faces;
-        std::vector<HalfedgeHandle> around, back;  // v's outgoing halfedges in order; the backward walk's
+        std::vector<HalfedgeHandle> around,
+            back;  // v's outgoing halfedges in order; the backward walk's
         mutable std::vector<double> trial_lengths;  // quality()'s spoke lengths
         void swap(Scratch& o)
         {
@@ -138,16 +151,17 @@ private:
         const Vec3d& b = spoke(face.b).point;
         switch (face.moved)
         {
-        case 0: return OpenMesh::cross(a - p, b - p);  // (v, a, b)
-        case 1: return OpenMesh::cross(p - b, a - b);  // (b, v, a)
-        default: return OpenMesh::cross(b - a, p - a);  // (a, b, v)
+            case 0: return OpenMesh::cross(a - p, b - p);   // (v, a, b)
+            case 1: return OpenMesh::cross(p - b, a - b);   // (b, v, a)
+            default: return OpenMesh::cross(b - a, p - a);  // (a, b, v)
         }
     }
 
     // Whether detail::normal of the face, v where it is, is not degenerate (a unit vector).
     static bool unit_normal_ok(const Face& face)
     {
-        // A norm where neither its squares nor the quotients under- or overflow gives a unit vector.
+        // A norm where neither its squares nor the quotients under- or overflow gives a unit
+        // vector.
         if (detail::norm_in_safe_range(face.cross_norm)) return true;
         const Vec3d normal = face.cross_norm > 0.0 ? face.cross / face.cross_norm : Vec3d(0, 0, 0);
         return normal.sqrnorm() > 0.5;
@@ -177,7 +191,8 @@ private:
         ask_ahead(start);
         for (HalfedgeHandle forth = start, back = start;;)
         {
-            const HalfedgeHandle next = mesh.cw_rotated_halfedge_handle(forth);  // vf_range's direction
+            const HalfedgeHandle next =
+                mesh.cw_rotated_halfedge_handle(forth);  // vf_range's direction
             if (next == back) break;
             s.around.push_back(forth = next);
             ask_ahead(forth);
@@ -195,7 +210,8 @@ private:
             spoke.point = mesh.point(mesh.to_vertex_handle(s.around[j]));
             spoke.length = (spoke.point - centre_).norm();
         }
-        // h_j = v -> a_j; the face of h_j is (v, a_j, a_{j-1}): h_j follows the opposite of h_{j-1}.
+        // h_j = v -> a_j; the face of h_j is (v, a_j, a_{j-1}): h_j follows the opposite of
+        // h_{j-1}.
         for (int j = 0; j < spoke_count; ++j)
         {
             const HalfedgeHandle h = s.around[j];
@@ -237,8 +253,11 @@ bool optimal_point_smooth(const Ball& ball, const Vec3d& n, Vec3d& optimal)
         side /= len;
         const Vec3d ideal = 0.5 * (pa + pb) + (std::sqrt(3.0) / 2.0) * face.outer_length * side;
         // Qe of (v, a, b): the face's own when v comes first in it.
-        const double cross_norm = face.moved == 0 ? face.cross_norm : OpenMesh::cross(pa - pv, pb - pv).norm();
-        const double q = std::max(triangle_qe_from(ball.spoke(face.a).length, face.outer_length, ball.spoke(face.b).length, cross_norm), 0.05);
+        const double cross_norm =
+            face.moved == 0 ? face.cross_norm : OpenMesh::cross(pa - pv, pb - pv).norm();
+        const double q = std::max(triangle_qe_from(ball.spoke(face.a).length, face.outer_length,
+                                                   ball.spoke(face.b).length, cross_norm),
+                                  0.05);
         const double w = 1.0 / (q * q);
         sum += w * ideal;
         weight_sum += w;
@@ -255,8 +274,7 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
     SurfaceMesh& mesh = ctx.mesh;
     OpResult result;
     const VertexClass cls = ctx.vertex_class(v);
-    if (cls == VertexClass::Corner || mesh.is_isolated(v))
-        return refused(OpStatus::Class);
+    if (cls == VertexClass::Corner || mesh.is_isolated(v)) return refused(OpStatus::Class);
     if (cls == VertexClass::Smooth && mesh.is_boundary(v))
         return refused(OpStatus::Class);  // an unclassified boundary vertex: leave it alone
     const Vec3d p = mesh.point(v);
@@ -270,8 +288,7 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         for (const Ball::Face& face : ball.faces()) n += face.cross;
         if (!(n.norm() > 0.0)) return result;
         n.normalize();
-        if (!optimal_point_smooth(ball, n, optimal))
-            return refused(OpStatus::Geometry);
+        if (!optimal_point_smooth(ball, n, optimal)) return refused(OpStatus::Geometry);
     }
     else if (!optimal_point_curve(ctx, v, optimal))
         return refused(OpStatus::Class);
@@ -284,16 +301,17 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
     for (double step = options.step; step > options.step / 5.0; step *= 0.5)
     {
         Vec3d target = p + step * (optimal - p);
-        if (cls == VertexClass::Smooth) target -= OpenMesh::dot(target - p, n) * n;  // stay in the plane
-        const ProjectedPoint projected = ctx.model.project_near(target, cls, ctx.vertex_curve(v), ctx.model_face(v));
+        if (cls == VertexClass::Smooth)
+            target -= OpenMesh::dot(target - p, n) * n;  // stay in the plane
+        const ProjectedPoint projected =
+            ctx.model.project_near(target, cls, ctx.vertex_curve(v), ctx.model_face(v));
         if (!projected.ok) continue;
         const Vec3d q = projected.point;
         const double new_quality = ball.quality(q, min_cos, refused_below);
         if (new_quality < ctx.limits.min_new_quality && new_quality < old_quality) continue;
         if (new_quality < 0.0) continue;
         if (options.smart && new_quality < old_quality - 1e-12) continue;
-        if (options.accept && !options.accept(q))
-            return refused(OpStatus::Geometry);
+        if (options.accept && !options.accept(q)) return refused(OpStatus::Geometry);
         return commit_move(ctx, v, q, projected.face);
     }
     return refused(OpStatus::Quality);

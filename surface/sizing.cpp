@@ -36,7 +36,8 @@ double mean_edge_length(const SurfaceMesh& mesh)
     return mesh.n_edges() ? sum / mesh.n_edges() : 0.0;
 }
 
-std::vector<double> curvature_sizes(const SurfaceMesh& input, const SurfaceModel& model, const SizingOptions& options)
+std::vector<double> curvature_sizes(const SurfaceMesh& input, const SurfaceModel& model,
+                                    const SizingOptions& options)
 {
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
     OpenMesh::VPropHandleT<int> vertex_curve;
@@ -77,7 +78,8 @@ std::vector<double> curvature_sizes(const SurfaceMesh& input, const SurfaceModel
     return sizes;
 }
 
-void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const SizingOptions& options)
+void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes,
+                     const SizingOptions& options)
 {
     for (double& s : sizes)
     {
@@ -99,7 +101,8 @@ void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const
     for (auto e : input.edges())
     {
         const auto h = input.halfedge_handle(e, 0);
-        edges.push_back({input.from_vertex_handle(h).idx(), input.to_vertex_handle(h).idx(), input.calc_edge_length(e)});
+        edges.push_back({input.from_vertex_handle(h).idx(), input.to_vertex_handle(h).idx(),
+                         input.calc_edge_length(e)});
     }
     for (int pass = 0; pass < 100; ++pass)
     {

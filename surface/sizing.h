@@ -20,7 +20,8 @@ struct SizingOptions
     double hausd = 0.0;  // > 0 (and hsiz = 0): curvature-adaptive size
     double hmin = 0.0;   // ≤ 0: none
     double hmax = 0.0;   // ≤ 0: none
-    double hgrad = 1.3;  // ≤ 1: no gradation; neighbouring sizes differ by at most (hgrad−1)·distance
+    double hgrad =
+        1.3;  // ≤ 1: no gradation; neighbouring sizes differ by at most (hgrad−1)·distance
 };
 
 /// A size at every point of the model: a constant, or per-input-vertex sizes interpolated on the
@@ -44,10 +45,12 @@ private:
 
 /// Sizes at the input vertices from the curvature (smooth vertices: the model's quadric fit;
 /// curve vertices: the curve's turning angle per length), then bounded and graded.
-std::vector<double> curvature_sizes(const SurfaceMesh& input, const SurfaceModel& model, const SizingOptions& options);
+std::vector<double> curvature_sizes(const SurfaceMesh& input, const SurfaceModel& model,
+                                    const SizingOptions& options);
 
 /// Bounds sizes to [hmin, hmax] and limits their growth along input edges to hgrad.
-void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes, const SizingOptions& options);
+void bound_and_grade(const SurfaceMesh& input, std::vector<double>& sizes,
+                     const SizingOptions& options);
 
 /// Mean edge length of a mesh (the default size when none is given).
 double mean_edge_length(const SurfaceMesh& mesh);

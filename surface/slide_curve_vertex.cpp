@@ -11,8 +11,8 @@
 #include <array>
 #include <vector>
 
-#include "surface/local_ops.h"
 #include "surface/detail/local_ops_geometry.h"
+#include "surface/local_ops.h"
 
 namespace hdimesh::surface
 {
@@ -51,8 +51,10 @@ struct SlideStar
         for (const Vec3d& w : neighbours)
         {
             const double length = (w - p).norm(), now = (w - centre).norm();
-            if (options.max_length > 0.0 && length > options.max_length && length > now) return false;
-            if (options.min_length > 0.0 && length < options.min_length && length < now) return false;
+            if (options.max_length > 0.0 && length > options.max_length && length > now)
+                return false;
+            if (options.min_length > 0.0 && length < options.min_length && length < now)
+                return false;
         }
         return true;
     }
@@ -61,7 +63,8 @@ struct SlideStar
     bool turns_ok(const Vec3d& p, double min_cos) const
     {
         for (const detail::StarFace& face : faces)
-            if (!detail::turn_ok_cos(face.normal, detail::normal(face.with_moved_at(p)), min_cos)) return false;
+            if (!detail::turn_ok_cos(face.normal, detail::normal(face.with_moved_at(p)), min_cos))
+                return false;
         return true;
     }
 
@@ -72,8 +75,8 @@ struct SlideStar
         for (const detail::StarFace& face : faces)
         {
             const std::array<Vec3d, 3> t = face.with_moved_at(p);
-            const Vec3d samples[4] = {(t[0] + t[1] + t[2]) / 3.0, 0.5 * (t[0] + t[1]), 0.5 * (t[1] + t[2]),
-                                      0.5 * (t[2] + t[0])};
+            const Vec3d samples[4] = {(t[0] + t[1] + t[2]) / 3.0, 0.5 * (t[0] + t[1]),
+                                      0.5 * (t[1] + t[2]), 0.5 * (t[2] + t[0])};
             for (const Vec3d& x : samples) worst = std::max(worst, ctx.distance_to_model(x, v));
         }
         return worst;
@@ -88,21 +91,20 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
     // Topology and class: a ridge or boundary vertex with exactly two curve edges (a corner
     // never moves).
     const VertexClass cls = ctx.vertex_class(v);
-    if (cls != VertexClass::Ridge && cls != VertexClass::Boundary)
-        return refused(OpStatus::Class);
+    if (cls != VertexClass::Ridge && cls != VertexClass::Boundary) return refused(OpStatus::Class);
     std::vector<Vec3d> curve_ends;
     for (auto h : mesh.voh_range(v))
         if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v))
             curve_ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
-    if (curve_ends.size() != 2)
-        return refused(OpStatus::Class);
+    if (curve_ends.size() != 2) return refused(OpStatus::Class);
 
     const Vec3d p = mesh.point(v);
     const SlideStar star(mesh, v);
     const double before = star.worst_angle(p);
     const double min_cos = detail::cos_deg(ctx.limits.max_normal_turn_deg);
     // The distance bound: the tolerance (or the operators' limit), never tighter than now.
-    double max_distance = options.tolerance > 0.0 ? options.tolerance : ctx.limits.max_model_distance;
+    double max_distance =
+        options.tolerance > 0.0 ? options.tolerance : ctx.limits.max_model_distance;
     if (max_distance > 0.0) max_distance = std::max(max_distance, star.worst_distance(ctx, v, p));
 
     // Every trial through the layers (band, turn, distance: the costliest last), then the best
@@ -115,8 +117,8 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
         {
             // Up to 0.8 of the way: the neighbour's other edges are not looked at here.
             const double t = 0.8 * static_cast<double>(i) / static_cast<double>(options.samples);
-            const ProjectedPoint q =
-                ctx.model.project_near(p + t * (end - p), cls, ctx.vertex_curve(v), ctx.model_face(v));
+            const ProjectedPoint q = ctx.model.project_near(p + t * (end - p), cls,
+                                                            ctx.vertex_curve(v), ctx.model_face(v));
             if (!q.ok) continue;
             const double angle = star.worst_angle(q.point);
             if (!(angle > best) || !(angle > before + options.min_gain_deg)) continue;
@@ -133,8 +135,7 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
             best = angle;
             best_point = q;
         }
-    if (!best_point.ok)
-        return refused(refusal);
+    if (!best_point.ok) return refused(refusal);
     return commit_move(ctx, v, best_point.point, best_point.face);
 }
 

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "surface/detail/closest_point_tree.h"
-#include "surface/local_ops.h"
 #include "surface/detail/local_ops_geometry.h"
+#include "surface/local_ops.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -28,7 +28,8 @@ constexpr double kSnapSteps[] = {1.0, 0.75, 0.5, 0.35};
 
 }  // namespace
 
-OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& target, const SnapOptions& options)
+OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& target,
+                         const SnapOptions& options)
 {
     using namespace detail;
     SurfaceMesh& mesh = ctx.mesh;
@@ -56,12 +57,14 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
     const ProjectedPoint on_model = ctx.model.project_near(target, cls, curve, ctx.model_face(v));
     if (cls != VertexClass::Smooth)
     {
-        const bool on_own_curve = on_model.ok && (on_model.point - target).norm() <= 1e-9 * star_length;
+        const bool on_own_curve =
+            on_model.ok && (on_model.point - target).norm() <= 1e-9 * star_length;
         bool between = curve_neighbours.size() == 2;
         if (between)
         {
             const double span = (curve_neighbours[1] - curve_neighbours[0]).norm();
-            between = (target - curve_neighbours[0]).norm() < span && (target - curve_neighbours[1]).norm() < span;
+            between = (target - curve_neighbours[0]).norm() < span &&
+                      (target - curve_neighbours[1]).norm() < span;
         }
         if (!on_own_curve || !between)
         {
@@ -76,33 +79,45 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
     std::vector<double> witness_before;
     double star_before = -1.0;  // the worst sample of the star before, computed when needed
     const double bound = options.tolerance;
-    auto worst_sample = [&](const Vec3d& at) { return star_samples_beyond(ctx, v, at, options.tolerance); };
+    auto worst_sample = [&](const Vec3d& at) {
+        return star_samples_beyond(ctx, v, at, options.tolerance);
+    };
     auto check = [&](const Vec3d& q, const ProjectedPoint& q_on_model) {
         // The target must come within the tolerance: the point of the move (not of a repair).
-        if (!options.raise_min_angle && patch.distance(target, &q) > options.tolerance) return OpStatus::Geometry;
+        if (!options.raise_min_angle && patch.distance(target, &q) > options.tolerance)
+            return OpStatus::Geometry;
         double old_min_angle = 180.0, new_min_angle = 180.0;
         // Bending over a crest needs the larger turn; a repair move is an ordinary smoothing
         // move and keeps the operators' limit.
-        const double turn_limit = options.raise_min_angle ? ctx.limits.max_normal_turn_deg
-                                                          : std::max(ctx.limits.max_normal_turn_deg, kMaxSnapTurnDeg);
-        const double turn_limit_cos = cos_deg(turn_limit), from_model_cos = cos_deg(kMaxTurnFromModelDeg);
+        const double turn_limit = options.raise_min_angle
+                                      ? ctx.limits.max_normal_turn_deg
+                                      : std::max(ctx.limits.max_normal_turn_deg, kMaxSnapTurnDeg);
+        const double turn_limit_cos = cos_deg(turn_limit),
+                     from_model_cos = cos_deg(kMaxTurnFromModelDeg);
         for (auto f : mesh.vf_range(v))
         {
             const auto before = face_points(mesh, f), after = face_points_with(mesh, f, v, q);
             const Vec3d n_after = normal(after);
-            old_min_angle = std::min(old_min_angle, triangle_min_angle_deg(before[0], before[1], before[2]));
-            new_min_angle = std::min(new_min_angle, triangle_min_angle_deg(after[0], after[1], after[2]));
-            if (!turn_ok_cos(normal(before), n_after, turn_limit_cos) || qe(after) < ctx.limits.min_new_quality)
+            old_min_angle =
+                std::min(old_min_angle, triangle_min_angle_deg(before[0], before[1], before[2]));
+            new_min_angle =
+                std::min(new_min_angle, triangle_min_angle_deg(after[0], after[1], after[2]));
+            if (!turn_ok_cos(normal(before), n_after, turn_limit_cos) ||
+                qe(after) < ctx.limits.min_new_quality)
                 return OpStatus::Geometry;
             if (cls == VertexClass::Smooth && q_on_model.ok)
             {
-                const ProjectedPoint under = ctx.model.project_near((after[0] + after[1] + after[2]) / 3.0, VertexClass::Smooth,
-                                                                    kNoCurve, q_on_model.face >= 0 ? q_on_model.face : ctx.model_face(v));
-                if (!turn_ok_cos(under.ok ? under.normal : q_on_model.normal, n_after, from_model_cos)) return OpStatus::Geometry;
+                const ProjectedPoint under = ctx.model.project_near(
+                    (after[0] + after[1] + after[2]) / 3.0, VertexClass::Smooth, kNoCurve,
+                    q_on_model.face >= 0 ? q_on_model.face : ctx.model_face(v));
+                if (!turn_ok_cos(under.ok ? under.normal : q_on_model.normal, n_after,
+                                 from_model_cos))
+                    return OpStatus::Geometry;
             }
         }
-        if (options.raise_min_angle ? !(new_min_angle > old_min_angle + kMinAngleGainDeg)
-                                    : new_min_angle < std::min(options.min_angle_deg, old_min_angle))
+        if (options.raise_min_angle
+                ? !(new_min_angle > old_min_angle + kMinAngleGainDeg)
+                : new_min_angle < std::min(options.min_angle_deg, old_min_angle))
             return OpStatus::Quality;
         // Sizes: no edge of the star leaves the band or gets farther out of it; a repair may
         // trade (a needle's short edge is what it repairs) but not add an edge out of the band.
@@ -110,14 +125,18 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         for (auto w : mesh.vv_range(v))
         {
             const Vec3d r = mesh.point(w);
-            const double before = out_of_band((r - p).norm(), options.min_length, options.max_length);
-            const double after = out_of_band((r - q).norm(), options.min_length, options.max_length);
+            const double before =
+                out_of_band((r - p).norm(), options.min_length, options.max_length);
+            const double after =
+                out_of_band((r - q).norm(), options.min_length, options.max_length);
             out_before += before > 0.0;
             out_after += after > 0.0;
             const double length = (r - q).norm();
-            const bool shorter_above_floor =
-                options.floor_length > 0.0 && length < options.min_length && length >= options.floor_length;
-            if (!options.raise_min_angle && after > 0.0 && after > before && !shorter_above_floor) return OpStatus::Quality;
+            const bool shorter_above_floor = options.floor_length > 0.0 &&
+                                             length < options.min_length &&
+                                             length >= options.floor_length;
+            if (!options.raise_min_angle && after > 0.0 && after > before && !shorter_above_floor)
+                return OpStatus::Quality;
         }
         if (out_after > out_before) return OpStatus::Quality;
         const double star_after = worst_sample(q);
@@ -129,12 +148,14 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
         if (witness_before.size() != options.witnesses.size())
         {
             witness_before.clear();
-            for (const Vec3d& w : options.witnesses) witness_before.push_back(patch.distance(w, nullptr));
+            for (const Vec3d& w : options.witnesses)
+                witness_before.push_back(patch.distance(w, nullptr));
         }
         for (std::size_t i = 0; i < options.witnesses.size(); ++i)
         {
             const double after = patch.distance(options.witnesses[i], &q);
-            if (after > bound && after > witness_before[i] + 1e-12 * star_length) return OpStatus::Geometry;
+            if (after > bound && after > witness_before[i] + 1e-12 * star_length)
+                return OpStatus::Geometry;
         }
         return OpStatus::Done;
     };
@@ -149,7 +170,8 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
     {
         if (step < 1.0)
         {
-            q_on_model = ctx.model.project_near(p + step * (target - p), cls, curve, ctx.model_face(v));
+            q_on_model =
+                ctx.model.project_near(p + step * (target - p), cls, curve, ctx.model_face(v));
             if (!q_on_model.ok) continue;
             q = q_on_model.point;
         }

@@ -1,7 +1,7 @@
 #include <algorithm>
 
-#include "surface/local_ops.h"
 #include "surface/detail/local_ops_geometry.h"
+#include "surface/local_ops.h"
 #include "surface/surface_quality.h"
 
 namespace hdimesh::surface
@@ -27,17 +27,22 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
     // Class layer: the new vertex lies on the edge's curve, if any.
     const int curve = ctx.edge_curve(e);
     VertexClass cls = VertexClass::Smooth;
-    if (mesh.is_boundary(e)) cls = VertexClass::Boundary;
-    else if (curve != kNoCurve) cls = VertexClass::Ridge;
+    if (mesh.is_boundary(e))
+        cls = VertexClass::Boundary;
+    else if (curve != kNoCurve)
+        cls = VertexClass::Ridge;
 
     // Geometry layer: the projected midpoint must not jump away (a projection onto the wrong
     // sheet or curve) and the new triangles must not turn.
     const Vec3d mid = 0.5 * (pa + pb);
     Vec3d p = mid;
     int model_face = ctx.model_face(a);
-    ProjectedPoint projected = ctx.model.project_near(at && cls == VertexClass::Smooth ? *at : mid, cls, curve, model_face);
-    if (at && cls == VertexClass::Smooth) p = *at;
-    else if (projected.ok) p = projected.point;
+    ProjectedPoint projected = ctx.model.project_near(at && cls == VertexClass::Smooth ? *at : mid,
+                                                      cls, curve, model_face);
+    if (at && cls == VertexClass::Smooth)
+        p = *at;
+    else if (projected.ok)
+        p = projected.point;
     if (projected.ok && projected.face >= 0) model_face = projected.face;  // the hint near p
     if ((p - mid).norm() > 0.5 * length)
     {
@@ -50,14 +55,17 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
     {
         const FaceHandle f = mesh.face_handle(h);
         if (!f.is_valid()) continue;
-        const Vec3d from = mesh.point(mesh.from_vertex_handle(h)), to = mesh.point(mesh.to_vertex_handle(h));
+        const Vec3d from = mesh.point(mesh.from_vertex_handle(h)),
+                    to = mesh.point(mesh.to_vertex_handle(h));
         const Vec3d opposite = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
         const Vec3d old_normal = triangle_normal(from, to, opposite);
-        const bool turn_from_old = turn_ok_cos(old_normal, triangle_normal(from, p, opposite), max_turn_cos) &&
-                                   turn_ok_cos(old_normal, triangle_normal(p, to, opposite), max_turn_cos);
+        const bool turn_from_old =
+            turn_ok_cos(old_normal, triangle_normal(from, p, opposite), max_turn_cos) &&
+            turn_ok_cos(old_normal, triangle_normal(p, to, opposite), max_turn_cos);
         // An edge across a crease the features dropped (a chord far from the model): its new
         // vertex, on the model, turns the triangles a lot; that is the point of the split. Then
-        // the new triangles must not fold against the model under the new vertex, and stay well shaped.
+        // the new triangles must not fold against the model under the new vertex, and stay well
+        // shaped.
         const bool follows_model =
             !turn_from_old && projected.ok && cls == VertexClass::Smooth &&
             turn_ok_cos(projected.normal, triangle_normal(from, p, opposite), across_crease_cos) &&
@@ -76,7 +84,8 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
         return result;
     }
 
-    // Commit. Each new face takes the ref of the face it was cut from (found by its opposite vertex).
+    // Commit. Each new face takes the ref of the face it was cut from (found by its opposite
+    // vertex).
     VertexHandle opposite[2];
     int ref[2] = {0, 0};
     int side = 0;
@@ -100,7 +109,8 @@ OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
     for (auto h : mesh.voh_range(v))
     {
         const VertexHandle w = mesh.to_vertex_handle(h);
-        mesh.property(ctx.props.edge_curve, mesh.edge_handle(h)) = (w == a || w == b) ? curve : kNoCurve;
+        mesh.property(ctx.props.edge_curve, mesh.edge_handle(h)) =
+            (w == a || w == b) ? curve : kNoCurve;
     }
     for (auto f : mesh.vf_range(v))
     {

@@ -71,7 +71,8 @@ TriangleSoup read_obj(const std::string& path)
                 {
                     fail("bad face index '" + w + "'");
                 }
-                if (index < 0) index += static_cast<long>(soup.points.size()) + 1;  // relative index
+                if (index < 0)
+                    index += static_cast<long>(soup.points.size()) + 1;  // relative index
                 if (index < 1 || static_cast<std::size_t>(index) > soup.points.size())
                     fail("face index " + std::to_string(index) + " out of range");
                 poly.push_back(static_cast<int>(index - 1));
@@ -155,9 +156,7 @@ TriangleSoup read_medit(const std::string& path)
     TriangleSoup soup;
     bool has_vertices = false;
     medit::read_ascii_keywords(
-        in, medit::EndKeyword::Optional, nullptr,
-        [&](std::string_view keyword)
-        {
+        in, medit::EndKeyword::Optional, nullptr, [&](std::string_view keyword) {
             if (keyword == "Vertices")
             {
                 const std::size_t n = in.count("Vertices count", 8);
@@ -207,7 +206,8 @@ TriangleSoup read_with_openmesh(const std::string& path)
     }
     OpenMesh::TriMesh_ArrayKernelT<SurfaceTraits> mesh;
     OpenMesh::IO::Options options;
-    if (!OpenMesh::IO::read_mesh(mesh, path, options)) throw InputError(path + ": cannot parse as a surface mesh");
+    if (!OpenMesh::IO::read_mesh(mesh, path, options))
+        throw InputError(path + ": cannot parse as a surface mesh");
     TriangleSoup soup;
     for (auto v : mesh.vertices()) soup.points.push_back(mesh.point(v));
     for (auto f : mesh.faces())
@@ -234,9 +234,10 @@ std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& c
         }
     for (const auto& [edge, faces] : faces_of_edge)
         if (faces.size() > 2)
-            throw InputError(source + ": non-manifold edge between vertices " + std::to_string(edge.first + 1) +
-                                    " and " + std::to_string(edge.second + 1) + " (" + std::to_string(faces.size()) +
-                                    " triangles share it)");
+            throw InputError(source + ": non-manifold edge between vertices " +
+                             std::to_string(edge.first + 1) + " and " +
+                             std::to_string(edge.second + 1) + " (" + std::to_string(faces.size()) +
+                             " triangles share it)");
     auto has_directed = [&](int f, int a, int b) {
         const auto& t = soup.triangles[f];
         for (int k = 0; k < 3; ++k)
@@ -268,7 +269,7 @@ std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& c
                     {
                         if (same_direction)
                             throw InputError(source + ": non-orientable surface (at triangle " +
-                                                    std::to_string(g + 1) + ")");
+                                             std::to_string(g + 1) + ")");
                         continue;
                     }
                     if (same_direction)
@@ -292,7 +293,8 @@ std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& c
                 const int a = t[k], b = t[(k + 1) % 3];
                 if (faces_of_edge[{std::min(a, b), std::max(a, b)}].size() != 2) closed = false;
             }
-            volume += OpenMesh::dot(soup.points[t[0]], OpenMesh::cross(soup.points[t[1]], soup.points[t[2]]));
+            volume += OpenMesh::dot(soup.points[t[0]],
+                                    OpenMesh::cross(soup.points[t[1]], soup.points[t[2]]));
         }
         if (closed && volume < 0.0)
         {
@@ -315,7 +317,8 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
     for (std::size_t i = 0; i < soup.points.size(); ++i)
     {
         const auto& p = soup.points[i];
-        const auto [it, inserted] = first_at.emplace(std::array<double, 3>{p[0], p[1], p[2]}, static_cast<int>(i));
+        const auto [it, inserted] =
+            first_at.emplace(std::array<double, 3>{p[0], p[1], p[2]}, static_cast<int>(i));
         old2new_vertex[i] = it->second;
         if (!inserted) ++report.merged_vertices;
     }
@@ -326,7 +329,9 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
     {
         std::array<int, 3> t;
         for (int k = 0; k < 3; ++k) t[k] = old2new_vertex[soup.triangles[f][k]];
-        const double area = OpenMesh::cross(soup.points[t[1]] - soup.points[t[0]], soup.points[t[2]] - soup.points[t[0]]).norm();
+        const double area = OpenMesh::cross(soup.points[t[1]] - soup.points[t[0]],
+                                            soup.points[t[2]] - soup.points[t[0]])
+                                .norm();
         if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(area > 0.0))
         {
             ++report.degenerate_faces;
@@ -369,8 +374,8 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
         const FaceHandle fh = mesh.add_face(handles[t[0]], handles[t[1]], handles[t[2]]);
         if (!fh.is_valid())
             throw InputError(source + ": triangle " + std::to_string(f + 1) + " (vertices " +
-                                    std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
-                                    std::to_string(t[2] + 1) + ") makes a non-manifold vertex");
+                             std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
+                             std::to_string(t[2] + 1) + ") makes a non-manifold vertex");
         mesh.property(props.face_ref, fh) = clean.refs[f];
     }
     for (auto v : mesh.vertices())
@@ -382,7 +387,8 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
     for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
 
     auto warn = [&](std::size_t count, const std::string& what) {
-        if (count) report.warnings.push_back(source + ": warning: " + std::to_string(count) + " " + what);
+        if (count)
+            report.warnings.push_back(source + ": warning: " + std::to_string(count) + " " + what);
     };
     warn(report.merged_vertices, "duplicate vertices merged");
     warn(report.degenerate_faces, "degenerate triangles dropped");
@@ -398,11 +404,17 @@ SurfaceMesh read_surface(const std::string& path, ReadReport* report)
 {
     const std::string ext = lower_extension(path);
     TriangleSoup soup;
-    if (ext == "obj") soup = read_obj(path);
-    else if (ext == "off") soup = read_off(path);
-    else if (ext == "mesh") soup = read_medit(path);
-    else if (ext == "stl" || ext == "ply") soup = read_with_openmesh(path);
-    else throw InputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
+    if (ext == "obj")
+        soup = read_obj(path);
+    else if (ext == "off")
+        soup = read_off(path);
+    else if (ext == "mesh")
+        soup = read_medit(path);
+    else if (ext == "stl" || ext == "ply")
+        soup = read_with_openmesh(path);
+    else
+        throw InputError(path + ": unknown surface format '" + ext +
+                         "' (obj, off, stl, ply, mesh)");
     return build_surface(std::move(soup), path, report);
 }
 
@@ -437,14 +449,16 @@ void write_medit(const SurfaceMesh& mesh, const std::string& path)
     }
     std::vector<EdgeHandle> features;
     for (auto e : mesh.edges())
-        if ((curves && mesh.property(edge_curve, e) != kNoCurve) || mesh.is_boundary(e)) features.push_back(e);
+        if ((curves && mesh.property(edge_curve, e) != kNoCurve) || mesh.is_boundary(e))
+            features.push_back(e);
     if (!features.empty())
     {
         out << "Edges\n" << features.size() << "\n";
         for (auto e : features)
         {
             const auto h = mesh.halfedge_handle(e, 0);
-            out << index[mesh.from_vertex_handle(h).idx()] << " " << index[mesh.to_vertex_handle(h).idx()] << " "
+            out << index[mesh.from_vertex_handle(h).idx()] << " "
+                << index[mesh.to_vertex_handle(h).idx()] << " "
                 << (curves ? mesh.property(edge_curve, e) + 1 : 0) << "\n";
         }
         std::vector<int> ridges;
@@ -457,7 +471,8 @@ void write_medit(const SurfaceMesh& mesh, const std::string& path)
     {
         std::vector<int> corners;
         for (auto v : mesh.vertices())
-            if (mesh.property(vertex_class, v) == VertexClass::Corner) corners.push_back(index[v.idx()]);
+            if (mesh.property(vertex_class, v) == VertexClass::Corner)
+                corners.push_back(index[v.idx()]);
         out << "Corners\n" << corners.size() << "\n";
         for (int c : corners) out << c << "\n";
     }
@@ -472,8 +487,10 @@ void write_surface(const SurfaceMesh& mesh, const std::string& path)
 {
     const std::string ext = lower_extension(path);
     if (ext != "obj" && ext != "off" && ext != "stl" && ext != "ply" && ext != "mesh")
-        throw InputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
-    // Same folder (rename stays on one file system), same extension (OpenMesh picks the writer by it).
+        throw InputError(path + ": unknown surface format '" + ext +
+                         "' (obj, off, stl, ply, mesh)");
+    // Same folder (rename stays on one file system), same extension (OpenMesh picks the writer by
+    // it).
     const std::string temp = path + ".tmp" + std::to_string(::getpid()) + "." + ext;
     if (ext == "mesh")
         write_medit(mesh, temp);

@@ -20,12 +20,12 @@ namespace hdimesh::surface
 struct ReadReport
 {
     std::size_t merged_vertices = 0;
-    std::size_t degenerate_faces = 0;    // dropped: a repeated vertex or zero area
-    std::size_t duplicate_faces = 0;     // dropped: same three vertices as an earlier face
+    std::size_t degenerate_faces = 0;  // dropped: a repeated vertex or zero area
+    std::size_t duplicate_faces = 0;   // dropped: same three vertices as an earlier face
     std::size_t reoriented_faces = 0;
-    std::size_t unused_vertices = 0;     // dropped: referenced by no face
+    std::size_t unused_vertices = 0;  // dropped: referenced by no face
     std::size_t components = 0;
-    std::vector<std::string> warnings;   // one line per repair, naming the file
+    std::vector<std::string> warnings;  // one line per repair, naming the file
 };
 
 /// A triangle soup: what the readers produce before the mesh is built.
@@ -38,7 +38,8 @@ struct TriangleSoup
 
 /// Builds a mesh from a soup, repairing as described above. `source` names the input in
 /// messages.
-SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadReport* report = nullptr);
+SurfaceMesh build_surface(TriangleSoup soup, const std::string& source,
+                          ReadReport* report = nullptr);
 
 /// Reads by extension (.obj .off .stl .ply .mesh, case-insensitive). Throws IoError
 /// (cannot open) or InputError (malformed, unrepairable, empty).

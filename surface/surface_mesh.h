@@ -2,10 +2,9 @@
 // The surface mesh type of hdimesh and the names of the properties every surface algorithm
 // shares (vertex class, feature curve, size, refs). One header so that the names exist once.
 
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <cassert>
 #include <cstdint>
-
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include "common/classification.h"
 
@@ -43,10 +42,10 @@ inline const char* to_string(VertexClass c)
 {
     switch (c)
     {
-    case VertexClass::Smooth: return "smooth";
-    case VertexClass::Ridge: return "ridge";
-    case VertexClass::Boundary: return "boundary";
-    case VertexClass::Corner: return "corner";
+        case VertexClass::Smooth: return "smooth";
+        case VertexClass::Ridge: return "ridge";
+        case VertexClass::Boundary: return "boundary";
+        case VertexClass::Corner: return "corner";
     }
     return "?";
 }
@@ -57,10 +56,10 @@ inline Classification to_classification(VertexClass c, int id = kNoModelEntity)
 {
     switch (c)
     {
-    case VertexClass::Smooth: return {Dimension::Surface, id, false};
-    case VertexClass::Ridge: return {Dimension::Curve, id, false};
-    case VertexClass::Boundary: return {Dimension::Curve, id, true};
-    case VertexClass::Corner: return {Dimension::Corner, id, false};
+        case VertexClass::Smooth: return {Dimension::Surface, id, false};
+        case VertexClass::Ridge: return {Dimension::Curve, id, false};
+        case VertexClass::Boundary: return {Dimension::Curve, id, true};
+        case VertexClass::Corner: return {Dimension::Corner, id, false};
     }
     return {Dimension::Surface, id, false};
 }
@@ -71,10 +70,10 @@ inline VertexClass to_vertex_class(const Classification& c)
 {
     switch (c.dimension)
     {
-    case Dimension::Corner: return VertexClass::Corner;
-    case Dimension::Curve: return c.open_boundary ? VertexClass::Boundary : VertexClass::Ridge;
-    case Dimension::Surface: return VertexClass::Smooth;
-    case Dimension::Volume: break;
+        case Dimension::Corner: return VertexClass::Corner;
+        case Dimension::Curve: return c.open_boundary ? VertexClass::Boundary : VertexClass::Ridge;
+        case Dimension::Surface: return VertexClass::Smooth;
+        case Dimension::Volume: break;
     }
     assert(false && "a surface vertex never lies in a volume");
     return VertexClass::Smooth;
@@ -86,10 +85,12 @@ constexpr int kNoCurve = -1;
 namespace property_names
 {
 constexpr const char* vertex_class = "hdimesh:v:class";  // VertexClass
-constexpr const char* vertex_curve = "hdimesh:v:curve";  // int, feature curve of a ridge/boundary vertex
-constexpr const char* vertex_size = "hdimesh:v:size";    // double, target edge length at the vertex
-constexpr const char* edge_curve = "hdimesh:e:curve";    // int, feature curve of a ridge/boundary edge
-constexpr const char* face_ref = "hdimesh:f:ref";        // int, surface reference (material/patch)
+constexpr const char* vertex_curve =
+    "hdimesh:v:curve";  // int, feature curve of a ridge/boundary vertex
+constexpr const char* vertex_size = "hdimesh:v:size";  // double, target edge length at the vertex
+constexpr const char* edge_curve =
+    "hdimesh:e:curve";                             // int, feature curve of a ridge/boundary edge
+constexpr const char* face_ref = "hdimesh:f:ref";  // int, surface reference (material/patch)
 // int, the model face a vertex was last projected onto (ProjectedPoint::face; -1: none): the
 // hint of the next projection near it. Projections do not depend on it; sizes interpolated on
 // the hinted face may differ by rounding (SurfaceModel::interpolate).
@@ -101,15 +102,15 @@ constexpr const char* vertex_model_face = "hdimesh:v:model_face";
 struct SurfaceProperties
 {
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
-    OpenMesh::VPropHandleT<int> vertex_curve;
+    OpenMesh::VPropHandleT<int> vertex_curve, vertex_model_face;  // see property_names
     OpenMesh::VPropHandleT<double> vertex_size;
     OpenMesh::EPropHandleT<int> edge_curve;
     OpenMesh::FPropHandleT<int> face_ref;
-    OpenMesh::VPropHandleT<int> vertex_model_face;
 
     explicit SurfaceProperties(SurfaceMesh& mesh)
     {
-        get_or_add(mesh, vertex_class, property_names::vertex_class, VertexClass::Smooth, mesh.vertices());
+        get_or_add(mesh, vertex_class, property_names::vertex_class, VertexClass::Smooth,
+                   mesh.vertices());
         get_or_add(mesh, vertex_curve, property_names::vertex_curve, kNoCurve, mesh.vertices());
         get_or_add(mesh, vertex_size, property_names::vertex_size, 0.0, mesh.vertices());
         get_or_add(mesh, edge_curve, property_names::edge_curve, kNoCurve, mesh.edges());
@@ -118,10 +119,11 @@ struct SurfaceProperties
     }
 
 private:
-    // `handle` of the property `name`, added with `initial` on every element of `elements` if missing.
+    // `handle` of the property `name`, added with `initial` on every element of `elements` if
+    // missing.
     template <class Handle, class Value, class Elements>
-    static void get_or_add(SurfaceMesh& mesh, Handle& handle, const char* name, const Value& initial,
-                           Elements elements)
+    static void get_or_add(SurfaceMesh& mesh, Handle& handle, const char* name,
+                           const Value& initial, Elements elements)
     {
         if (mesh.get_property_handle(handle, name)) return;
         mesh.add_property(handle, name);

@@ -1,13 +1,12 @@
 #include "surface/surface_model.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "common/errors.h"
 #include "surface/detail/closest_point_tree.h"
@@ -38,7 +37,8 @@ struct VertexStars
     std::vector<int> offsets, neighbours;
     std::vector<Vec3d> area_normals;
 
-    VertexStars(const SurfaceMesh& mesh, const std::vector<Vec3d>& face_normal, const std::vector<double>& face_area)
+    VertexStars(const SurfaceMesh& mesh, const std::vector<Vec3d>& face_normal,
+                const std::vector<double>& face_area)
     {
         offsets.reserve(mesh.n_vertices() + 1);
         neighbours.reserve(2 * mesh.n_edges());
@@ -93,7 +93,8 @@ double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& st
     }
     if (ring.size() < 6 || !(normal.norm() > 0.0)) return 0.0;
     const Eigen::Vector3d n = to_eigen(normal).normalized();
-    const Eigen::Vector3d seed = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d seed =
+        std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     const Eigen::Vector3d e1 = n.cross(seed).normalized();
     const Eigen::Vector3d e2 = n.cross(e1);
     const Eigen::Vector3d origin = to_eigen(points[v]);
@@ -155,18 +156,20 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         for (auto v : input.all_vertices())
             if (input.status(v).deleted())
                 throw InputError("SurfaceModel: the input mesh has deleted vertices (e.g. vertex " +
-                                        std::to_string(v.idx()) + "): garbage-collect it first");
+                                 std::to_string(v.idx()) + "): garbage-collect it first");
         for (auto f : input.all_faces())
             if (input.status(f).deleted())
                 throw InputError("SurfaceModel: the input mesh has deleted faces (e.g. face " +
-                                        std::to_string(f.idx()) + "): garbage-collect it first");
+                                 std::to_string(f.idx()) + "): garbage-collect it first");
     }
     // Read-only look-up: an unclassified input is all smooth, without curves.
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
     OpenMesh::EPropHandleT<int> edge_curve;
     const bool classified = input.get_property_handle(vertex_class, property_names::vertex_class) &&
                             input.get_property_handle(edge_curve, property_names::edge_curve);
-    auto curve_of = [&](EdgeHandle e) { return classified ? input.property(edge_curve, e) : kNoCurve; };
+    auto curve_of = [&](EdgeHandle e) {
+        return classified ? input.property(edge_curve, e) : kNoCurve;
+    };
     auto is_smooth = [&](VertexHandle v) {
         return !classified || input.property(vertex_class, v) == VertexClass::Smooth;
     };
@@ -193,7 +196,8 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         face_normal_by_index[f.idx()] = face_normals_.back();
         model_face_by_index[f.idx()] = static_cast<int>(face_vertices_.size()) - 1;
     }
-    triangles_ = std::make_unique<const ClosestPointTree>(ClosestPointTree::from_triangles(std::move(tris)));
+    triangles_ =
+        std::make_unique<const ClosestPointTree>(ClosestPointTree::from_triangles(std::move(tris)));
     face_neighbours_.reserve(face_vertices_.size());
     for (auto f : input.faces())
     {
@@ -210,7 +214,8 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     vertex_face_offsets_.assign(points_.size() + 1, 0);
     for (const auto& fv : face_vertices_)
         for (const int v : fv) ++vertex_face_offsets_[v + 1];
-    for (std::size_t v = 0; v < points_.size(); ++v) vertex_face_offsets_[v + 1] += vertex_face_offsets_[v];
+    for (std::size_t v = 0; v < points_.size(); ++v)
+        vertex_face_offsets_[v + 1] += vertex_face_offsets_[v];
     vertex_faces_.resize(vertex_face_offsets_.back());
     {
         std::vector<int> next(vertex_face_offsets_.begin(), vertex_face_offsets_.end() - 1);
@@ -225,7 +230,8 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         const auto& fv = face_vertices_[f];
         for (int k = 0; k < 3; ++k)
         {
-            const Vec3d u = points_[fv[(k + 1) % 3]] - points_[fv[k]], w = points_[fv[(k + 2) % 3]] - points_[fv[k]];
+            const Vec3d u = points_[fv[(k + 1) % 3]] - points_[fv[k]],
+                        w = points_[fv[(k + 2) % 3]] - points_[fv[k]];
             const double lu = u.norm(), lw = w.norm();
             if (!(lu > 0.0 && lw > 0.0)) continue;
             const double angle = std::acos(std::clamp(OpenMesh::dot(u, w) / (lu * lw), -1.0, 1.0));
@@ -245,7 +251,8 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         const int c = curve_of(e);
         if (c < 0) continue;
         const auto h = input.halfedge_handle(e, 0);
-        segments[c].push_back({input.point(input.from_vertex_handle(h)), input.point(input.to_vertex_handle(h))});
+        segments[c].push_back(
+            {input.point(input.from_vertex_handle(h)), input.point(input.to_vertex_handle(h))});
         Vec3d n(0, 0, 0);
         int beside = -1;
         for (int i = 0; i < 2; ++i)
@@ -268,7 +275,9 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     const VertexStars stars(input, face_normal_by_index, face_area);
     QuadricFitScratch scratch;
     for (auto v : input.vertices())
-        if (is_smooth(v)) curvature_[v.idx()] = quadric_curvature(points_, stars, v.idx(), stars.area_normals[v.idx()], scratch);
+        if (is_smooth(v))
+            curvature_[v.idx()] =
+                quadric_curvature(points_, stars, v.idx(), stars.area_normals[v.idx()], scratch);
 }
 
 // For the descent's bound (FacePlane). Every sine of the triangle's angles is at least
@@ -276,7 +285,8 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
 // normal's direction is within 1e-11 of the exact plane's and the closest point the descent
 // computes within 1e-14 (|a| + |b| + |c|) of that plane: the margin 1e-9 (|a| + |b| + |c|)
 // covers both with a wide berth. A flatter triangle gets no bound (an infinite margin).
-SurfaceModel::FacePlane SurfaceModel::face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& unit_normal)
+SurfaceModel::FacePlane SurfaceModel::face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                                 const Vec3d& unit_normal)
 {
     FacePlane plane;
     plane.normal = unit_normal;
@@ -284,7 +294,8 @@ SurfaceModel::FacePlane SurfaceModel::face_plane(const Vec3d& a, const Vec3d& b,
     const double cross = OpenMesh::cross(b - a, c - a).norm();
     const double longest2 = std::max({(b - a).sqrnorm(), (c - b).sqrnorm(), (a - c).sqrnorm()});
     const bool well_shaped = cross > 0.0 && cross >= 1e-4 * longest2 && std::isfinite(longest2);
-    plane.margin = well_shaped ? 1e-9 * (a.norm() + b.norm() + c.norm()) : std::numeric_limits<double>::infinity();
+    plane.margin = well_shaped ? 1e-9 * (a.norm() + b.norm() + c.norm())
+                               : std::numeric_limits<double>::infinity();
     return plane;
 }
 
@@ -336,7 +347,8 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
             if (!proof_search)
             {
                 const FacePlane& plane = face_planes_[g];
-                const double beyond = std::abs(OpenMesh::dot(plane.normal, p) - plane.offset) - (plane.margin + p_margin);
+                const double beyond = std::abs(OpenMesh::dot(plane.normal, p) - plane.offset) -
+                                      (plane.margin + p_margin);
                 if (beyond > 0.0 && beyond * beyond > next_d2 * (1.0 + 1e-12))
                 {
                     assert(!((foot_on(g) - p).sqrnorm() < next_d2));
@@ -345,7 +357,8 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
             }
             const Vec3d q = foot_on(g);
             const double g_d2 = (q - p).sqrnorm();
-            if (g_d2 < next_d2) next = g, next_foot = q, next_d2 = g_d2, found_nearer = proof_search;
+            if (g_d2 < next_d2)
+                next = g, next_foot = q, next_d2 = g_d2, found_nearer = proof_search;
         };
         const std::array<int, 3>& across = face_neighbours_[out.face];
         for (const int g : across)
@@ -359,7 +372,8 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
         if (next < 0)
             for (const int v : face_vertices_[out.face])
             {
-                if (!(points_[v] == out.foot)) continue;  // (the corner region returns the corner itself)
+                if (!(points_[v] == out.foot))
+                    continue;  // (the corner region returns the corner itself)
                 for (int k = vertex_face_offsets_[v]; k < vertex_face_offsets_[v + 1]; ++k)
                     if (vertex_faces_[k] != out.face) consider(vertex_faces_[k]);
             }
@@ -380,7 +394,8 @@ SurfaceModel::Descent SurfaceModel::descend(const Vec3d& p, int face, double sto
 bool SurfaceModel::within_fraction_of_face(int face, double d2, double fraction) const
 {
     const auto& fv = face_vertices_[face];
-    const double shortest2 = std::min({(points_[fv[0]] - points_[fv[1]]).sqrnorm(), (points_[fv[1]] - points_[fv[2]]).sqrnorm(),
+    const double shortest2 = std::min({(points_[fv[0]] - points_[fv[1]]).sqrnorm(),
+                                       (points_[fv[1]] - points_[fv[2]]).sqrnorm(),
                                        (points_[fv[2]] - points_[fv[0]]).sqrnorm()});
     return d2 <= fraction * fraction * shortest2;
 }
@@ -418,12 +433,14 @@ Vec3d SurfaceModel::foot_normal(int face, const Vec3d& foot) const
     return face_normals_[face];
 }
 
-ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, double local_fraction) const
+ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint,
+                                              double local_fraction) const
 {
     ProjectedPoint out;
     if (face_hint >= 0 && face_hint < static_cast<int>(face_vertices_.size()))
     {
-        detail::prefetch(&face_normals_[face_hint]);  // where most descents stop (foot_normal's read)
+        detail::prefetch(
+            &face_normals_[face_hint]);  // where most descents stop (foot_normal's read)
         const Descent descent = descend(p, face_hint);
         if (descent.converged && local_fraction > 0.0 &&
             within_fraction_of_face(descent.face, (descent.foot - p).sqrnorm(), local_fraction))
@@ -445,7 +462,8 @@ ProjectedPoint SurfaceModel::closest_on_input(const Vec3d& p, int face_hint, dou
     return out;
 }
 
-double SurfaceModel::interpolate(const Vec3d& p, const std::vector<double>& values, int face_hint) const
+double SurfaceModel::interpolate(const Vec3d& p, const std::vector<double>& values,
+                                 int face_hint) const
 {
     int face = -1;
     Vec3d q;
@@ -474,7 +492,8 @@ double SurfaceModel::interpolate(const Vec3d& p, const std::vector<double>& valu
     const double wa = OpenMesh::cross(b - q, c - q).norm() / area;
     const double wb = OpenMesh::cross(c - q, a - q).norm() / area;
     const double wc = std::max(0.0, 1.0 - wa - wb);
-    return (wa * values[fv[0]] + wb * values[fv[1]] + wc * values[fv[2]]) / std::max(wa + wb + wc, 1e-300);
+    return (wa * values[fv[0]] + wb * values[fv[1]] + wc * values[fv[2]]) /
+           std::max(wa + wb + wc, 1e-300);
 }
 
 double SurfaceModel::distance_to_curve(const Vec3d& p, int curve) const
@@ -511,35 +530,37 @@ bool SurfaceModel::near_model(const Vec3d& p, double distance, int face_hint) co
     return hit.primitive < 0 || hit.distance <= distance;
 }
 
-ProjectedPoint SurfaceModel::project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const
+ProjectedPoint SurfaceModel::project_near(const Vec3d& p, VertexClass cls, int curve,
+                                          int face_hint) const
 {
     switch (cls)
     {
-    case VertexClass::Corner:
-    {
-        ProjectedPoint out = closest_on_input(p, face_hint, kPlacementFraction);
-        out.point = p;
-        return out;
-    }
-    case VertexClass::Ridge:
-    case VertexClass::Boundary:
-    {
-        if (curve < 0 || curve >= static_cast<int>(curves_.size()) || curves_[curve].empty()) return {};
-        const auto hit = curves_[curve].closest(p);
-        ProjectedPoint out;
-        out.point = hit.point;
-        out.normal = curve_normals_[curve][hit.primitive];
-        out.face = curve_faces_[curve][hit.primitive];
-        out.ok = true;
-        return out;
-    }
-    case VertexClass::Smooth:
-        if (smooth_)
+        case VertexClass::Corner:
         {
-            ProjectedPoint out = smooth_(p);
-            if (out.ok) return out;
+            ProjectedPoint out = closest_on_input(p, face_hint, kPlacementFraction);
+            out.point = p;
+            return out;
         }
-        return closest_on_input(p, face_hint, kPlacementFraction);
+        case VertexClass::Ridge:
+        case VertexClass::Boundary:
+        {
+            if (curve < 0 || curve >= static_cast<int>(curves_.size()) || curves_[curve].empty())
+                return {};
+            const auto hit = curves_[curve].closest(p);
+            ProjectedPoint out;
+            out.point = hit.point;
+            out.normal = curve_normals_[curve][hit.primitive];
+            out.face = curve_faces_[curve][hit.primitive];
+            out.ok = true;
+            return out;
+        }
+        case VertexClass::Smooth:
+            if (smooth_)
+            {
+                ProjectedPoint out = smooth_(p);
+                if (out.ok) return out;
+            }
+            return closest_on_input(p, face_hint, kPlacementFraction);
     }
     return {};
 }

@@ -37,7 +37,8 @@ public:
     /// closest_on_input with the hint and a local fraction of 1e-2: the foot where the descent
     /// from the hint stops (a local minimum of the distance over the input) when p is that
     /// near it, else the exact closest point. Without a hint, project().
-    ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve, int face_hint) const override;
+    ProjectedPoint project_near(const Vec3d& p, VertexClass cls, int curve,
+                                int face_hint) const override;
     /// Without a smooth projection: true at once when the descent from the hint face (see
     /// closest_on_input) meets a face within `distance`, else the exact search decides.
     bool near_model(const Vec3d& p, double distance, int face_hint) const override;
@@ -54,7 +55,8 @@ public:
     /// foot on the hint's own sheet of the surface, which is the global one unless another
     /// sheet passes that near. Otherwise (an off-surface point, fraction 0, or no hint) the
     /// exact closest point, searched with the descent's face as the bound.
-    ProjectedPoint closest_on_input(const Vec3d& p, int face_hint = -1, double local_fraction = 0.0) const;
+    ProjectedPoint closest_on_input(const Vec3d& p, int face_hint = -1,
+                                    double local_fraction = 0.0) const;
     /// Distance from p to the input feature curve `curve` (infinity if there is none).
     double distance_to_curve(const Vec3d& p, int curve) const;
 
@@ -67,7 +69,8 @@ public:
     /// a p within 1e-12·diagonal of the hint face is taken on it without a search (a size looked
     /// up right after a projection onto that face): the value then differs from the search's by
     /// rounding only.
-    double interpolate(const Vec3d& p, const std::vector<double>& per_input_vertex, int face_hint = -1) const;
+    double interpolate(const Vec3d& p, const std::vector<double>& per_input_vertex,
+                       int face_hint = -1) const;
     double diagonal() const { return diagonal_; }
     std::size_t curve_count() const;
 
@@ -83,7 +86,8 @@ private:
         double margin = 0.0;
     };
     // The plane of the triangle (a, b, c) with its unit normal (triangle_normal).
-    static FacePlane face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& unit_normal);
+    static FacePlane face_plane(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                const Vec3d& unit_normal);
     // closest_on_input's descent from a face over the input toward p: to the nearest neighbour
     // each step. With stop_d2 ≥ 0 (near_model's proof search): to the first nearer neighbour,
     // until a face within sqrt(stop_d2) of p.
@@ -115,8 +119,9 @@ private:
     // is private machinery, its header not installed).
     std::unique_ptr<const ClosestPointTree> triangles_;
     std::vector<ClosestPointTree> curves_;
-    std::vector<std::vector<Vec3d>> curve_normals_;  // per segment: mean of the adjacent face normals
-    std::vector<std::vector<int>> curve_faces_;      // per segment: an adjacent input face (a hint)
+    std::vector<std::vector<Vec3d>>
+        curve_normals_;                          // per segment: mean of the adjacent face normals
+    std::vector<std::vector<int>> curve_faces_;  // per segment: an adjacent input face (a hint)
     SmoothProjection smooth_;
     double diagonal_ = 0.0;
 };

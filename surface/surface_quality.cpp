@@ -44,7 +44,8 @@ std::vector<Vec3d> samples(const SurfaceMesh& mesh)
     for (auto e : mesh.edges())
     {
         const auto h = mesh.halfedge_handle(e, 0);
-        out.push_back(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
+        out.push_back(
+            0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
     }
     for (auto f : mesh.faces())
     {
@@ -143,14 +144,18 @@ QualityReport measure_quality(const SurfaceMesh& mesh, double uniform_size)
     std::size_t good_qt = 0, too_long = 0, too_short = 0, measured = 0;
     for (auto e : mesh.edges())
     {
-        const double h = uniform_size > 0.0 ? uniform_size : edge_size(mesh, e, has_sizes ? &sizes : nullptr, 0.0);
+        const double h = uniform_size > 0.0 ? uniform_size
+                                            : edge_size(mesh, e, has_sizes ? &sizes : nullptr, 0.0);
         if (!(h > 0.0)) continue;
         ++measured;
         const double len = mesh.calc_edge_length(e);
         const double qt = size_quality(len, h);
-        if (qt >= kSizeQualityThreshold) ++good_qt;
-        else if (len > h) ++too_long;
-        else ++too_short;
+        if (qt >= kSizeQualityThreshold)
+            ++good_qt;
+        else if (len > h)
+            ++too_long;
+        else
+            ++too_short;
     }
     if (measured > 0)
     {
@@ -167,7 +172,8 @@ std::array<double, 2> hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh
     return {max_distance(samples(a), tree_b), max_distance(samples(b), tree_a)};
 }
 
-std::vector<DistanceSample> farthest_samples(const SurfaceMesh& a, const SurfaceMesh& b, std::size_t count)
+std::vector<DistanceSample> farthest_samples(const SurfaceMesh& a, const SurfaceMesh& b,
+                                             std::size_t count)
 {
     const ClosestPointTree tree_b = triangle_tree(b);
     std::vector<DistanceSample> all;
@@ -177,8 +183,9 @@ std::vector<DistanceSample> farthest_samples(const SurfaceMesh& a, const Surface
         all.push_back({p, hit.point, hit.distance});
     }
     count = std::min(count, all.size());
-    std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(count), all.end(),
-                      [](const DistanceSample& x, const DistanceSample& y) { return x.distance > y.distance; });
+    std::partial_sort(
+        all.begin(), all.begin() + static_cast<std::ptrdiff_t>(count), all.end(),
+        [](const DistanceSample& x, const DistanceSample& y) { return x.distance > y.distance; });
     all.resize(count);
     return all;
 }
@@ -197,15 +204,19 @@ std::string format_quality_table(const QualityReport& before, const QualityRepor
         return std::string(buf);
     };
     row("", "before", "after");
-    row("vertices", num(static_cast<double>(before.vertices), "%.0f"), num(static_cast<double>(after.vertices), "%.0f"));
-    row("triangles", num(static_cast<double>(before.faces), "%.0f"), num(static_cast<double>(after.faces), "%.0f"));
+    row("vertices", num(static_cast<double>(before.vertices), "%.0f"),
+        num(static_cast<double>(after.vertices), "%.0f"));
+    row("triangles", num(static_cast<double>(before.faces), "%.0f"),
+        num(static_cast<double>(after.faces), "%.0f"));
     row("Qe min", num(before.qe_min, "%.4f"), num(after.qe_min, "%.4f"));
     row("Qe mean", num(before.qe_mean, "%.4f"), num(after.qe_mean, "%.4f"));
     row("% Qe >= 0.7", num(before.percent_qe_ge_07, "%.2f"), num(after.percent_qe_ge_07, "%.2f"));
     row("min angle (deg)", num(before.min_angle_deg, "%.2f"), num(after.min_angle_deg, "%.2f"));
     row("max angle (deg)", num(before.max_angle_deg, "%.2f"), num(after.max_angle_deg, "%.2f"));
-    row("% all angles >= 25", num(before.percent_all_angles_ge_25, "%.3f"), num(after.percent_all_angles_ge_25, "%.3f"));
-    row("% edges Qt >= 0.66", num(before.percent_qt_ge_066, "%.2f"), num(after.percent_qt_ge_066, "%.2f"));
+    row("% all angles >= 25", num(before.percent_all_angles_ge_25, "%.3f"),
+        num(after.percent_all_angles_ge_25, "%.3f"));
+    row("% edges Qt >= 0.66", num(before.percent_qt_ge_066, "%.2f"),
+        num(after.percent_qt_ge_066, "%.2f"));
     row("% too long", num(before.percent_too_long, "%.2f"), num(after.percent_too_long, "%.2f"));
     row("% too short", num(before.percent_too_short, "%.2f"), num(after.percent_too_short, "%.2f"));
     if (after.hausdorff_to_model >= 0.0)

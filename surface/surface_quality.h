@@ -31,7 +31,8 @@ inline double triangle_qe_from(double lab, double lbc, double lca, double cross_
 /// (Inline, like triangle_normal: every operator's quality layer calls them per trial triangle.)
 inline double triangle_qe(const Vec3d& a, const Vec3d& b, const Vec3d& c)
 {
-    return triangle_qe_from((b - a).norm(), (c - b).norm(), (a - c).norm(), OpenMesh::cross(b - a, c - a).norm());
+    return triangle_qe_from((b - a).norm(), (c - b).norm(), (a - c).norm(),
+                            OpenMesh::cross(b - a, c - a).norm());
 }
 /// Smallest interior angle of (a, b, c) in degrees (0 for a degenerate triangle).
 double triangle_min_angle_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c);
@@ -63,7 +64,8 @@ struct SurfaceTopology
     long euler() const { return vertices - edges + faces; }
     bool operator==(const SurfaceTopology& o) const
     {
-        return euler() == o.euler() && components == o.components && boundary_loops == o.boundary_loops;
+        return euler() == o.euler() && components == o.components &&
+               boundary_loops == o.boundary_loops;
     }
     bool operator!=(const SurfaceTopology& o) const { return !(*this == o); }
 };
@@ -80,11 +82,11 @@ struct QualityReport
     double percent_qe_ge_07 = 0.0;
     double min_angle_deg = 0.0, max_angle_deg = 0.0;
     double percent_all_angles_ge_25 = 0.0;
-    double percent_qt_ge_066 = 0.0;     // edges, against the vertex sizes (average of the ends)
+    double percent_qt_ge_066 = 0.0;  // edges, against the vertex sizes (average of the ends)
     double percent_too_long = 0.0, percent_too_short = 0.0;
-    double hausdorff_to_model = -1.0;   // max over output samples of distance to the reference
-    double hausdorff_from_model = -1.0; // max over reference samples of distance to the output
-    double diagonal = 0.0;              // bounding-box diagonal of the measured mesh
+    double hausdorff_to_model = -1.0;    // max over output samples of distance to the reference
+    double hausdorff_from_model = -1.0;  // max over reference samples of distance to the output
+    double diagonal = 0.0;               // bounding-box diagonal of the measured mesh
     double hausdorff() const { return std::max(hausdorff_to_model, hausdorff_from_model); }
 };
 
@@ -107,7 +109,8 @@ struct DistanceSample
 };
 
 /// The `count` samples of `a` (the samples of hausdorff_distance) farthest from `b`, worst first.
-std::vector<DistanceSample> farthest_samples(const SurfaceMesh& a, const SurfaceMesh& b, std::size_t count);
+std::vector<DistanceSample> farthest_samples(const SurfaceMesh& a, const SurfaceMesh& b,
+                                             std::size_t count);
 
 /// A fixed-width text table comparing two reports (surfremesh prints it).
 std::string format_quality_table(const QualityReport& before, const QualityReport& after);

@@ -78,12 +78,10 @@ OpResult ToleranceRefinement::split_toward(EdgeHandle e, const Vec3d& target, bo
             mid + step * (target - mid), VertexClass::Smooth, kNoCurve, ctx_.model_face(a));
         if (!on_model.ok) continue;
         const Vec3d& p = on_model.point;
-        if (std::any_of(opposite.begin(), opposite.end(),
-                        [&](const Vec3d& c)
-                        {
-                            return triangle_min_angle_deg(pa, p, c) < min_angle ||
-                                   triangle_min_angle_deg(p, pb, c) < min_angle;
-                        }))
+        if (std::any_of(opposite.begin(), opposite.end(), [&](const Vec3d& c) {
+                return triangle_min_angle_deg(pa, p, c) < min_angle ||
+                       triangle_min_angle_deg(p, pb, c) < min_angle;
+            }))
             continue;
         const OpResult partial = try_split(ctx_, e, &p);
         if (partial.done()) return partial;
@@ -135,13 +133,11 @@ VertexHandle ToleranceRefinement::snap_vertex_of_edge(EdgeHandle e, const Vec3d&
 VertexHandle ToleranceRefinement::snap_one_of(std::vector<VertexHandle> vertices,
                                               const Vec3d& target, bool smooth_point)
 {
-    std::sort(vertices.begin(), vertices.end(),
-              [&](VertexHandle a, VertexHandle b)
-              {
-                  const double da = (mesh_.point(a) - target).sqrnorm(),
-                               db = (mesh_.point(b) - target).sqrnorm();
-                  return da != db ? da < db : a.idx() < b.idx();  // ties by index: deterministic
-              });
+    std::sort(vertices.begin(), vertices.end(), [&](VertexHandle a, VertexHandle b) {
+        const double da = (mesh_.point(a) - target).sqrnorm(),
+                     db = (mesh_.point(b) - target).sqrnorm();
+        return da != db ? da < db : a.idx() < b.idx();  // ties by index: deterministic
+    });
     for (const VertexHandle v : vertices)
     {
         const VertexClass cls = ctx_.vertex_class(v);
@@ -186,8 +182,9 @@ FaceHandle ToleranceRefinement::near_face_around(const Vec3d& p, FaceHandle f) c
     if (!f.is_valid() || mesh_.status(f).deleted()) return FaceHandle();
     // (detail::within_triangle: a triangle whose box is clearly beyond the tolerance gets
     // no closest point: most triangles asked are around a face that is not near.)
-    auto within_tolerance = [&](FaceHandle g)
-    { return detail::within_triangle(p, face_points_[g.idx()], tolerance_.tolerance); };
+    auto within_tolerance = [&](FaceHandle g) {
+        return detail::within_triangle(p, face_points_[g.idx()], tolerance_.tolerance);
+    };
     if (within_tolerance(f)) return f;
     // The faces around the vertex a walk from f toward p ends at: the first refinement's
     // points in space order are mostly a few faces from the one before, where f's own
@@ -195,13 +192,11 @@ FaceHandle ToleranceRefinement::near_face_around(const Vec3d& p, FaceHandle f) c
     // (Which of the faces proves p near is no matter, their order neither.)
     const VertexHandle end = vertex_toward(p, f);
     FaceHandle found;
-    any_outgoing(end,
-                 [&](HalfedgeHandle h)
-                 {
-                     const FaceHandle g = mesh_.face_handle(h);
-                     if (g.is_valid() && within_tolerance(g)) found = g;
-                     return found.is_valid();
-                 });
+    any_outgoing(end, [&](HalfedgeHandle h) {
+        const FaceHandle g = mesh_.face_handle(h);
+        if (g.is_valid() && within_tolerance(g)) found = g;
+        return found.is_valid();
+    });
     if (found.is_valid()) return found;
     for (auto v : mesh_.fv_range(f))
     {
@@ -227,14 +222,12 @@ VertexHandle ToleranceRefinement::vertex_toward(const Vec3d& p, FaceHandle f) co
     for (int step = 0; step < kWalkSteps; ++step)
     {
         VertexHandle next;
-        any_outgoing(v,
-                     [&](HalfedgeHandle h)
-                     {
-                         const VertexHandle w = mesh_.to_vertex_handle(h);
-                         const double d2 = (mesh_.point(w) - p).sqrnorm();
-                         if (d2 < v_d2) v_d2 = d2, next = w;
-                         return false;
-                     });
+        any_outgoing(v, [&](HalfedgeHandle h) {
+            const VertexHandle w = mesh_.to_vertex_handle(h);
+            const double d2 = (mesh_.point(w) - p).sqrnorm();
+            if (d2 < v_d2) v_d2 = d2, next = w;
+            return false;
+        });
         if (!next.is_valid()) break;
         v = next;
     }
@@ -293,8 +286,7 @@ void ToleranceRefinement::update_face_points()
     const std::size_t known_faces = face_points_.size();
     detail::resize_with_room(face_changed_in_, mesh_.n_faces(), std::uint32_t{0});
     faces_changed_now_.clear();
-    auto refresh = [&](FaceHandle f)
-    {
+    auto refresh = [&](FaceHandle f) {
         const std::array<Vec3d, 3> points = detail::face_points(mesh_, f);
         if (static_cast<std::size_t>(f.idx()) < known_faces && points == face_points_[f.idx()])
             return;
@@ -358,8 +350,9 @@ const std::vector<std::size_t>& ToleranceRefinement::model_points_in_space_order
     for (int shift = 0; shift < 3 * kMortonBitsPerAxis && !keyed.empty(); shift += kDigitBits)
     {
         std::vector<std::size_t> start((std::size_t(1) << kDigitBits) + 1, 0);
-        auto digit = [&](std::uint64_t key)
-        { return static_cast<std::size_t>((key >> shift) & ((1u << kDigitBits) - 1)); };
+        auto digit = [&](std::uint64_t key) {
+            return static_cast<std::size_t>((key >> shift) & ((1u << kDigitBits) - 1));
+        };
         for (const auto& k : keyed) ++start[digit(k.first) + 1];
         if (start[digit(keyed.front().first) + 1] == keyed.size())
             continue;  // one digit: in order already
@@ -419,8 +412,7 @@ bool ToleranceRefinement::still_closest(const FarHit& hit) const
 // vertices its changes noted (an edge's length and sizes change only with an end's).
 std::size_t ToleranceRefinement::short_edges_now(bool first_round)
 {
-    auto is_short = [&](EdgeHandle e)
-    {
+    auto is_short = [&](EdgeHandle e) {
         return !mesh_.status(e).deleted() &&
                size_quality(mesh_.calc_edge_length(e), keeper_.reference_size(e)) <
                    kSizeQualityThreshold;
@@ -499,19 +491,16 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         std::vector<std::size_t>& edge_target = scratch.edge_target;
         std::vector<EdgeHandle>& marked =
             scratch.marked;  // the edges given an error > 0, once each
-        auto raise_error = [&](EdgeHandle e, double distance)
-        {
+        auto raise_error = [&](EdgeHandle e, double distance) {
             if (!(distance > edge_error[e.idx()])) return false;
             if (!(edge_error[e.idx()] > 0.0)) marked.push_back(e);
             edge_error[e.idx()] = distance;
             return true;
         };
-        auto mark_edge = [&](EdgeHandle e, double distance, std::size_t target)
-        {
+        auto mark_edge = [&](EdgeHandle e, double distance, std::size_t target) {
             if (raise_error(e, distance)) edge_target[e.idx()] = target;
         };
-        auto mark_longest = [&](FaceHandle f, double distance, std::size_t target)
-        {
+        auto mark_longest = [&](FaceHandle f, double distance, std::size_t target) {
             EdgeHandle longest;
             double best = -1.0;
             for (auto e : mesh_.fe_range(f))
@@ -523,8 +512,7 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         // (Round 0 looks at everything: none is marked then.)
         std::vector<VertexHandle>& changed = scratch.changed;  // (after round 0)
         std::vector<char>& near_change = scratch.near_change;
-        auto mark_changed = [&](VertexHandle v)
-        {
+        auto mark_changed = [&](VertexHandle v) {
             if (near_change[v.idx()]) return;
             near_change[v.idx()] = 1;
             changed.push_back(v);
@@ -555,8 +543,7 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         // (The centroid from the face's points kept in face_points_, in the order of
         // face_vertices: the same sum; most faces are proven near by the cache, and walking
         // the mesh to their points cost more than the test.)
-        auto check_face = [&](FaceHandle f)
-        {
+        auto check_face = [&](FaceHandle f) {
             const auto& t = face_points_[f.idx()];
             const Vec3d centroid = (t[0] + t[1] + t[2]) / 3.0;
             if (near_centroid_[f.idx()] == centroid) return;
@@ -567,8 +554,7 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             else
                 mark_longest(f, ctx_.distance_to_model(centroid, hint), 0);
         };
-        auto check_edge = [&](EdgeHandle e)
-        {
+        auto check_edge = [&](EdgeHandle e) {
             const auto h = mesh_.halfedge_handle(e, 0);
             const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
             const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
@@ -675,10 +661,9 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         }
         // Farthest first: a vertex of the closest triangle snapped onto the point costs no
         // short edge; the points no snap reaches ask for a split.
-        std::sort(far_hits.begin(), far_hits.end(),
-                  [](const FarHit& a, const FarHit& b) {
-                      return a.distance != b.distance ? a.distance > b.distance : a.point < b.point;
-                  });
+        std::sort(far_hits.begin(), far_hits.end(), [](const FarHit& a, const FarHit& b) {
+            return a.distance != b.distance ? a.distance > b.distance : a.point < b.point;
+        });
         std::size_t snaps = 0;
         for (const FarHit& far : far_hits)
         {
@@ -734,10 +719,9 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
                     edge_error[e.idx()], mesh_.calc_edge_length(e) / run_.edge_size(e));
         }
         // Farthest first; ties by index keep it deterministic.
-        std::sort(
-            candidates.begin(), candidates.end(),
-            [](const auto& a, const auto& b)
-            { return a.first != b.first ? a.first > b.first : a.second.idx() < b.second.idx(); });
+        std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+            return a.first != b.first ? a.first > b.first : a.second.idx() < b.second.idx();
+        });
         // Chords off the model (no far model point behind them): an end snapped toward the
         // model point under the midpoint may bring the chord back, at no short edge.
         for (const auto& [error, e] : candidates)

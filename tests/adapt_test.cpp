@@ -1,3 +1,5 @@
+#include "coupling/adapt.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -5,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "coupling/adapt.h"
 #include "fixtures.h"
 #include "volume/check.h"
 #include "volume/quality_report.h"

@@ -1,6 +1,8 @@
 // The mesh checker: every violation kind provoked on a tiny mesh built here, and the clean
 // fixtures accepted as they are. Also the boundary helpers the checker stands on.
 
+#include "volume/check.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 
 #include "fixtures.h"
 #include "volume/boundary.h"
-#include "volume/check.h"
 #include "volume/tet_tables.h"
 
 using namespace hdimesh;
@@ -27,8 +28,9 @@ int count_kind(const std::vector<MeshViolation>& violations, const std::string& 
 
 bool has(const std::vector<MeshViolation>& violations, const std::string& kind, int element)
 {
-    return std::any_of(violations.begin(), violations.end(),
-                       [&](const MeshViolation& v) { return v.kind == kind && v.element == element; });
+    return std::any_of(violations.begin(), violations.end(), [&](const MeshViolation& v) {
+        return v.kind == kind && v.element == element;
+    });
 }
 
 /// Adds tet v, swapping two vertices when it comes out negative.
@@ -52,7 +54,8 @@ std::array<int, 3> some_interior_face(const TetMesh& mesh)
 int some_interior_tet(const TetMesh& mesh)
 {
     for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        if (std::none_of(mesh.neighbors[t].begin(), mesh.neighbors[t].end(), [](int n) { return n == kNoTet; }))
+        if (std::none_of(mesh.neighbors[t].begin(), mesh.neighbors[t].end(),
+                         [](int n) { return n == kNoTet; }))
             return t;
     return -1;
 }
@@ -61,8 +64,9 @@ int some_interior_tet(const TetMesh& mesh)
 
 TEST_CASE("the clean fixtures pass the checker")
 {
-    for (const TetMesh& mesh : {fixtures::single_tet(), fixtures::regular_tet(), fixtures::kuhn_cube(),
-                                fixtures::box_mesh(3), fixtures::box_mesh(4, 0.2, 7)})
+    for (const TetMesh& mesh :
+         {fixtures::single_tet(), fixtures::regular_tet(), fixtures::kuhn_cube(),
+          fixtures::box_mesh(3), fixtures::box_mesh(4, 0.2, 7)})
     {
         const auto violations = check_mesh(mesh);
         INFO(format_violations(violations));
@@ -121,7 +125,8 @@ TEST_CASE("a broken adjacency link is stale on one side and asymmetric on the ot
     mesh = fixtures::kuhn_cube();
     int stranger = -1;
     for (int u = 0; u < mesh.num_tet_slots(); ++u)
-        if (u != t && std::find(mesh.neighbors[t].begin(), mesh.neighbors[t].end(), u) == mesh.neighbors[t].end())
+        if (u != t && std::find(mesh.neighbors[t].begin(), mesh.neighbors[t].end(), u) ==
+                          mesh.neighbors[t].end())
             stranger = u;
     REQUIRE(stranger >= 0);
     mesh.neighbors[t][f] = stranger;
@@ -204,7 +209,8 @@ TEST_CASE("a face shared by three tets")
     const auto [t, f, n] = some_interior_face(mesh);
     const auto& fv = tet::kFaceVertices[f];
     const int apex = mesh.add_vertex({2, 2, -1});
-    const int third = add_positive(mesh, {mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]], apex});
+    const int third =
+        add_positive(mesh, {mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]], apex});
     mesh.build_adjacency();
     const auto violations = check_mesh(mesh);
     INFO(format_violations(violations));
@@ -239,7 +245,8 @@ TEST_CASE("interior triangles: allowed between refs, reported inside one ref")
     TetMesh mesh = fixtures::kuhn_cube();
     const auto [t, f, n] = some_interior_face(mesh);
     const auto& fv = tet::kFaceVertices[f];
-    const int tri = mesh.add_triangle({mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]]}, 9);
+    const int tri =
+        mesh.add_triangle({mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]]}, 9);
     auto violations = check_mesh(mesh);
     CHECK(has(violations, "interior_triangle", tri));
     CheckOptions lenient;
@@ -302,7 +309,8 @@ TEST_CASE("ids out of range, NaN coordinates and wrong array sizes")
     auto violations = check_mesh(mesh);
     INFO(format_violations(violations));
     CHECK(has(violations, "nan_coordinate", 7));
-    CHECK(has(violations, "triangle_vertex_out_of_range", static_cast<int>(mesh.triangles.size()) - 1));
+    CHECK(has(violations, "triangle_vertex_out_of_range",
+              static_cast<int>(mesh.triangles.size()) - 1));
     CHECK(has(violations, "array_size", -1));
 
     mesh = fixtures::kuhn_cube();
@@ -338,8 +346,10 @@ TEST_CASE("unused and coincident vertices")
     const TetMesh right = fixtures::kuhn_cube();
     const int offset = mesh.num_vertices();
     for (const Vec3& p : right.points) mesh.add_vertex(p + Vec3(1, 0, 0));
-    for (const auto& t : right.tets) mesh.add_tet({t[0] + offset, t[1] + offset, t[2] + offset, t[3] + offset});
-    for (const auto& tri : right.triangles) mesh.add_triangle({tri[0] + offset, tri[1] + offset, tri[2] + offset}, 1);
+    for (const auto& t : right.tets)
+        mesh.add_tet({t[0] + offset, t[1] + offset, t[2] + offset, t[3] + offset});
+    for (const auto& tri : right.triangles)
+        mesh.add_triangle({tri[0] + offset, tri[1] + offset, tri[2] + offset}, 1);
     mesh.build_adjacency();
     auto violations = check_mesh(mesh);
     INFO(format_violations(violations));
@@ -363,7 +373,8 @@ TEST_CASE("unused and coincident vertices")
 TEST_CASE("format_violations: counts per kind, then the first lines")
 {
     std::vector<MeshViolation> many;
-    for (int i = 0; i < 30; ++i) many.push_back({"non_positive_volume", i, "tet " + std::to_string(i)});
+    for (int i = 0; i < 30; ++i)
+        many.push_back({"non_positive_volume", i, "tet " + std::to_string(i)});
     many.push_back({"volume_mismatch", -1, "sums differ"});
     const std::string text = format_violations(many, 5);
     CHECK(text.find("31 violations: non_positive_volume 30 volume_mismatch 1") == 0);
@@ -381,12 +392,15 @@ TEST_CASE("boundary helpers: faces, edges, enclosed volume on the jittered box")
     // one body diagonal per cube
     const int n = 3;
     const auto edges = unique_tet_edges(mesh);
-    CHECK(edges.size() == static_cast<std::size_t>(3 * n * (n + 1) * (n + 1) + 3 * n * n * (n + 1) + n * n * n));
+    CHECK(edges.size() ==
+          static_cast<std::size_t>(3 * n * (n + 1) * (n + 1) + 3 * n * n * (n + 1) + n * n * n));
     CHECK(std::is_sorted(edges.begin(), edges.end()));
     for (const auto& e : edges) CHECK(e[0] < e[1]);
     const FaceGroups groups = group_tet_faces(mesh);
     // Euler: V - E + F - T = 1 for a ball
-    CHECK(mesh.num_vertices() - static_cast<int>(edges.size()) + groups.num_faces() - mesh.num_live_tets() == 1);
+    CHECK(mesh.num_vertices() - static_cast<int>(edges.size()) + groups.num_faces() -
+              mesh.num_live_tets() ==
+          1);
     const VertexGraph graph = vertex_graph(mesh);
     CHECK(graph.neighbors.size() == 2 * edges.size());
 }

@@ -3,6 +3,8 @@
 // valid mesh (check_mesh, which also compares the maintained adjacency with a recomputed one);
 // every refused case must leave the mesh bit for bit as it was.
 
+#include "volume/face_removal.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 
 #include "fixtures.h"
 #include "volume/check.h"
-#include "volume/face_removal.h"
 #include "volume/size_fields.h"
 #include "volume/tet_tables.h"
 #include "volume/tet_topology.h"
@@ -207,8 +208,7 @@ TEST_CASE("multi-face removal, k = 1: the same tets as the 2-3 flip")
     for (const double h : {0.2, 0.5})
     {
         CAPTURE(h);
-        const TetMesh start =
-            sandwich_mesh(regular_polygon(3), {{0, 1, 2}}, {0, 0, -h}, {0, 0, h});
+        const TetMesh start = sandwich_mesh(regular_polygon(3), {{0, 1, 2}}, {0, 0, -h}, {0, 0, h});
         TetMesh flipped = start, removed = start;
         OperatorContext flip_context(flipped, nullptr), multi_context(removed, nullptr);
         const auto flip = remove_face(flipped, flip_context, 0, kApexLocal);
@@ -489,7 +489,7 @@ TEST_CASE("multi-face removal refused: the mesh stays bit for bit the same")
         const double s = std::sqrt(3.0) / 2;
         TetMesh mesh =
             mesh_from_tets({{0, 0, -1.5}, {0, 0, 1.5}, {1, 0, 0}, {-0.5, s, 0}, {-0.5, -s, 0}},
-                      {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}});
+                           {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}});
         OperatorContext context(mesh, nullptr);
         const auto result = refuse(mesh, context, 0, local_index(mesh, 0, 3));  // opposite r1
         // the new tets around an existing edge cannot all be positive: the geometry refuses

@@ -113,9 +113,9 @@ void check_invariants(const Surface& s, const FeatureClassification& c)
 
 std::size_t count_class(const FeatureClassification& c, Dimension d)
 {
-    return static_cast<std::size_t>(std::count_if(c.vertex_class.begin(), c.vertex_class.end(),
-                                                  [&](const Classification& x)
-                                                  { return x.dimension == d; }));
+    return static_cast<std::size_t>(
+        std::count_if(c.vertex_class.begin(), c.vertex_class.end(),
+                      [&](const Classification& x) { return x.dimension == d; }));
 }
 
 /// The surface as the surface tools build it from a file (surface_io's repairs find nothing here).

@@ -29,7 +29,12 @@ void add_positive_tet(TetMesh& mesh, TetVertices v)
 // The six Kuhn tets of a cube with corners numbered by bits (x = 1, y = 2, z = 4):
 // each walks from corner 0 to corner 7 along one permutation of the axes.
 constexpr std::array<std::array<int, 4>, 6> kKuhnTets = {{
-    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
+    {0, 1, 3, 7},
+    {0, 1, 5, 7},
+    {0, 2, 3, 7},
+    {0, 2, 6, 7},
+    {0, 4, 5, 7},
+    {0, 4, 6, 7},
 }};
 
 }  // namespace
@@ -107,8 +112,7 @@ TetMesh box_mesh(int n, double jitter, std::uint32_t seed)
             {
                 Vec3 p(i * h, j * h, k * h);
                 const bool interior = i > 0 && i < n && j > 0 && j < n && k > 0 && k < n;
-                if (interior && jitter > 0)
-                    p += jitter * h * Vec3(unit(rng), unit(rng), unit(rng));
+                if (interior && jitter > 0) p += jitter * h * Vec3(unit(rng), unit(rng), unit(rng));
                 mesh.add_vertex(p);
             }
     for (int k = 0; k < n; ++k)
@@ -119,8 +123,8 @@ TetMesh box_mesh(int n, double jitter, std::uint32_t seed)
                     return id(i + (bits & 1), j + ((bits >> 1) & 1), k + ((bits >> 2) & 1));
                 };
                 for (const auto& kt : kKuhnTets)
-                    add_positive_tet(mesh, {corner(kt[0]), corner(kt[1]), corner(kt[2]),
-                                            corner(kt[3])});
+                    add_positive_tet(mesh,
+                                     {corner(kt[0]), corner(kt[1]), corner(kt[2]), corner(kt[3])});
             }
     rebuild_boundary(mesh);
     return mesh;
@@ -147,7 +151,10 @@ double max_unit_sphere_deviation(const TetMesh& mesh)
     return worst;
 }
 
-std::string data_path(const std::string& name) { return std::string(HDIMESH_DATA_DIR) + "/" + name; }
+std::string data_path(const std::string& name)
+{
+    return std::string(HDIMESH_DATA_DIR) + "/" + name;
+}
 
 hdi::TriangleSurface icosphere(int levels)
 {
@@ -158,15 +165,14 @@ hdi::TriangleSurface icosphere(int levels)
                           Vec3(0, -1, t), Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t),
                           Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
         s.points.push_back(p.normalized());
-    s.triangles = {{0, 11, 5}, {0, 5, 1},   {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                   {1, 5, 9},  {5, 11, 4},  {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                   {3, 9, 4},  {3, 4, 2},   {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                   {4, 9, 5},  {2, 4, 11},  {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    s.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                   {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                   {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                   {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (int level = 0; level < levels; ++level)
     {
         std::map<std::pair<int, int>, int> midpoint;  // edge -> its new vertex, made once
-        auto middle = [&](int a, int b)
-        {
+        auto middle = [&](int a, int b) {
             const std::pair<int, int> key(std::min(a, b), std::max(a, b));
             const auto it = midpoint.find(key);
             if (it != midpoint.end()) return it->second;
@@ -207,13 +213,17 @@ int GridSurface::add(const hdi::Vec3& p)
     return where_[key] = static_cast<int>(points.size()) - 1;
 }
 
-void GridSurface::add_grid(const hdi::Vec3& origin, const hdi::Vec3& u, const hdi::Vec3& v, int nu, int nv)
+void GridSurface::add_grid(const hdi::Vec3& origin, const hdi::Vec3& u, const hdi::Vec3& v, int nu,
+                           int nv)
 {
     for (int i = 0; i < nu; ++i)
         for (int j = 0; j < nv; ++j)
         {
-            auto at = [&](int a, int b) { return add(origin + (double(a) / nu) * u + (double(b) / nv) * v); };
-            const int p00 = at(i, j), p10 = at(i + 1, j), p11 = at(i + 1, j + 1), p01 = at(i, j + 1);
+            auto at = [&](int a, int b) {
+                return add(origin + (double(a) / nu) * u + (double(b) / nv) * v);
+            };
+            const int p00 = at(i, j), p10 = at(i + 1, j), p11 = at(i + 1, j + 1),
+                      p01 = at(i, j + 1);
             triangles.push_back({p00, p10, p11});
             triangles.push_back({p00, p11, p01});
         }

@@ -59,22 +59,27 @@ TEST_CASE("features: a cube's 12 edges are ridges, its 8 vertices corners, its 6
     CHECK(f.ridge_edges.size() == static_cast<std::size_t>(12 * n));
     CHECK(f.boundary_edges.empty());
     REQUIRE(f.corners.size() == 8);
-    for (int c : f.corners) {
+    for (int c : f.corners)
+    {
         const Vec3& p = s.points[static_cast<std::size_t>(c)];
         for (int d = 0; d < 3; ++d) CHECK((p[d] == 0.0 || p[d] == 1.0));
     }
     // Every ridge edge lies on a cube edge: two of its coordinates are 0 or 1 at both ends.
-    for (const auto& e : f.ridge_edges) {
+    for (const auto& e : f.ridge_edges)
+    {
         int on_cube_edge = 0;
-        for (int d = 0; d < 3; ++d) {
-            const double a = s.points[static_cast<std::size_t>(e[0])][d], b = s.points[static_cast<std::size_t>(e[1])][d];
+        for (int d = 0; d < 3; ++d)
+        {
+            const double a = s.points[static_cast<std::size_t>(e[0])][d],
+                         b = s.points[static_cast<std::size_t>(e[1])][d];
             if (a == b && (a == 0.0 || a == 1.0)) ++on_cube_edge;
         }
         CHECK(on_cube_edge == 2);
     }
     const std::vector<FeatureChain> chains = feature_chains(f, static_cast<int>(s.points.size()));
     CHECK(chains.size() == 12);
-    for (const FeatureChain& c : chains) {
+    for (const FeatureChain& c : chains)
+    {
         CHECK_FALSE(c.closed);
         CHECK(c.vertices.size() == static_cast<std::size_t>(n + 1));
         CHECK(std::binary_search(f.corners.begin(), f.corners.end(), c.vertices.front()));
@@ -133,7 +138,8 @@ TEST_CASE("features: a fold - the ridge meets the boundary at corners; each side
     const Surface s = fold(n);
     const FeatureSet f = detect_features(s.points, s.triangles);
     REQUIRE(f.ridge_edges.size() == static_cast<std::size_t>(n));
-    for (int v : vertex_set(f.ridge_edges)) {
+    for (int v : vertex_set(f.ridge_edges))
+    {
         CHECK(s.points[static_cast<std::size_t>(v)].x() == 1.0);
         CHECK(s.points[static_cast<std::size_t>(v)].z() == 0.0);
     }
@@ -145,7 +151,8 @@ TEST_CASE("features: a fold - the ridge meets the boundary at corners; each side
     CHECK_FALSE(model.is_corner(static_cast<int>(s.points.size())));  // out of range: not a corner
     // Just above face A, a hair from the fold (nearer A than B): projected onto plane A exactly,
     // B's nodes unused.
-    for (double gap : {0.002, 0.02, 0.1}) {
+    for (double gap : {0.002, 0.02, 0.1})
+    {
         const Projection p = model.project(Vec3(1 - gap, 0.43, 0.2 * gap));
         REQUIRE(p.status == ProjectionStatus::Ok);
         CHECK(std::abs(p.point.z()) < 1e-12);
@@ -174,9 +181,11 @@ TEST_CASE("features: an open tube's rims are closed feature lines; rim points la
     Surface s;
     for (int r = 0; r < rings; ++r)
         for (int i = 0; i < around; ++i)
-            s.points.emplace_back(std::cos(2 * pi * i / around), std::sin(2 * pi * i / around), 0.2 * r);
+            s.points.emplace_back(std::cos(2 * pi * i / around), std::sin(2 * pi * i / around),
+                                  0.2 * r);
     for (int r = 0; r + 1 < rings; ++r)
-        for (int i = 0; i < around; ++i) {
+        for (int i = 0; i < around; ++i)
+        {
             const int a = r * around + i, b = r * around + (i + 1) % around;
             s.triangles.push_back({a, b, b + around});
             s.triangles.push_back({a, b + around, a + around});
@@ -187,7 +196,8 @@ TEST_CASE("features: an open tube's rims are closed feature lines; rim points la
     CHECK(f.corners.empty());
     const std::vector<FeatureChain> chains = feature_chains(f, static_cast<int>(s.points.size()));
     REQUIRE(chains.size() == 2);
-    for (const FeatureChain& c : chains) {
+    for (const FeatureChain& c : chains)
+    {
         CHECK(c.closed);
         CHECK(c.vertices.size() == static_cast<std::size_t>(around));
     }
@@ -195,15 +205,18 @@ TEST_CASE("features: an open tube's rims are closed feature lines; rim points la
     const HdiSurface model(s.points, s.triangles, FeatureSet{});
     CHECK(model.features().boundary_edges.size() == static_cast<std::size_t>(2 * around));
     double worst = 0;
-    for (int k = 0; k < 64; ++k) {
+    for (int k = 0; k < 64; ++k)
+    {
         const double angle = 2 * pi * (k + 0.37) / 64;
         const Vec3 x(1.01 * std::cos(angle), 1.01 * std::sin(angle), 0.01);
         const Projection p = model.project_to_ridge(x);
         REQUIRE(p.status == ProjectionStatus::Ok);
-        worst = std::max(worst, std::abs(std::hypot(p.point.x(), p.point.y()) - 1.0) + std::abs(p.point.z()));
+        worst = std::max(
+            worst, std::abs(std::hypot(p.point.x(), p.point.y()) - 1.0) + std::abs(p.point.z()));
         CHECK(p.k1 == doctest::Approx(1.0).epsilon(0.05));  // a unit circle
     }
-    MESSAGE("tube rim (32 segments): max distance of projected rim points from the circle " << worst);
+    MESSAGE("tube rim (32 segments): max distance of projected rim points from the circle "
+            << worst);
     // The polyline's own chord sagitta is 1 - cos(pi/32) = 4.8e-3; the 1-D fit does far better.
     CHECK(worst < 2e-4);
 }
@@ -215,8 +228,10 @@ TEST_CASE("features: fandisk's ridge network survives the noise rule whole")
     keep_all.min_ridge_length = 0;
     const FeatureSet raw = detect_features(input.points, input.triangles, keep_all);
     const FeatureSet f = detect_features(input.points, input.triangles);
-    MESSAGE("fandisk: " << f.ridge_edges.size() << " ridge edges, " << f.corners.size() << " corners, "
-            << feature_chains(f, static_cast<int>(input.points.size())).size() << " ridge lines");
+    MESSAGE("fandisk: " << f.ridge_edges.size() << " ridge edges, " << f.corners.size()
+                        << " corners, "
+                        << feature_chains(f, static_cast<int>(input.points.size())).size()
+                        << " ridge lines");
     CHECK(f.ridge_edges == raw.ridge_edges);  // no fandisk ridge is noise
     CHECK(f.ridge_edges.size() == 722);  // the 45-degree ridges and the long 30-45 degree creases
     CHECK(f.boundary_edges.empty());
@@ -228,7 +243,8 @@ TEST_CASE("features: bad indices are rejected with the triangle named")
     const std::vector<Vec3> points{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
     const std::vector<Triangle3> triangles{{0, 1, 3}};
     CHECK_THROWS_AS(detect_features(points, triangles), InputError);
-    CHECK_THROWS_WITH_AS(HdiSurface(points, triangles, FeatureSet{}), doctest::Contains("triangle 0"), InputError);
+    CHECK_THROWS_WITH_AS(HdiSurface(points, triangles, FeatureSet{}),
+                         doctest::Contains("triangle 0"), InputError);
     FeatureSet bad;
     bad.corners = {7};
     CHECK_THROWS_AS(HdiSurface(points, {{0, 1, 2}}, bad), InputError);

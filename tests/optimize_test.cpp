@@ -2,6 +2,8 @@
 // and the volume stay, the mesh comes back compact, valid and with its adjacency, too-short
 // edges are collapsed without creating too-long ones, and the output is bitwise reproducible.
 
+#include "volume/optimize.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 
 #include "fixtures.h"
 #include "volume/check.h"
-#include "volume/optimize.h"
 #include "volume/size_fields.h"
 #include "volume/tet_tables.h"
 

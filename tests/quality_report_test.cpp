@@ -1,7 +1,10 @@
 // The quality report on meshes whose every number is known by hand: the regular tet, the
 // corner tet, the Kuhn-cube box (all tets congruent), and the jittered box for invariants.
 
+#include "volume/quality_report.h"
+
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -10,12 +13,10 @@
 #include <numeric>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
+#include "common/errors.h"
 #include "fixtures.h"
 #include "volume/check.h"
-#include "common/errors.h"
-#include "volume/quality_report.h"
 #include "volume/size_fields.h"
 #include "volume/tet_io.h"
 
@@ -80,16 +81,19 @@ TEST_CASE("corner tet: Qe = sqrt(3) - 1, dihedral 54.7 to 90 degrees")
     // rho = 3V / A = 0.5 / (1.5 + sqrt(3)/2), h = sqrt(2): Qe = 2 sqrt(6) rho / h = sqrt(3) - 1
     CHECK(r.min_qe == doctest::Approx(std::sqrt(3.0) - 1.0).epsilon(1e-14));
     CHECK(r.qe_histogram[7] == 1);
-    CHECK(r.min_dihedral_deg == doctest::Approx(std::acos(1.0 / std::sqrt(3.0)) * kDegrees).epsilon(1e-12));
+    CHECK(r.min_dihedral_deg ==
+          doctest::Approx(std::acos(1.0 / std::sqrt(3.0)) * kDegrees).epsilon(1e-12));
     CHECK(r.max_dihedral_deg == doctest::Approx(90.0).epsilon(1e-12));
     CHECK(r.volume == doctest::Approx(1.0 / 6.0).epsilon(1e-14));
     // no field: no size statistics, and the table says so
     CHECK_FALSE(r.has_size);
     CHECK(format_quality_table(r).find("no size field") != std::string::npos);
     // the slanted face is equilateral (Qe 1), the three others right isosceles
-    const double right_isosceles = 2 * std::sqrt(3.0) * (2 * 0.5 / (2 + std::sqrt(2.0))) / std::sqrt(2.0);
+    const double right_isosceles =
+        2 * std::sqrt(3.0) * (2 * 0.5 / (2 + std::sqrt(2.0))) / std::sqrt(2.0);
     CHECK(r.min_boundary_triangle_qe == doctest::Approx(right_isosceles).epsilon(1e-14));
-    CHECK(r.mean_boundary_triangle_qe == doctest::Approx((3 * right_isosceles + 1) / 4).epsilon(1e-14));
+    CHECK(r.mean_boundary_triangle_qe ==
+          doctest::Approx((3 * right_isosceles + 1) / 4).epsilon(1e-14));
 }
 
 TEST_CASE("dihedral angles of one tet, by edge")
@@ -97,7 +101,8 @@ TEST_CASE("dihedral angles of one tet, by edge")
     const auto angles = dihedral_angles_deg({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
     // edges e0 = 01, e1 = 02, e2 = 03 lie on the axes: right angles; e3, e4, e5 on the slanted face
     for (int e = 0; e < 3; ++e) CHECK(angles[e] == doctest::Approx(90.0));
-    for (int e = 3; e < 6; ++e) CHECK(angles[e] == doctest::Approx(std::acos(1.0 / std::sqrt(3.0)) * kDegrees));
+    for (int e = 3; e < 6; ++e)
+        CHECK(angles[e] == doctest::Approx(std::acos(1.0 / std::sqrt(3.0)) * kDegrees));
 }
 
 TEST_CASE("Kuhn box 2x2x2 against a constant size: every number by hand")
@@ -128,11 +133,13 @@ TEST_CASE("Kuhn box 2x2x2 against a constant size: every number by hand")
     CHECK(r.min_qt == doctest::Approx(1.0 / std::sqrt(3.0)));
     CHECK(r.max_length_ratio == doctest::Approx(std::sqrt(3.0)));
     CHECK(r.min_length_ratio == doctest::Approx(1.0));
-    CHECK(r.mean_length_ratio == doctest::Approx((54 + 36 * std::sqrt(2.0) + 8 * std::sqrt(3.0)) / 98));
+    CHECK(r.mean_length_ratio ==
+          doctest::Approx((54 + 36 * std::sqrt(2.0) + 8 * std::sqrt(3.0)) / 98));
     CHECK(r.length_ratio_histogram == std::array<long, 8>{0, 0, 0, 0, 54, 36, 8, 0});
 
     // a field twice as large: the axis edges become too short (L/h = 0.5 < 0.66)
-    const QualityReport coarse = compute_quality_report(mesh, std::make_unique<ConstantSize>(1.0).get());
+    const QualityReport coarse =
+        compute_quality_report(mesh, std::make_unique<ConstantSize>(1.0).get());
     CHECK(coarse.percent_too_short == doctest::Approx(100.0 * 54 / 98));
     CHECK(coarse.percent_too_long == 0.0);
     CHECK(coarse.length_ratio_histogram[1] == 54);  // [0.5, 0.66)
@@ -144,7 +151,8 @@ TEST_CASE("jittered box: histograms account for every tet and edge, volume conse
     const BenchmarkSize field(benchmark_case('C'));
     const QualityReport r = compute_quality_report(mesh, &field);
     CHECK(std::accumulate(r.qe_histogram.begin(), r.qe_histogram.end(), 0) == r.tets);
-    CHECK(std::accumulate(r.length_ratio_histogram.begin(), r.length_ratio_histogram.end(), 0L) == r.edges);
+    CHECK(std::accumulate(r.length_ratio_histogram.begin(), r.length_ratio_histogram.end(), 0L) ==
+          r.edges);
     CHECK(r.volume == doctest::Approx(1.0).epsilon(1e-13));
     CHECK(r.enclosed_volume == doctest::Approx(r.volume).epsilon(1e-13));
     CHECK(r.min_qe > 0.0);
@@ -210,7 +218,8 @@ TEST_CASE("table, JSON and SVG outputs")
     CHECK(json.find("\"has_size\": true") != std::string::npos);
     CHECK(json.find("inf") == std::string::npos);
 
-    const auto directory = std::filesystem::temp_directory_path() / ("quality_report_test_" + std::to_string(::getpid()));
+    const auto directory = std::filesystem::temp_directory_path() /
+                           ("quality_report_test_" + std::to_string(::getpid()));
     std::filesystem::create_directories(directory);
     const std::string svg_path = (directory / "report.svg").string();
     write_quality_svg(r, svg_path);
@@ -222,7 +231,8 @@ TEST_CASE("table, JSON and SVG outputs")
     write_quality_json(r, json_path);
     CHECK(read_text(json_path) == json);
     // nothing else left beside them (no temporary files)
-    CHECK(std::distance(std::filesystem::directory_iterator(directory), std::filesystem::directory_iterator()) == 2);
+    CHECK(std::distance(std::filesystem::directory_iterator(directory),
+                        std::filesystem::directory_iterator()) == 2);
     CHECK_THROWS_AS(write_quality_svg(r, (directory / "missing" / "x.svg").string()), IoError);
     std::filesystem::remove_all(directory);
 }

@@ -15,6 +15,8 @@
 //               \ | /
 //                 1
 
+#include "volume/refine_patterns.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -26,7 +28,6 @@
 
 #include "fixtures.h"
 #include "volume/check.h"
-#include "volume/refine_patterns.h"
 #include "volume/tet_tables.h"
 
 using namespace hdimesh;
@@ -89,7 +90,8 @@ std::multiset<Tri> expected_boundary(int mask, int diagonals)
         if (split == 0) add(v[0], v[1], v[2]);
         if (split == 1)
             for (int k = 0; k < 3; ++k)
-                if (mid[k] >= 0) add(v[k], mid[k], v[(k + 2) % 3]), add(mid[k], v[(k + 1) % 3], v[(k + 2) % 3]);
+                if (mid[k] >= 0)
+                    add(v[k], mid[k], v[(k + 2) % 3]), add(mid[k], v[(k + 1) % 3], v[(k + 2) % 3]);
         if (split == 3)
         {
             for (int k = 0; k < 3; ++k) add(v[k], mid[k], mid[(k + 2) % 3]);
@@ -103,8 +105,10 @@ std::multiset<Tri> expected_boundary(int mask, int diagonals)
             const int mca = mid[k], mcb = mid[(k + 2) % 3];
             add(c, mca, mcb);
             const int start = ((diagonals >> f) & 1) ? std::max(a, b) : std::min(a, b);
-            if (start == a) add(mca, a, mcb), add(a, b, mcb);
-            else add(mca, a, b), add(mca, b, mcb);
+            if (start == a)
+                add(mca, a, mcb), add(a, b, mcb);
+            else
+                add(mca, a, b), add(mca, b, mcb);
         }
     }
     return out;
@@ -146,7 +150,8 @@ bool is_four_cycle(int mask)
 TEST_CASE("patterns: 239 configurations, one per (mask, admissible diagonals)")
 {
     int expected = 0;
-    for (int mask = 0; mask < 64; ++mask) expected += 1 << popcount(faces_with_two_split_edges(mask));
+    for (int mask = 0; mask < 64; ++mask)
+        expected += 1 << popcount(faces_with_two_split_edges(mask));
     CHECK(expected == 239);
     CHECK(kNumRefinePatterns == 239);
 
@@ -209,8 +214,12 @@ TEST_CASE("patterns: every entry is a tetrahedralization of its prescribed bound
                 const Tri face = rotate_smallest_first({t[fv[0]], t[fv[1]], t[fv[2]]});
                 const Tri back = rotate_smallest_first({face[0], face[2], face[1]});
                 auto it = chain.find(back);
-                if (it != chain.end()) { if (--it->second == 0) chain.erase(it); }
-                else ++chain[face];
+                if (it != chain.end())
+                {
+                    if (--it->second == 0) chain.erase(it);
+                }
+                else
+                    ++chain[face];
             }
         }
         CHECK(volume == parent);
@@ -221,7 +230,8 @@ TEST_CASE("patterns: every entry is a tetrahedralization of its prescribed bound
         CHECK(boundary == expected);
         std::multiset<Tri> stored;
         for (int k = 0; k < p.num_triangles; ++k)
-            stored.insert(rotate_smallest_first({p.triangles[k][0], p.triangles[k][1], p.triangles[k][2]}));
+            stored.insert(
+                rotate_smallest_first({p.triangles[k][0], p.triangles[k][1], p.triangles[k][2]}));
         CHECK(stored == expected);
     }
 }
@@ -238,7 +248,8 @@ TEST_CASE("patterns: on random positive tets every child is positive and volumes
             for (int k = 0; k < 4; ++k) p[k] = Vec3(coord(rng), coord(rng), coord(rng));
         } while (signed_volume(p[0], p[1], p[2], p[3]) < 0.02);
         for (int e = 0; e < 6; ++e)
-            p[pattern_midpoint(e)] = 0.5 * (p[tet::kEdgeVertices[e][0]] + p[tet::kEdgeVertices[e][1]]);
+            p[pattern_midpoint(e)] =
+                0.5 * (p[tet::kEdgeVertices[e][0]] + p[tet::kEdgeVertices[e][1]]);
         p[kPatternSteinerPoint] = 0.25 * (p[0] + p[1] + p[2] + p[3]);
         const double parent = signed_volume(p[0], p[1], p[2], p[3]);
         for (int i = 0; i < kNumRefinePatterns; ++i)
@@ -277,7 +288,8 @@ TEST_CASE("patterns: the paper's code is unique and its example 20,8,20,7 is a v
     const RefinePattern& example = refine_pattern(found);
     const std::array<int, 4> face_codes = {20, 8, 20, 7};
     for (int i = 0; i < 4; ++i)
-        CHECK(paper_face_code(example.mask, example.diagonals, kPaperFaceToOurs[i]) == face_codes[i]);
+        CHECK(paper_face_code(example.mask, example.diagonals, kPaperFaceToOurs[i]) ==
+              face_codes[i]);
     // all three edges of our face 3 split (F3 = 7), one on face 0 (F1 = 8): edges 0,1,2,3
     CHECK(example.mask == 0b001111);
     CHECK_FALSE(example.steiner);
@@ -287,7 +299,8 @@ TEST_CASE("patterns: the paper's code is unique and its example 20,8,20,7 is a v
     std::set<int> face_patterns;
     for (int i = 0; i < kNumRefinePatterns; ++i)
         for (int f = 0; f < 4; ++f)
-            face_patterns.insert(paper_face_code(refine_pattern(i).mask, refine_pattern(i).diagonals, f));
+            face_patterns.insert(
+                paper_face_code(refine_pattern(i).mask, refine_pattern(i).diagonals, f));
     CHECK(face_patterns.size() == 11u);
 }
 

@@ -2,6 +2,8 @@
 // conservation, no edge too long at the end, vertex classes and refs carried, and the 14
 // Schönhardt configurations reached on a real mesh by forcing the face rule.
 
+#include "volume/refine.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -13,7 +15,6 @@
 
 #include "fixtures.h"
 #include "volume/check.h"
-#include "volume/refine.h"
 #include "volume/refine_patterns.h"
 #include "volume/size_fields.h"
 #include "volume/tet_io.h"
@@ -115,7 +116,8 @@ int refine_checked(TetMesh& mesh, const SizeField& field, int max_passes = 40)
         CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-10));
         CHECK(r.report.vertices == mesh.num_vertices());
         CHECK(r.report.tets == mesh.num_tet_slots());
-        CHECK(mesh.num_vertices() == vertices_before + r.report.edges_split + r.report.steiner_points);
+        CHECK(mesh.num_vertices() ==
+              vertices_before + r.report.edges_split + r.report.steiner_points);
         for (int v : r.new_boundary_vertices)
             CHECK(mesh.vertex_classes[v] != VertexClass::Interior);
         for (int v : r.steiner_vertices) CHECK(mesh.vertex_classes[v] == VertexClass::Interior);
@@ -135,8 +137,10 @@ TEST_CASE("refine: the face rule is a pure function of the face, ties go to the 
             for (int b = 0; b < 4; ++b)
             {
                 if (a == b || a == c || b == c) continue;
-                CHECK(quad_diagonal_start(regular.points, c, a, b) == quad_diagonal_start(regular.points, c, b, a));
-                CHECK(quad_diagonal_start(regular.points, c, a, b) == std::min(a, b));  // equilateral: tie
+                CHECK(quad_diagonal_start(regular.points, c, a, b) ==
+                      quad_diagonal_start(regular.points, c, b, a));
+                CHECK(quad_diagonal_start(regular.points, c, a, b) ==
+                      std::min(a, b));  // equilateral: tie
             }
 
     //      2
@@ -296,13 +300,15 @@ TEST_CASE("refine: forced face rules reach all 14 Schönhardt configurations on 
             SplitTheseEdges field;
             for (int e = 0; e < 6; ++e)
                 if ((mask >> e) & 1)
-                    field.add(mesh.points[tet::kEdgeVertices[e][0]], mesh.points[tet::kEdgeVertices[e][1]]);
+                    field.add(mesh.points[tet::kEdgeVertices[e][0]],
+                              mesh.points[tet::kEdgeVertices[e][1]]);
             // the rule: face k (in order of its smallest-id corner key) takes bit k of choice
             std::map<std::array<int, 3>, int> face_bit;
             const QuadDiagonalRule rule = [&](int corner, int a, int b) {
                 const std::array<int, 3> key = {corner, a, b};
                 auto it = face_bit.find(key);
-                if (it == face_bit.end()) it = face_bit.emplace(key, static_cast<int>(face_bit.size())).first;
+                if (it == face_bit.end())
+                    it = face_bit.emplace(key, static_cast<int>(face_bit.size())).first;
                 return ((choice >> it->second) & 1) ? b : a;
             };
             const RefinePassResult r = refine_pass(mesh, field, rule);
@@ -371,6 +377,7 @@ TEST_CASE("refine: the sphere with random fields and the paper's case A")
     CHECK(mesh.total_volume() == doctest::Approx(4.00715).epsilon(1e-5));
     int split = 0;
     for (const auto& pass : r.passes) split += pass.edges_split;
-    CHECK(mesh.num_vertices() == sphere.num_vertices() + split + static_cast<int>(r.steiner_vertices.size()));
+    CHECK(mesh.num_vertices() ==
+          sphere.num_vertices() + split + static_cast<int>(r.steiner_vertices.size()));
     for (int v : r.new_boundary_vertices) CHECK(mesh.vertex_classes[v] == VertexClass::Surface);
 }

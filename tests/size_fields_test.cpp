@@ -1,6 +1,8 @@
 // Size fields: constant, the paper's benchmark cylinders against hand values and the reference
 // checker, the background mesh reproducing linear functions, clamping and gradation.
 
+#include "volume/size_fields.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -10,11 +12,10 @@
 #include <thread>
 #include <vector>
 
+#include "common/errors.h"
 #include "fixtures.h"
 #include "volume/boundary.h"
 #include "volume/check.h"
-#include "common/errors.h"
-#include "volume/size_fields.h"
 
 using namespace hdimesh;
 
@@ -74,19 +75,25 @@ TEST_CASE("benchmark field: hand values of case A")
 TEST_CASE("benchmark field: equal to ../shared/tools/meshstat.py size_field for all cases")
 {
     // Reference values printed by the independent checker's size_field() (numpy), once.
-    const std::vector<Vec3> points = {{0, 0, 0},         {0, 0.03, 0},      {0.5, 0.5, 0},  {0.9, 0.9, 0.9},
-                                      {0.1, -0.2, 0.35}, {-0.7, 0.05, 0.02}, {0.3, 0.31, -0.05}};
+    const std::vector<Vec3> points = {{0, 0, 0},         {0, 0.03, 0},      {0.5, 0.5, 0},
+                                      {0.9, 0.9, 0.9},   {0.1, -0.2, 0.35}, {-0.7, 0.05, 0.02},
+                                      {0.3, 0.31, -0.05}};
     const std::vector<std::pair<char, std::vector<double>>> expected = {
-        {'A', {0.039099999999999996, 0.03, 0.17256666666666665, 0.3333333333333333, 0.08872739531749363,
-               0.03723499991497466, 0.11315523170952299}},
-        {'B', {0.013233333333333333, 0.013233333333333333, 0.16843333333333332, 0.3333333333333333,
-               0.07906619793915987, 0.024178699543068234, 0.10510466090648787}},
-        {'C', {0.121, 0.1119, 0.09066666666666667, 0.3250803025278549, 0.04941499998742118, 0.10466500008502533,
-               0.03125523170952299}},
-        {'D', {0.10699999999999998, 0.0973, 0.07466666666666666, 0.3245361466505706, 0.0306951098767017,
-               0.08958796712359843, 0.011337994239821214}},
-        {'E', {0.2363333333333333, 0.2266333333333333, 0.012297859250317062, 0.19520281331723732,
-               0.1059934997358401, 0.010092362106816634, 0.09684956685453797}},
+        {'A',
+         {0.039099999999999996, 0.03, 0.17256666666666665, 0.3333333333333333, 0.08872739531749363,
+          0.03723499991497466, 0.11315523170952299}},
+        {'B',
+         {0.013233333333333333, 0.013233333333333333, 0.16843333333333332, 0.3333333333333333,
+          0.07906619793915987, 0.024178699543068234, 0.10510466090648787}},
+        {'C',
+         {0.121, 0.1119, 0.09066666666666667, 0.3250803025278549, 0.04941499998742118,
+          0.10466500008502533, 0.03125523170952299}},
+        {'D',
+         {0.10699999999999998, 0.0973, 0.07466666666666666, 0.3245361466505706, 0.0306951098767017,
+          0.08958796712359843, 0.011337994239821214}},
+        {'E',
+         {0.2363333333333333, 0.2266333333333333, 0.012297859250317062, 0.19520281331723732,
+          0.1059934997358401, 0.010092362106816634, 0.09684956685453797}},
     };
     for (const auto& [name, values] : expected)
     {
@@ -150,7 +157,8 @@ TEST_CASE("nearest boundary point: never farther than the nearest boundary verte
         const Vec3 p(range(rng), range(rng), range(rng));
         double nearest_vertex = 1e300, nearest_point = 1e300;
         for (const auto& tri : boundary)
-            for (int v : tri) nearest_vertex = std::min(nearest_vertex, (mesh.points[v] - p).norm());
+            for (int v : tri)
+                nearest_vertex = std::min(nearest_vertex, (mesh.points[v] - p).norm());
         // the nearest point of the box [0,1]^3 (its boundary is planar, whatever the jitter inside)
         const Vec3 clamped = p.cwiseMax(Vec3::Zero()).cwiseMin(Vec3::Ones());
         nearest_point = (clamped - p).norm();
@@ -176,7 +184,8 @@ TEST_CASE("background mesh on a non-convex domain (an L-shaped notch)")
     for (int t = 0; t < mesh.num_tet_slots(); ++t)
     {
         const auto& v = mesh.tets[t];
-        const Vec3 c = 0.25 * (mesh.points[v[0]] + mesh.points[v[1]] + mesh.points[v[2]] + mesh.points[v[3]]);
+        const Vec3 c =
+            0.25 * (mesh.points[v[0]] + mesh.points[v[1]] + mesh.points[v[2]] + mesh.points[v[3]]);
         if (c.x() > 0.5 && c.y() > 0.5) mesh.kill_tet(t);
     }
     mesh.compact();
@@ -236,19 +245,21 @@ TEST_CASE("background mesh: bad input is an InputError naming what is wrong")
     CHECK_THROWS_AS(BackgroundMeshSize(mesh, sizes), InputError);
     sizes = linear_sizes(mesh);
     sizes[4] = -1.0;
-    CHECK_THROWS_WITH_AS(BackgroundMeshSize(mesh, sizes), doctest::Contains("vertex 4"), InputError);
+    CHECK_THROWS_WITH_AS(BackgroundMeshSize(mesh, sizes), doctest::Contains("vertex 4"),
+                         InputError);
     CHECK_THROWS_AS(BackgroundMeshSize(TetMesh{}, {}), InputError);
     TetMesh flipped = fixtures::single_tet();
     std::swap(flipped.tets[0][0], flipped.tets[0][1]);
-    CHECK_THROWS_WITH_AS(BackgroundMeshSize(flipped, {1, 1, 1, 1}), doctest::Contains("tet 0"), InputError);
+    CHECK_THROWS_WITH_AS(BackgroundMeshSize(flipped, {1, 1, 1, 1}), doctest::Contains("tet 0"),
+                         InputError);
 }
 
 TEST_CASE("clamped size")
 {
     auto inner = std::make_shared<BenchmarkSize>(benchmark_case('A'));
     const ClampedSize clamped(inner, 0.05, 0.2);
-    CHECK(clamped.size({0, 0.03, 0}) == 0.05);             // 0.03 raised to hmin
-    CHECK(clamped.size({0.9, 0.9, 0.9}) == 0.2);           // 1/3 lowered to hmax
+    CHECK(clamped.size({0, 0.03, 0}) == 0.05);                         // 0.03 raised to hmin
+    CHECK(clamped.size({0.9, 0.9, 0.9}) == 0.2);                       // 1/3 lowered to hmax
     CHECK(clamped.size({0.5, 0.5, 0}) == inner->size({0.5, 0.5, 0}));  // 0.1726 kept
     CHECK_THROWS_AS(ClampedSize(inner, 0.3, 0.2), InputError);
     CHECK_THROWS_AS(ClampedSize(nullptr, 0.1, 0.2), InputError);
@@ -275,7 +286,8 @@ TEST_CASE("gradation bounds every edge's size ratio")
         lowered += sizes[v] < original[v];
     }
     CHECK(lowered > 0);
-    const int smallest = static_cast<int>(std::min_element(original.begin(), original.end()) - original.begin());
+    const int smallest =
+        static_cast<int>(std::min_element(original.begin(), original.end()) - original.begin());
     CHECK(sizes[smallest] == original[smallest]);
     for (const auto& e : unique_tet_edges(mesh))
     {

@@ -43,8 +43,9 @@ TEST_CASE(
     fixtures::mark_all_smooth(mesh);
     int given_splits = 0, given_collapses = 0;
     SurfaceHooks given;
-    given.on_split = [&](const SurfaceMesh&, VertexHandle, VertexHandle, VertexHandle)
-    { ++given_splits; };
+    given.on_split = [&](const SurfaceMesh&, VertexHandle, VertexHandle, VertexHandle) {
+        ++given_splits;
+    };
     given.on_collapse = [&](const SurfaceMesh&, VertexHandle, VertexHandle) { ++given_collapses; };
     ChangeLog log;
     ChangedVertices recording, idle;
@@ -92,8 +93,8 @@ TEST_CASE("the change log notes a flip's new edge ends and a move's vertex")
     log.add(list);
     int given_flips = 0, given_moves = 0;
     SurfaceHooks given;
-    given.on_flip = [&](const SurfaceMesh&, VertexHandle, VertexHandle, VertexHandle, VertexHandle)
-    { ++given_flips; };
+    given.on_flip = [&](const SurfaceMesh&, VertexHandle, VertexHandle, VertexHandle,
+                        VertexHandle) { ++given_flips; };
     given.on_move = [&](const SurfaceMesh&, VertexHandle, const Vec3d&) { ++given_moves; };
     const fixtures::PlaneProjector plane;
     OperatorContext ctx(mesh, plane, log.wrap(given));

@@ -41,7 +41,8 @@ public:
     ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const override
     {
         ProjectedPoint out;
-        out.point = cls == VertexClass::Boundary && curve == 0 ? closest_on_zig(p) : Vec3d(p[0], p[1], 0);
+        out.point =
+            cls == VertexClass::Boundary && curve == 0 ? closest_on_zig(p) : Vec3d(p[0], p[1], 0);
         out.normal = Vec3d(0, 0, 1);
         out.ok = true;
         return out;
@@ -52,7 +53,8 @@ public:
 // the four grid corners as corners.
 SurfaceMesh zig_grid()
 {
-    SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(4, [](int, int) { return 0.0; });
+    SurfaceMesh mesh =
+        hdimesh::surface::fixtures::triangulated_grid(4, [](int, int) { return 0.0; });
     hdimesh::surface::fixtures::mark_all_smooth(mesh);
     // The rim: curve 0 along y = 0, curve 1 the rest, between the four corners.
     SurfaceProperties props(mesh);
@@ -69,7 +71,8 @@ SurfaceMesh zig_grid()
     {
         if (!mesh.is_boundary(e)) continue;
         const auto h = mesh.halfedge_handle(e, 0);
-        mesh.property(props.edge_curve, e) = curve_of(mesh.point(mesh.from_vertex_handle(h)), mesh.point(mesh.to_vertex_handle(h)));
+        mesh.property(props.edge_curve, e) =
+            curve_of(mesh.point(mesh.from_vertex_handle(h)), mesh.point(mesh.to_vertex_handle(h)));
     }
     return mesh;
 }
@@ -87,9 +90,9 @@ std::vector<Vec3d> zig_witnesses()
     return points;
 }
 
-using hdimesh::surface::fixtures::points_of;
 using hdimesh::surface::fixtures::moved_star_defects;
 using hdimesh::surface::fixtures::MovedStarDefects;
+using hdimesh::surface::fixtures::points_of;
 
 }  // namespace
 
@@ -127,13 +130,16 @@ TEST_CASE("fit_curve_vertex slides a boundary vertex onto the zig its chords cut
     const Vec3d p = mesh.point(v);
     CHECK((closest_on_zig(p) - p).norm() < 1e-12);  // on its curve
     for (const Vec3d& w : options.witnesses) CHECK(distance_to_mesh(mesh, w) <= options.tolerance);
-    const MovedStarDefects defects = moved_star_defects(mesh, v, options.min_angle_deg, options.min_length, options.max_length);
+    const MovedStarDefects defects =
+        moved_star_defects(mesh, v, options.min_angle_deg, options.min_length, options.max_length);
     CHECK(defects.folded == 0);
     CHECK(defects.small_angles == 0);
     CHECK(defects.edges_out_of_band == 0);
 }
 
-TEST_CASE("fit_curve_vertex refuses a smooth vertex, a corner and a vertex already near, and changes nothing")
+TEST_CASE(
+    "fit_curve_vertex refuses a smooth vertex, a corner and a vertex already near, and changes "
+    "nothing")
 {
     SurfaceMesh mesh = zig_grid();
     ZigProjector model;
@@ -142,14 +148,19 @@ TEST_CASE("fit_curve_vertex refuses a smooth vertex, a corner and a vertex alrea
     options.tolerance = 0.05;
     options.witnesses = zig_witnesses();
     const std::vector<Vec3d> before = points_of(mesh);
-    CHECK(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(1, 1, 0)), options).status == OpStatus::Class);
-    CHECK(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(0, 0, 0)), options).status == OpStatus::Class);
+    CHECK(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(1, 1, 0)), options).status ==
+          OpStatus::Class);
+    CHECK(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(0, 0, 0)), options).status ==
+          OpStatus::Class);
     // (3, 0): its chords follow the straight part of the polyline; nothing to gain.
-    CHECK(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(3, 0, 0)), options).status == OpStatus::Quality);
+    CHECK(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(3, 0, 0)), options).status ==
+          OpStatus::Quality);
     CHECK(points_of(mesh) == before);
 }
 
-TEST_CASE("fit_curve_vertex shortens an edge already under the band only with a floor, and never below it")
+TEST_CASE(
+    "fit_curve_vertex shortens an edge already under the band only with a floor, and never below "
+    "it")
 {
     // The grid's unit edges are all under a band starting at 1.2: the fit onto the zig Z shortens
     // v's edge to (2, 0) from 1 to 0.91. Without a floor that is refused; with a floor under 0.91
@@ -170,7 +181,9 @@ TEST_CASE("fit_curve_vertex shortens an edge already under the band only with a 
         SurfaceMesh mesh = zig_grid();
         OperatorContext ctx(mesh, model, {});
         const std::vector<Vec3d> before = points_of(mesh);
-        CHECK_FALSE(fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(1, 0, 0)), options_with_floor(floor)).done());
+        CHECK_FALSE(
+            fit_curve_vertex(ctx, vertex_at(mesh, Vec3d(1, 0, 0)), options_with_floor(floor))
+                .done());
         CHECK(points_of(mesh) == before);
     }
     SurfaceMesh mesh = zig_grid();
@@ -178,6 +191,7 @@ TEST_CASE("fit_curve_vertex shortens an edge already under the band only with a 
     const VertexHandle v = vertex_at(mesh, Vec3d(1, 0, 0));
     const CurveFitOptions options = options_with_floor(0.5);
     REQUIRE(fit_curve_vertex(ctx, v, options).done());
-    for (auto w : mesh.vv_range(v)) CHECK((mesh.point(w) - mesh.point(v)).norm() >= options.floor_length);
+    for (auto w : mesh.vv_range(v))
+        CHECK((mesh.point(w) - mesh.point(v)).norm() >= options.floor_length);
     CHECK(distance_to_mesh(mesh, kZigPolyline[1]) <= options.tolerance);
 }

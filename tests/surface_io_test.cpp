@@ -3,17 +3,18 @@
 // warning, a clear error naming the file and the element otherwise (non-manifold edge,
 // malformed line), never a crash. Multi-component and open inputs are remeshed as they are.
 
+#include "surface/surface_io.h"
+
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
 #include <set>
 #include <string>
-#include <unistd.h>
 
-#include "surface/remesh_surface.h"
 #include "common/errors.h"
-#include "surface/surface_io.h"
+#include "surface/remesh_surface.h"
 #include "surface/surface_quality.h"
 
 using namespace hdimesh::surface;
@@ -41,11 +42,12 @@ std::string tetra_obj(double dx, int first_index)
     std::string s;
     const double p[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     for (const auto& q : p)
-        s += "v " + std::to_string(q[0] + dx) + " " + std::to_string(q[1]) + " " + std::to_string(q[2]) + "\n";
+        s += "v " + std::to_string(q[0] + dx) + " " + std::to_string(q[1]) + " " +
+             std::to_string(q[2]) + "\n";
     const int f[4][3] = {{1, 3, 2}, {1, 2, 4}, {2, 3, 4}, {3, 1, 4}};
     for (const auto& t : f)
-        s += "f " + std::to_string(t[0] + first_index) + " " + std::to_string(t[1] + first_index) + " " +
-             std::to_string(t[2] + first_index) + "\n";
+        s += "f " + std::to_string(t[0] + first_index) + " " + std::to_string(t[1] + first_index) +
+             " " + std::to_string(t[2] + first_index) + "\n";
     return s;
 }
 
@@ -94,7 +96,9 @@ TEST_CASE("OBJ, OFF, STL, PLY and Medit round trips keep the geometry; Medit kee
     }
 }
 
-TEST_CASE("duplicate vertices are merged, degenerate and repeated triangles dropped, orientation repaired")
+TEST_CASE(
+    "duplicate vertices are merged, degenerate and repeated triangles dropped, orientation "
+    "repaired")
 {
     //  the tetrahedron written as a soup: every triangle with its own three vertices, one
     //  triangle turned inside out, one repeated, one degenerate (a repeated vertex).
@@ -105,8 +109,10 @@ TEST_CASE("duplicate vertices are merged, degenerate and repeated triangles drop
     for (const auto& t : f)
     {
         for (int k = 0; k < 3; ++k)
-            text += "v " + std::to_string(p[t[k]][0]) + " " + std::to_string(p[t[k]][1]) + " " + std::to_string(p[t[k]][2]) + "\n";
-        text += "f " + std::to_string(n + 1) + " " + std::to_string(n + 2) + " " + std::to_string(n + 3) + "\n";
+            text += "v " + std::to_string(p[t[k]][0]) + " " + std::to_string(p[t[k]][1]) + " " +
+                    std::to_string(p[t[k]][2]) + "\n";
+        text += "f " + std::to_string(n + 1) + " " + std::to_string(n + 2) + " " +
+                std::to_string(n + 3) + "\n";
         n += 3;
     }
     text += "f 1 2 3\n";  // repeated
@@ -146,12 +152,15 @@ TEST_CASE("a non-manifold edge is a clear error naming the edge")
 TEST_CASE("malformed and missing files are errors naming the file and line")
 {
     const std::string bad = write_text("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n");
-    CHECK_THROWS_WITH_AS(read_surface(bad), (bad + ":3: a vertex needs three coordinates").c_str(), InputError);
+    CHECK_THROWS_WITH_AS(read_surface(bad), (bad + ":3: a vertex needs three coordinates").c_str(),
+                         InputError);
     const std::string range = write_text("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
     CHECK_THROWS_AS(read_surface(range), InputError);
     CHECK_THROWS_AS(read_surface(temp_path("does-not-exist.obj")), IoError);
     CHECK_THROWS_AS(read_surface(temp_path("what.xyz")), InputError);
-    const std::string medit = write_text("bad.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 0\nTriangles\n1\n1 2 3 0\nEnd\n");
+    const std::string medit = write_text(
+        "bad.mesh",
+        "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 0\nTriangles\n1\n1 2 3 0\nEnd\n");
     CHECK_THROWS_AS(read_surface(medit), InputError);
 }
 
@@ -187,12 +196,14 @@ TEST_CASE("a multi-component input keeps its components; an open input keeps its
     settings.sizing.hsiz = 0.25;
     remesh_surface(two, settings);
     CHECK(signed_volume(two) == doctest::Approx(2.0 / 6.0));  // flat faces: volume exact
-    int euler = static_cast<int>(two.n_vertices()) - static_cast<int>(two.n_edges()) + static_cast<int>(two.n_faces());
+    int euler = static_cast<int>(two.n_vertices()) - static_cast<int>(two.n_edges()) +
+                static_cast<int>(two.n_faces());
     CHECK(euler == 4);  // two spheres
     for (auto v : two.vertices()) CHECK(two.is_manifold(v));
 
     // An open square sheet of two triangles.
-    SurfaceMesh sheet = read_surface(write_text("sheet.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n"));
+    SurfaceMesh sheet = read_surface(
+        write_text("sheet.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n"));
     settings.sizing.hsiz = 0.2;
     remesh_surface(sheet, settings);
     double area = 0.0;
@@ -208,7 +219,8 @@ TEST_CASE("a multi-component input keeps its components; an open input keeps its
         }
     CHECK(boundary_length == doctest::Approx(4.0));
     CHECK(boundary_edges >= 16);
-    euler = static_cast<int>(sheet.n_vertices()) - static_cast<int>(sheet.n_edges()) + static_cast<int>(sheet.n_faces());
+    euler = static_cast<int>(sheet.n_vertices()) - static_cast<int>(sheet.n_edges()) +
+            static_cast<int>(sheet.n_faces());
     CHECK(euler == 1);
     const QualityReport q = measure_quality(sheet, 0.2);
     CHECK(q.min_angle_deg > 20.0);

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "surface/local_ops.h"
-#include "surface_fixtures.h"
 #include "surface/surface_quality.h"
+#include "surface_fixtures.h"
 
 using namespace hdimesh::surface;
 
@@ -23,15 +23,18 @@ using hdimesh::surface::fixtures::icosahedron;
 // A flat n×n grid of unit squares in z = 0, each cut by its (i,j)-(i+1,j+1) diagonal.
 SurfaceMesh grid(int n)
 {
-    SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(n, [](int, int) { return 0.0; });
+    SurfaceMesh mesh =
+        hdimesh::surface::fixtures::triangulated_grid(n, [](int, int) { return 0.0; });
     SurfaceProperties props(mesh);
     for (auto x : mesh.vertices())
     {
         mesh.property(props.vertex_curve, x) = kNoCurve;
-        mesh.property(props.vertex_class, x) = mesh.is_boundary(x) ? VertexClass::Boundary : VertexClass::Smooth;
+        mesh.property(props.vertex_class, x) =
+            mesh.is_boundary(x) ? VertexClass::Boundary : VertexClass::Smooth;
         if (mesh.is_boundary(x)) mesh.property(props.vertex_curve, x) = 0;
     }
-    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
+    for (auto e : mesh.edges())
+        mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
     for (auto x : mesh.faces()) mesh.property(props.face_ref, x) = 1;
     return mesh;
 }
@@ -53,7 +56,8 @@ int euler(const SurfaceMesh& mesh)
 // Every face of a closed mesh around the origin faces outward; every vertex is on the sphere.
 void check_on_unit_sphere(const SurfaceMesh& mesh)
 {
-    for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-12));
+    for (auto v : mesh.vertices())
+        CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-12));
     for (auto f : mesh.faces())
     {
         std::vector<Vec3d> p;
@@ -119,7 +123,9 @@ TEST_CASE("split puts the new vertex on the model and keeps the sphere closed an
     check_on_unit_sphere(mesh);
 }
 
-TEST_CASE("split of a boundary edge makes a boundary vertex on the same curve, only its halves are curve edges")
+TEST_CASE(
+    "split of a boundary edge makes a boundary vertex on the same curve, only its halves are curve "
+    "edges")
 {
     //  (0,0)---m---(1,0)  bottom boundary edge of the grid, m its midpoint
     SurfaceMesh mesh = grid(1);
@@ -148,7 +154,9 @@ TEST_CASE("split of a boundary edge makes a boundary vertex on the same curve, o
     check_planar_up(mesh);
 }
 
-TEST_CASE("collapse keeps a corner, refuses a curve vertex leaving its curve, and removes a smooth vertex")
+TEST_CASE(
+    "collapse keeps a corner, refuses a curve vertex leaving its curve, and removes a smooth "
+    "vertex")
 {
     //   3x3 grid; the centre-ish vertex (1,1) is smooth, (0,0) a corner, (1,0) on the boundary
     //   (2,0)-(1,0) is a boundary edge, (1,0)-(1,1) crosses into the interior.
@@ -198,7 +206,8 @@ TEST_CASE("a collapse that would fold a triangle is refused")
     SurfaceHooks hooks;
     OperatorContext ctx(mesh, plane, hooks);
     const VertexHandle centre = vertex_at(mesh, Vec3d(1, 1, 0));
-    const VertexHandle left = vertex_at(mesh, Vec3d(0, 1, 0)), top = vertex_at(mesh, Vec3d(1, 2, 0));
+    const VertexHandle left = vertex_at(mesh, Vec3d(0, 1, 0)),
+                       top = vertex_at(mesh, Vec3d(1, 2, 0));
     mesh.set_point(top, Vec3d(1.0, 1.4, 0.0));
     check_planar_up(mesh);
     const auto faces_before = mesh.n_faces();
@@ -207,10 +216,12 @@ TEST_CASE("a collapse that would fold a triangle is refused")
     CHECK(mesh.n_faces() == faces_before);
     CHECK(!mesh.status(centre).deleted());
     // Onto (0,0) nothing folds: done.
-    CHECK(try_collapse(ctx, mesh.find_halfedge(centre, vertex_at(mesh, Vec3d(0, 0, 0))), 0.0).done());
+    CHECK(
+        try_collapse(ctx, mesh.find_halfedge(centre, vertex_at(mesh, Vec3d(0, 0, 0))), 0.0).done());
     mesh.garbage_collection();
     check_planar_up(mesh);
-    CHECK(total_area(mesh) == doctest::Approx(4.0 - 0.6));  // the square minus the notch under (1,1.4)
+    CHECK(total_area(mesh) ==
+          doctest::Approx(4.0 - 0.6));  // the square minus the notch under (1,1.4)
 }
 
 TEST_CASE("flip raises the worst quality of a bad pair, refuses a curve edge and honours the hook")
@@ -221,7 +232,8 @@ TEST_CASE("flip raises the worst quality of a bad pair, refuses a curve edge and
     SurfaceMesh mesh;
     SurfaceProperties props(mesh);
     const VertexHandle a = mesh.add_vertex(Vec3d(0, 0, 0)), b = mesh.add_vertex(Vec3d(1, 0, 0));
-    const VertexHandle c = mesh.add_vertex(Vec3d(0.5, 0.3, 0)), d = mesh.add_vertex(Vec3d(0.5, -0.3, 0));
+    const VertexHandle c = mesh.add_vertex(Vec3d(0.5, 0.3, 0)),
+                       d = mesh.add_vertex(Vec3d(0.5, -0.3, 0));
     mesh.add_face(a, b, c);
     mesh.add_face(b, a, d);
     SurfaceProperties init(mesh);
@@ -251,7 +263,8 @@ TEST_CASE("flip raises the worst quality of a bad pair, refuses a curve edge and
     CHECK(total_area(mesh) == doctest::Approx(0.3));
     check_planar_up(mesh);
     // Flipping back would lower the quality: refused.
-    CHECK(try_flip(ctx, mesh.edge_handle(mesh.find_halfedge(c, d)), FlipGoal::Quality).status == OpStatus::Quality);
+    CHECK(try_flip(ctx, mesh.edge_handle(mesh.find_halfedge(c, d)), FlipGoal::Quality).status ==
+          OpStatus::Quality);
 }
 
 TEST_CASE("vertex removal retriangulates the hole better, conserving the area")
@@ -262,7 +275,8 @@ TEST_CASE("vertex removal retriangulates the hole better, conserving the area")
     PlaneProjector plane;
     SurfaceHooks hooks;
     std::size_t new_faces = 0;
-    hooks.on_remove_vertex = [&](const SurfaceMesh&, VertexHandle, const std::vector<FaceHandle>& faces) {
+    hooks.on_remove_vertex = [&](const SurfaceMesh&, VertexHandle,
+                                 const std::vector<FaceHandle>& faces) {
         new_faces = faces.size();
     };
     OperatorContext ctx(mesh, plane, hooks);
@@ -340,7 +354,9 @@ TEST_CASE("nodal shifting moves a displaced vertex back toward the balanced poin
     CHECK(mesh.point(corner) == Vec3d(0, 0, 0));
 }
 
-TEST_CASE("nodal shifting asks the caller's accept layer with the point it would commit, before committing")
+TEST_CASE(
+    "nodal shifting asks the caller's accept layer with the point it would commit, before "
+    "committing")
 {
     //   The displaced vertex of the test above: a refusing layer leaves the mesh, the hint and
     //   the hooks untouched; an accepting one is asked with exactly the point then committed.
@@ -377,7 +393,9 @@ TEST_CASE("nodal shifting asks the caller's accept layer with the point it would
     CHECK(moves == 1);
 }
 
-TEST_CASE("quality measures: Qe of an equilateral triangle is 1, angles, Hausdorff of two parallel squares")
+TEST_CASE(
+    "quality measures: Qe of an equilateral triangle is 1, angles, Hausdorff of two parallel "
+    "squares")
 {
     const Vec3d a(0, 0, 0), b(1, 0, 0), c(0.5, std::sqrt(3.0) / 2.0, 0);
     CHECK(triangle_qe(a, b, c) == doctest::Approx(1.0));

@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "surface/detail/closest_point_tree.h"
-#include "surface/local_ops.h"
 #include "surface/detail/local_ops_geometry.h"
+#include "surface/local_ops.h"
 #include "surface/surface_model.h"
 #include "surface_fixtures.h"
 
@@ -65,12 +65,14 @@ std::vector<Vec3d> sample_points(const SurfaceMesh& mesh, int n, int count)
         return lo + (hi - lo) * (state >> 8) / double(1u << 24);
     };
     std::vector<Vec3d> points;
-    for (int i = 0; i < count; ++i) points.emplace_back(uniform(-1, n + 1), uniform(-1, n + 1), uniform(-1, 1));
+    for (int i = 0; i < count; ++i)
+        points.emplace_back(uniform(-1, n + 1), uniform(-1, n + 1), uniform(-1, 1));
     for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
     for (auto e : mesh.edges())
     {
         const auto h = mesh.halfedge_handle(e, 0);
-        points.push_back(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
+        points.push_back(
+            0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
     }
     return points;
 }
@@ -78,7 +80,8 @@ std::vector<Vec3d> sample_points(const SurfaceMesh& mesh, int n, int count)
 double brute_force_distance(const std::vector<std::array<Vec3d, 3>>& triangles, const Vec3d& p)
 {
     double best = std::numeric_limits<double>::max();
-    for (const auto& t : triangles) best = std::min(best, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm());
+    for (const auto& t : triangles)
+        best = std::min(best, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm());
     return best;
 }
 
@@ -101,13 +104,20 @@ TEST_CASE("closest point tree: a hinted query returns the exact hit, whatever th
         REQUIRE(exact.primitive >= 0);
         if (std::abs(exact.distance - brute_force_distance(triangles, p)) > 1e-12) ++wrong_distance;
         // The right face, a neighbour, one far away, the ends, none, out of range.
-        const int hints[] = {exact.primitive, (exact.primitive + 1) % count, static_cast<int>(k * 7919 % count),
-                             0, count - 1, -1, count, -5};
+        const int hints[] = {exact.primitive,
+                             (exact.primitive + 1) % count,
+                             static_cast<int>(k * 7919 % count),
+                             0,
+                             count - 1,
+                             -1,
+                             count,
+                             -5};
         for (const int hint : hints)
         {
             const auto hinted = tree.closest(p, hint);
             ++queries;
-            if (hinted.primitive != exact.primitive || hinted.point != exact.point || hinted.distance != exact.distance)
+            if (hinted.primitive != exact.primitive || hinted.point != exact.point ||
+                hinted.distance != exact.distance)
                 ++differs;
         }
     }
@@ -116,7 +126,8 @@ TEST_CASE("closest point tree: a hinted query returns the exact hit, whatever th
     CHECK(differs == 0);
 }
 
-TEST_CASE("closest point tree: off-surface ties (points over shared vertices) resolve as without a hint")
+TEST_CASE(
+    "closest point tree: off-surface ties (points over shared vertices) resolve as without a hint")
 {
     // A point above a grid vertex, along the mean of its faces' normals (inside their normal
     // cone where the bump is convex): its closest point is the vertex itself, at exactly the
@@ -140,11 +151,13 @@ TEST_CASE("closest point tree: off-surface ties (points over shared vertices) re
             const auto exact = tree.closest(p);
             REQUIRE(exact.primitive >= 0);
             if (exact.point == mesh.point(v)) ++at_vertex;
-            for (const int hint : {exact.primitive, (exact.primitive + 1) % count, (exact.primitive + count / 2) % count, 0, -1})
+            for (const int hint : {exact.primitive, (exact.primitive + 1) % count,
+                                   (exact.primitive + count / 2) % count, 0, -1})
             {
                 const auto hinted = tree.closest(p, hint);
                 ++queries;
-                if (hinted.primitive != exact.primitive || hinted.point != exact.point || hinted.distance != exact.distance)
+                if (hinted.primitive != exact.primitive || hinted.point != exact.point ||
+                    hinted.distance != exact.distance)
                     ++differs;
             }
         }
@@ -182,10 +195,14 @@ TEST_CASE("closest point tree: a lazily built tree answers as the eager one, tie
             if (k % per_tree == 0) lazy = ClosestPointTree::lazy_from_triangles(triangles);
             const Vec3d& p = points[(k * 37) % points.size()];
             const auto exact = eager.closest(p);
-            const int hint = k % 3 == 0 ? -1 : (k % 3 == 1 ? exact.primitive : static_cast<int>(k * 7919 % count));
+            const int hint =
+                k % 3 == 0 ? -1
+                           : (k % 3 == 1 ? exact.primitive : static_cast<int>(k * 7919 % count));
             const auto hit = hint < 0 ? lazy.closest(p) : lazy.closest(p, hint);
             ++queries;
-            if (hit.primitive != exact.primitive || hit.point != exact.point || hit.distance != exact.distance) ++differs;
+            if (hit.primitive != exact.primitive || hit.point != exact.point ||
+                hit.distance != exact.distance)
+                ++differs;
         }
     }
     CHECK(queries == 3 * static_cast<int>(points.size()));
@@ -193,7 +210,9 @@ TEST_CASE("closest point tree: a lazily built tree answers as the eager one, tie
     CHECK(ClosestPointTree::lazy_from_triangles({}).closest(Vec3d(0, 0, 0)).primitive == -1);
 }
 
-TEST_CASE("closest point tree: alone_within tells whether another primitive is that close, as brute force does")
+TEST_CASE(
+    "closest point tree: alone_within tells whether another primitive is that close, as brute "
+    "force does")
 {
     // Points off the bumpy grid, over its vertices (the faces around a vertex tie exactly: never
     // alone) and sampled around it; each asked about its closest primitive with a bound just
@@ -223,10 +242,15 @@ TEST_CASE("closest point tree: alone_within tells whether another primitive is t
             for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
             {
                 const auto& tri = triangles[t];
-                if (t != hit.primitive && (closest_point_on_triangle(p, tri[0], tri[1], tri[2]) - p).sqrnorm() <= bound_d2) brute = false;
+                if (t != hit.primitive &&
+                    (closest_point_on_triangle(p, tri[0], tri[1], tri[2]) - p).sqrnorm() <=
+                        bound_d2)
+                    brute = false;
             }
             const ClosestPointTree lazy = ClosestPointTree::lazy_from_triangles(triangles);
-            if (eager.alone_within(p, hit.primitive, bound_d2) != brute || lazy.alone_within(p, hit.primitive, bound_d2) != brute) ++differs;
+            if (eager.alone_within(p, hit.primitive, bound_d2) != brute ||
+                lazy.alone_within(p, hit.primitive, bound_d2) != brute)
+                ++differs;
             (brute ? alone : not_alone) += 1;
         }
     }
@@ -246,10 +270,13 @@ TEST_CASE("closest point tree: hinted segment queries equal the exact ones")
     int differs = 0;
     for (int k = 0; k <= 600; ++k)
     {
-        const Vec3d p = k % 10 == 0 ? helix(k / 10) : Vec3d(1.5 * std::cos(0.37 * k), 1.5 * std::sin(0.23 * k), 0.005 * k);
+        const Vec3d p = k % 10 == 0
+                            ? helix(k / 10)
+                            : Vec3d(1.5 * std::cos(0.37 * k), 1.5 * std::sin(0.23 * k), 0.005 * k);
         const auto exact = tree.closest(p);
         double brute = std::numeric_limits<double>::max();
-        for (const auto& s : segments) brute = std::min(brute, (closest_point_on_segment(p, s[0], s[1]) - p).norm());
+        for (const auto& s : segments)
+            brute = std::min(brute, (closest_point_on_segment(p, s[0], s[1]) - p).norm());
         CHECK(exact.distance == doctest::Approx(brute).epsilon(1e-12));
         for (const int hint : {exact.primitive, (exact.primitive + 30) % 60, 0, 59, -1, 60})
         {
@@ -260,7 +287,8 @@ TEST_CASE("closest point tree: hinted segment queries equal the exact ones")
     CHECK(differs == 0);
 }
 
-TEST_CASE("surface model: hinted projections find the same foot, hinted distances and sizes are exact")
+TEST_CASE(
+    "surface model: hinted projections find the same foot, hinted distances and sizes are exact")
 {
     const int n = 8;
     const SurfaceMesh mesh = bumpy_grid(n);
@@ -272,7 +300,8 @@ TEST_CASE("surface model: hinted projections find the same foot, hinted distance
     const auto points = sample_points(mesh, n, 300);
     const int faces = static_cast<int>(mesh.n_faces());
 
-    int elsewhere = 0, farther = 0, distance_differs = 0, off_field = 0, shortcut_off = 0, differs = 0;
+    int elsewhere = 0, farther = 0, distance_differs = 0, off_field = 0, shortcut_off = 0,
+        differs = 0;
     for (std::size_t k = 0; k < points.size(); ++k)
     {
         const Vec3d& p = points[k];
@@ -283,7 +312,8 @@ TEST_CASE("surface model: hinted projections find the same foot, hinted distance
         for (const int hint : {exact.face, static_cast<int>(k * 31 % faces), -1, faces + 3})
         {
             // One sheet: the same foot (a point on a shared edge or vertex may name either face).
-            const ProjectedPoint hinted = model.project_near(p, VertexClass::Smooth, kNoCurve, hint);
+            const ProjectedPoint hinted =
+                model.project_near(p, VertexClass::Smooth, kNoCurve, hint);
             if (!hinted.ok || (hinted.point - exact.point).norm() > 1e-12) ++elsewhere;
             if (hinted.ok && (hinted.point - p).norm() > d + 1e-15) ++farther;
             if (model.distance_to_surface(p, hint) != d) ++distance_differs;
@@ -293,7 +323,9 @@ TEST_CASE("surface model: hinted projections find the same foot, hinted distance
         const Vec3d q = exact.point;
         const double searched = model.interpolate(q, values);
         if (std::abs(searched - linear(q)) > 1e-9) ++off_field;
-        if (std::abs(model.interpolate(q, values, exact.face) - searched) > 1e-12 * std::abs(searched)) ++shortcut_off;
+        if (std::abs(model.interpolate(q, values, exact.face) - searched) >
+            1e-12 * std::abs(searched))
+            ++shortcut_off;
         if (model.interpolate(q, values, (exact.face + faces / 2) % faces) != searched) ++differs;
     }
     CHECK(elsewhere == 0);
@@ -304,7 +336,8 @@ TEST_CASE("surface model: hinted projections find the same foot, hinted distance
     CHECK(shortcut_off == 0);
 }
 
-TEST_CASE("surface model: a vertex placed near its own sheet stays on it, its distance is to the nearest")
+TEST_CASE(
+    "surface model: a vertex placed near its own sheet stays on it, its distance is to the nearest")
 {
     // Two flat unit grids 0.006 apart (a thin slab, edges of length 1):
     //
@@ -315,8 +348,10 @@ TEST_CASE("surface model: a vertex placed near its own sheet stays on it, its di
     // Told a lower face, the placement keeps p on the lower sheet (p is within a hundredth of an
     // edge of it: a vertex moved along its own sheet); the distance is to the upper one.
     const int n = 4;
-    SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(n, [](double, double) { return 0.0; });
-    const SurfaceMesh upper = hdimesh::surface::fixtures::triangulated_grid(n, [](double, double) { return 0.006; });
+    SurfaceMesh mesh =
+        hdimesh::surface::fixtures::triangulated_grid(n, [](double, double) { return 0.0; });
+    const SurfaceMesh upper =
+        hdimesh::surface::fixtures::triangulated_grid(n, [](double, double) { return 0.006; });
     std::vector<VertexHandle> added;
     for (auto v : upper.vertices()) added.push_back(mesh.add_vertex(upper.point(v)));
     const int lower_faces = static_cast<int>(mesh.n_faces());
@@ -334,7 +369,8 @@ TEST_CASE("surface model: a vertex placed near its own sheet stays on it, its di
     REQUIRE(exact.ok);
     CHECK(exact.point[2] == doctest::Approx(0.006));
     CHECK(exact.face >= lower_faces);
-    const int lower_hint = 0;  // the model numbers faces in the mesh's order: the lower sheet's first
+    const int lower_hint =
+        0;  // the model numbers faces in the mesh's order: the lower sheet's first
     const ProjectedPoint placed = model.project_near(p, VertexClass::Smooth, kNoCurve, lower_hint);
     REQUIRE(placed.ok);
     CHECK(placed.face < lower_faces);
@@ -394,7 +430,8 @@ TEST_CASE("shift_vertex: a stale or missing model-face hint moves every vertex e
         {
             if (start.is_boundary(v)) continue;
             const Vec3d p = start.point(v);
-            const Vec3d pushed(p[0] + 0.2 * std::sin(3.1 * v.idx()), p[1] + 0.2 * std::cos(1.7 * v.idx()), p[2]);
+            const Vec3d pushed(p[0] + 0.2 * std::sin(3.1 * v.idx()),
+                               p[1] + 0.2 * std::cos(1.7 * v.idx()), p[2]);
             start.set_point(v, model.project(pushed, VertexClass::Smooth, kNoCurve).point);
         }
     }
@@ -425,7 +462,8 @@ TEST_CASE("shift_vertex: a stale or missing model-face hint moves every vertex e
             if (a != b || no_hints.point(v) != stale_hints.point(v)) ++differs;
             if (!a) continue;
             ++moved;
-            const ProjectedPoint on_model = model.project(no_hints.point(v), VertexClass::Smooth, kNoCurve);
+            const ProjectedPoint on_model =
+                model.project(no_hints.point(v), VertexClass::Smooth, kNoCurve);
             if ((on_model.point - no_hints.point(v)).norm() > 1e-12) ++off_model;
             if (stale_hints.property(props_b.vertex_model_face, v) != on_model.face) ++wrong_hint;
         }
@@ -437,7 +475,9 @@ TEST_CASE("shift_vertex: a stale or missing model-face hint moves every vertex e
     CHECK(folded_faces(no_hints) == 0);
 }
 
-TEST_CASE("surface model: the normal of a foot on an edge or at a vertex is the model's there, not one face's")
+TEST_CASE(
+    "surface model: the normal of a foot on an edge or at a vertex is the model's there, not one "
+    "face's")
 {
     // A roof of four triangles over the square [-1, 1]², ridge along y at x = 0, height 1:
     //
@@ -463,14 +503,16 @@ TEST_CASE("surface model: the normal of a foot on an edge or at a vertex is the 
 
     for (const int hint : {-1, 0, 1, 2, 3})
     {
-        const ProjectedPoint above_ridge = model.project_near(Vec3d(0.0, 0.3, 2.0), VertexClass::Smooth, kNoCurve, hint);
+        const ProjectedPoint above_ridge =
+            model.project_near(Vec3d(0.0, 0.3, 2.0), VertexClass::Smooth, kNoCurve, hint);
         REQUIRE(above_ridge.ok);
         CHECK(above_ridge.point[0] == doctest::Approx(0.0));
         CHECK(above_ridge.point[2] == doctest::Approx(1.0));
         CHECK(above_ridge.normal[0] == doctest::Approx(0.0));
         CHECK(above_ridge.normal[2] == doctest::Approx(1.0));
         // Inside a face: that face's normal.
-        const ProjectedPoint on_side = model.project_near(Vec3d(0.5, 0.0, 0.6), VertexClass::Smooth, kNoCurve, hint);
+        const ProjectedPoint on_side =
+            model.project_near(Vec3d(0.5, 0.0, 0.6), VertexClass::Smooth, kNoCurve, hint);
         REQUIRE(on_side.ok);
         CHECK(on_side.normal[0] == doctest::Approx(side));
         CHECK(on_side.normal[2] == doctest::Approx(side));
@@ -480,7 +522,8 @@ TEST_CASE("surface model: the normal of a foot on an edge or at a vertex is the 
     // normal is straight up (a face's own would lean 45° to one side).
     for (const int hint : {-1, 0, 1, 2, 3})
     {
-        const ProjectedPoint beyond = model.project_near(Vec3d(0.0, 3.0, 3.0), VertexClass::Smooth, kNoCurve, hint);
+        const ProjectedPoint beyond =
+            model.project_near(Vec3d(0.0, 3.0, 3.0), VertexClass::Smooth, kNoCurve, hint);
         REQUIRE(beyond.ok);
         CHECK(beyond.point == mesh.point(e));
         CHECK(beyond.normal[0] == doctest::Approx(0.0));
@@ -489,24 +532,31 @@ TEST_CASE("surface model: the normal of a foot on an edge or at a vertex is the 
     }
 }
 
-TEST_CASE("shortcut tests decide as the exact ones: a triangle's box beyond a distance, a turn told by cross products")
+TEST_CASE(
+    "shortcut tests decide as the exact ones: a triangle's box beyond a distance, a turn told by "
+    "cross products")
 {
     // Random triangles of the unit cube (and slivers among them), points near and far, limits
     // at the exact squared distance and around it; turn limits at the exact cosine and around it.
     std::mt19937 random(7);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    auto point = [&](double scale) { return Vec3d(scale * unit(random), scale * unit(random), scale * unit(random)); };
+    auto point = [&](double scale) {
+        return Vec3d(scale * unit(random), scale * unit(random), scale * unit(random));
+    };
     int skipped = 0, decided = 0;
     for (int trial = 0; trial < 20000; ++trial)
     {
         std::array<Vec3d, 3> t{point(1.0), point(1.0), point(1.0)};
         if (trial % 4 == 0) t[2] = t[0] + (0.5 + 1e-9 * unit(random)) * (t[1] - t[0]);  // a sliver
-        const Vec3d p = (trial % 3 == 0 ? t[trial % 2] : Vec3d(0, 0, 0)) + point(trial % 2 ? 1e-3 : 2.0);
+        const Vec3d p =
+            (trial % 3 == 0 ? t[trial % 2] : Vec3d(0, 0, 0)) + point(trial % 2 ? 1e-3 : 2.0);
         const double exact2 = (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm();
-        for (const double factor : {0.0, 0.25, 1.0 - 1e-6, 1.0 - 1e-12, 1.0, 1.0 + 1e-12, 1.0 + 1e-6, 4.0})
+        for (const double factor :
+             {0.0, 0.25, 1.0 - 1e-6, 1.0 - 1e-12, 1.0, 1.0 + 1e-12, 1.0 + 1e-6, 4.0})
         {
             const double limit2 = factor * exact2;
-            // Beyond means the exact measure is above the limit (a skipped triangle could not pass).
+            // Beyond means the exact measure is above the limit (a skipped triangle could not
+            // pass).
             if (detail::clearly_beyond(p, t, limit2))
             {
                 ++skipped;
@@ -516,14 +566,17 @@ TEST_CASE("shortcut tests decide as the exact ones: a triangle's box beyond a di
 
         // A second triangle sharing the first's a and b: the turn from the first to it.
         const std::array<Vec3d, 3> u{t[0], t[1], t[2] + point(trial % 2 ? 1e-6 : 0.5)};
-        const Vec3d old_cross = OpenMesh::cross(t[1] - t[0], t[2] - t[0]), new_cross = OpenMesh::cross(u[1] - u[0], u[2] - u[0]);
+        const Vec3d old_cross = OpenMesh::cross(t[1] - t[0], t[2] - t[0]),
+                    new_cross = OpenMesh::cross(u[1] - u[0], u[2] - u[0]);
         const Vec3d old_normal = detail::normal(t), new_normal = detail::normal(u);
         const double cosine = OpenMesh::dot(old_normal, new_normal);
-        for (const double min_cos : {cosine, std::nextafter(cosine, 2.0), std::nextafter(cosine, -2.0), cosine - 1e-13,
-                                     cosine + 1e-13, cosine - 1e-3, cosine + 1e-3, 0.8191520442889918, -1.0, 1.0})
+        for (const double min_cos :
+             {cosine, std::nextafter(cosine, 2.0), std::nextafter(cosine, -2.0), cosine - 1e-13,
+              cosine + 1e-13, cosine - 1e-3, cosine + 1e-3, 0.8191520442889918, -1.0, 1.0})
         {
             const bool exact = detail::turn_ok_cos(old_normal, new_normal, min_cos);
-            CHECK(detail::turn_ok_cross(old_cross, old_cross.norm(), new_cross, new_cross.norm(), min_cos) == exact);
+            CHECK(detail::turn_ok_cross(old_cross, old_cross.norm(), new_cross, new_cross.norm(),
+                                        min_cos) == exact);
             ++decided;
         }
     }

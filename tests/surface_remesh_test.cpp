@@ -53,7 +53,8 @@ SurfaceMesh sphere(int level)
         std::vector<std::array<int, 3>> next;
         for (const auto& f : t)
         {
-            const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+            const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]),
+                      ca = midpoint(f[2], f[0]);
             next.push_back({f[0], ab, ca});
             next.push_back({ab, f[1], bc});
             next.push_back({ca, bc, f[2]});
@@ -95,7 +96,9 @@ SurfaceMesh open_box()
 
 }  // namespace
 
-TEST_CASE("a coarse sphere remeshed to h = 0.2 on the analytic sphere: sizes in band, on the sphere, closed")
+TEST_CASE(
+    "a coarse sphere remeshed to h = 0.2 on the analytic sphere: sizes in band, on the sphere, "
+    "closed")
 {
     SurfaceMesh mesh = sphere(2);  // 128 triangles, edges about 0.39..0.77
     SphereProjector model(Vec3d(0, 0, 0), 1.0);
@@ -111,7 +114,8 @@ TEST_CASE("a coarse sphere remeshed to h = 0.2 on the analytic sphere: sizes in 
     CHECK(t.components == 1);
     CHECK(t.boundary_loops == 0);
     check_manifold(mesh);
-    for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
+    for (auto v : mesh.vertices())
+        CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
     // Outward orientation and the enclosed volume close to the ball's (4π/3, less the chords).
     double volume = 0.0;
     for (auto f : mesh.faces())
@@ -139,7 +143,8 @@ TEST_CASE("features of an open box: sharp edges and the rim become curves, corne
     for (auto v : mesh.vertices())
     {
         const Vec3d p = mesh.point(v);
-        const int on_faces = (p[0] == 0 || p[0] == 1) + (p[1] == 0 || p[1] == 1) + (p[2] == 0 || p[2] == 1);
+        const int on_faces =
+            (p[0] == 0 || p[0] == 1) + (p[1] == 0 || p[1] == 1) + (p[2] == 0 || p[2] == 1);
         if (mesh.property(props.vertex_class, v) == VertexClass::Corner) CHECK(on_faces == 3);
     }
 }
@@ -164,7 +169,8 @@ TEST_CASE("the open box remeshed finer keeps its rim, its sharp edges and its co
     {
         const Vec3d p = mesh.point(v);
         // Every vertex is on the box; curve vertices on its edges (two coordinates at 0 or 1).
-        const int on_faces = (p[0] == 0 || p[0] == 1) + (p[1] == 0 || p[1] == 1) + (p[2] == 0 || p[2] == 1);
+        const int on_faces =
+            (p[0] == 0 || p[0] == 1) + (p[1] == 0 || p[1] == 1) + (p[2] == 0 || p[2] == 1);
         CHECK(on_faces >= 1);
         const VertexClass c = mesh.property(props.vertex_class, v);
         if (c == VertexClass::Ridge || c == VertexClass::Boundary) CHECK(on_faces >= 2);
@@ -184,7 +190,9 @@ TEST_CASE("the open box remeshed finer keeps its rim, its sharp edges and its co
     CHECK(area == doctest::Approx(5.0));
 }
 
-TEST_CASE("fandisk at 3 % of the diagonal: ridges covered, ridge vertices on the input ridges, corners kept")
+TEST_CASE(
+    "fandisk at 3 % of the diagonal: ridges covered, ridge vertices on the input ridges, corners "
+    "kept")
 {
     SurfaceMesh input = read_surface(std::string(HDIMESH_DATA_DIR) + "/fandisk.obj");
     detect_features(input);
@@ -221,7 +229,8 @@ TEST_CASE("fandisk at 3 % of the diagonal: ridges covered, ridge vertices on the
     {
         if (input.property(in_props.edge_curve, e) == kNoCurve) continue;
         const auto h = input.halfedge_handle(e, 0);
-        const Vec3d a = input.point(input.from_vertex_handle(h)), b = input.point(input.to_vertex_handle(h));
+        const Vec3d a = input.point(input.from_vertex_handle(h)),
+                    b = input.point(input.to_vertex_handle(h));
         INFO("input ridge edge midpoint " << 0.5 * (a + b));
         CHECK(output_ridges.closest(0.5 * (a + b)).distance < 6.5e-4 * diagonal);
     }
@@ -235,12 +244,14 @@ TEST_CASE("fandisk at 3 % of the diagonal: ridges covered, ridge vertices on the
         if (input.property(in_props.vertex_class, v) == VertexClass::Corner)
         {
             ++in_corners;
-            CHECK(out_corners.count({input.point(v)[0], input.point(v)[1], input.point(v)[2]}) == 1);
+            CHECK(out_corners.count({input.point(v)[0], input.point(v)[1], input.point(v)[2]}) ==
+                  1);
         }
     CHECK(in_corners == static_cast<int>(out_corners.size()));
     const auto d = hausdorff_distance(mesh, input);
     MESSAGE("fandisk at 3 %: Hausdorff / diagonal = " << std::max(d[0], d[1]) / diagonal);
-    CHECK(std::max(d[0], d[1]) < 0.006 * diagonal);  // h = 0.03·diag; the 1 % run meets 1.3e-3 (bench)
+    CHECK(std::max(d[0], d[1]) <
+          0.006 * diagonal);  // h = 0.03·diag; the 1 % run meets 1.3e-3 (bench)
     const QualityReport q = measure_quality(mesh, settings.sizing.hsiz);
     // A coarse size (3 % of the diagonal, ~3000 triangles): the graded refinement along the
     // curved ridges weighs much more than at 1 % (99.3 % there, see bench_surface).
@@ -249,7 +260,8 @@ TEST_CASE("fandisk at 3 % of the diagonal: ridges covered, ridge vertices on the
     CHECK(q.min_angle_deg > 15.0);
 }
 
-TEST_CASE("hooks can veto every split: the mesh is unchanged by splits and the remesher still terminates")
+TEST_CASE(
+    "hooks can veto every split: the mesh is unchanged by splits and the remesher still terminates")
 {
     SurfaceMesh mesh = sphere(1);
     SphereProjector model(Vec3d(0, 0, 0), 1.0);
@@ -268,11 +280,13 @@ TEST_CASE("hooks can veto every split: the mesh is unchanged by splits and the r
     CHECK(measure_topology(mesh).euler() == 2);
 }
 
-TEST_CASE("remesh on an HDI model of a sphere: vertices on the unit sphere within the model's accuracy")
+TEST_CASE(
+    "remesh on an HDI model of a sphere: vertices on the unit sphere within the model's accuracy")
 {
     SurfaceMesh mesh = sphere(3);  // 512 triangles
     std::vector<hdimesh::hdi::Vec3> points;
-    for (auto v : mesh.vertices()) points.emplace_back(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]);
+    for (auto v : mesh.vertices())
+        points.emplace_back(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]);
     std::vector<hdimesh::hdi::Triangle3> triangles;
     for (auto f : mesh.faces())
     {
@@ -293,7 +307,8 @@ TEST_CASE("remesh on an HDI model of a sphere: vertices on the unit sphere withi
     CHECK(q.percent_qt_ge_066 > 95.0);
 }
 
-TEST_CASE("the polish works where a triangle misses Qe 0.7: nothing moves elsewhere, the worst Qe rises")
+TEST_CASE(
+    "the polish works where a triangle misses Qe 0.7: nothing moves elsewhere, the worst Qe rises")
 {
     // A flat patch of equilateral triangles (rows shifted by half a side) with one interior
     // vertex pushed by (0.5, 0.2), which spoils its triangles:
@@ -311,7 +326,8 @@ TEST_CASE("the polish works where a triangle misses Qe 0.7: nothing moves elsewh
         SurfaceMesh mesh;
         std::vector<VertexHandle> v;
         for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i) v.push_back(mesh.add_vertex(Vec3d(i + 0.5 * (j % 2), j * row, 0.0)));
+            for (int i = 0; i <= n; ++i)
+                v.push_back(mesh.add_vertex(Vec3d(i + 0.5 * (j % 2), j * row, 0.0)));
         auto at = [&](int i, int j) { return v[j * (n + 1) + i]; };
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i)
@@ -369,6 +385,7 @@ TEST_CASE("the polish works where a triangle misses Qe 0.7: nothing moves elsewh
     const RemeshReport everywhere_report = polish_once(1.0, everywhere);
     CHECK(worst_qe(everywhere) > worst_qe(input));
     CHECK(everywhere_report.shifts >= focused_report.shifts);
-    MESSAGE("worst Qe " << worst_qe(input) << " -> " << worst_qe(focused) << " (focused, " << focused_report.shifts
-                        << " shifts), " << worst_qe(everywhere) << " (everywhere, " << everywhere_report.shifts << " shifts)");
+    MESSAGE("worst Qe " << worst_qe(input) << " -> " << worst_qe(focused) << " (focused, "
+                        << focused_report.shifts << " shifts), " << worst_qe(everywhere)
+                        << " (everywhere, " << everywhere_report.shifts << " shifts)");
 }

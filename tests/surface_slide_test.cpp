@@ -51,15 +51,22 @@ struct NarrowCorner
         mesh.add_face(r, w, t);
         fixtures::mark_all_smooth(mesh);
         SurfaceProperties props(mesh);
-        for (VertexHandle v : {c, a2, w}) mesh.property(props.vertex_class, v) = VertexClass::Corner;
-        mesh.property(props.vertex_class, a) = mesh.property(props.vertex_class, r) = VertexClass::Ridge;
+        for (VertexHandle v : {c, a2, w})
+            mesh.property(props.vertex_class, v) = VertexClass::Corner;
+        mesh.property(props.vertex_class, a) = mesh.property(props.vertex_class, r) =
+            VertexClass::Ridge;
         mesh.property(props.vertex_curve, a) = 0;
         mesh.property(props.vertex_curve, r) = 1;
-        mesh.property(props.edge_curve, edge(c, a)) = mesh.property(props.edge_curve, edge(a, a2)) = 0;
-        mesh.property(props.edge_curve, edge(c, r)) = mesh.property(props.edge_curve, edge(r, w)) = 1;
+        mesh.property(props.edge_curve, edge(c, a)) = mesh.property(props.edge_curve, edge(a, a2)) =
+            0;
+        mesh.property(props.edge_curve, edge(c, r)) = mesh.property(props.edge_curve, edge(r, w)) =
+            1;
     }
 
-    EdgeHandle edge(VertexHandle x, VertexHandle y) const { return mesh.edge_handle(mesh.find_halfedge(x, y)); }
+    EdgeHandle edge(VertexHandle x, VertexHandle y) const
+    {
+        return mesh.edge_handle(mesh.find_halfedge(x, y));
+    }
 
     double worst_angle_around(VertexHandle v) const
     {
@@ -100,12 +107,16 @@ public:
         out.normal = Vec3d(0, 0, 1);
         out.ok = true;
         out.point = Vec3d(p[0], p[1], 0.0);
-        if ((cls == VertexClass::Ridge || cls == VertexClass::Boundary) && (curve == 0 || curve == 1))
+        if ((cls == VertexClass::Ridge || cls == VertexClass::Boundary) &&
+            (curve == 0 || curve == 1))
             out.point = closest_on_polyline(out.point, polylines()[curve]);
         return out;
     }
 
-    static double distance_to_curve(const Vec3d& p, int curve) { return (closest_on_polyline(p, polylines()[curve]) - p).norm(); }
+    static double distance_to_curve(const Vec3d& p, int curve)
+    {
+        return (closest_on_polyline(p, polylines()[curve]) - p).norm();
+    }
 
 private:
     static const std::vector<std::vector<Vec3d>>& polylines()

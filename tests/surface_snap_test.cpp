@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "surface/detail/closest_point_tree.h"
-#include "surface/local_ops.h"
 #include "surface/detail/point_grid.h"
+#include "surface/local_ops.h"
 #include "surface/surface_quality.h"
 #include "surface_fixtures.h"
 
@@ -41,7 +41,8 @@ public:
 // curve 0, the four grid corners as corners.
 SurfaceMesh roof_grid()
 {
-    SurfaceMesh mesh = hdimesh::surface::fixtures::triangulated_grid(4, [](int i, int) { return roof(i); });
+    SurfaceMesh mesh =
+        hdimesh::surface::fixtures::triangulated_grid(4, [](int i, int) { return roof(i); });
     hdimesh::surface::fixtures::mark_all_smooth(mesh);
     // The rim is one boundary curve (0) between the four corners.
     SurfaceProperties props(mesh);
@@ -62,9 +63,9 @@ using hdimesh::surface::fixtures::vertex_at;
 
 using hdimesh::surface::fixtures::distance_to_mesh;
 
-using hdimesh::surface::fixtures::points_of;
 using hdimesh::surface::fixtures::moved_star_defects;
 using hdimesh::surface::fixtures::MovedStarDefects;
+using hdimesh::surface::fixtures::points_of;
 
 // Model points: the roof sampled every half unit, and its crest.
 std::vector<Vec3d> roof_samples()
@@ -125,8 +126,10 @@ TEST_CASE("snap moves a vertex onto the crest the chords cut, and takes no model
     CHECK(p[2] == doctest::Approx(roof(p[0])));  // on the model
     CHECK(distance_to_mesh(mesh, target) <= options.tolerance);
     for (std::size_t i = 0; i < options.witnesses.size(); ++i)
-        CHECK(distance_to_mesh(mesh, options.witnesses[i]) <= std::max(options.tolerance, before[i]) + 1e-12);
-    const MovedStarDefects defects = moved_star_defects(mesh, v, options.min_angle_deg, options.min_length, options.max_length);
+        CHECK(distance_to_mesh(mesh, options.witnesses[i]) <=
+              std::max(options.tolerance, before[i]) + 1e-12);
+    const MovedStarDefects defects =
+        moved_star_defects(mesh, v, options.min_angle_deg, options.min_length, options.max_length);
     CHECK(defects.folded == 0);
     CHECK(defects.small_angles == 0);
     CHECK(defects.edges_out_of_band == 0);
@@ -160,7 +163,9 @@ TEST_CASE("snap asks allow_move with the point it would commit, and a veto chang
     CHECK(after == before);
 }
 
-TEST_CASE("snap refuses a corner, a boundary vertex past its curve neighbour, a worse star, and changes nothing")
+TEST_CASE(
+    "snap refuses a corner, a boundary vertex past its curve neighbour, a worse star, and changes "
+    "nothing")
 {
     //   The same roof grid. (0,0) is a corner; the boundary vertex (2,0) may slide along y = 0
     //   between (1,0) and (3,0) only; an angle bound above the grid's 45° refuses any move.
@@ -174,10 +179,12 @@ TEST_CASE("snap refuses a corner, a boundary vertex past its curve neighbour, a 
 
     const VertexHandle corner = vertex_at(mesh, Vec3d(0, 0, roof(0)));
     REQUIRE(corner.is_valid());
-    CHECK(try_snap_vertex(ctx, corner, Vec3d(0.3, 0.2, roof(0.3)), options).status == OpStatus::Class);
+    CHECK(try_snap_vertex(ctx, corner, Vec3d(0.3, 0.2, roof(0.3)), options).status ==
+          OpStatus::Class);
     const VertexHandle boundary = vertex_at(mesh, Vec3d(2, 0, roof(2)));
     REQUIRE(boundary.is_valid());
-    CHECK(try_snap_vertex(ctx, boundary, Vec3d(3.5, 0, roof(3.5)), options).status == OpStatus::Class);
+    CHECK(try_snap_vertex(ctx, boundary, Vec3d(3.5, 0, roof(3.5)), options).status ==
+          OpStatus::Class);
     SnapOptions strict = options;
     strict.min_angle_deg = 60.0;
     const VertexHandle v = vertex_at(mesh, Vec3d(2, 2, roof(2)));
@@ -197,7 +204,8 @@ TEST_CASE("snap shortens an edge already under the band only down to its floor")
         SurfaceMesh mesh = roof_grid();
         OperatorContext ctx(mesh, model, {});
         const std::vector<Vec3d> before = points_of(mesh);
-        CHECK(try_snap_vertex(ctx, vertex_at(mesh, Vec3d(2, 2, roof(2))), target, options).status == OpStatus::Quality);
+        CHECK(try_snap_vertex(ctx, vertex_at(mesh, Vec3d(2, 2, roof(2))), target, options).status ==
+              OpStatus::Quality);
         CHECK(points_of(mesh) == before);
     }
     SurfaceMesh mesh = roof_grid();
@@ -206,7 +214,8 @@ TEST_CASE("snap shortens an edge already under the band only down to its floor")
     options.floor_length = 0.5;
     REQUIRE(try_snap_vertex(ctx, v, target, options).done());
     CHECK(distance_to_mesh(mesh, target) <= options.tolerance);
-    for (auto w : mesh.vv_range(v)) CHECK((mesh.point(w) - mesh.point(v)).norm() >= options.floor_length);
+    for (auto w : mesh.vv_range(v))
+        CHECK((mesh.point(w) - mesh.point(v)).norm() >= options.floor_length);
 }
 
 TEST_CASE("point grid finds exactly the points within a radius")

@@ -56,7 +56,8 @@ SurfaceMesh chord_under_crease(double w, double height = kRoofHeight)
 {
     SurfaceMesh mesh;
     const VertexHandle a = mesh.add_vertex(Vec3d(-1, 0, 0)), b = mesh.add_vertex(Vec3d(1, 0, 0));
-    const VertexHandle c = mesh.add_vertex(Vec3d(0, w, height)), d = mesh.add_vertex(Vec3d(0, -w, height));
+    const VertexHandle c = mesh.add_vertex(Vec3d(0, w, height)),
+                       d = mesh.add_vertex(Vec3d(0, -w, height));
     mesh.add_face(a, b, c);
     mesh.add_face(b, a, d);
     hdimesh::surface::fixtures::mark_all_smooth(mesh);
@@ -91,13 +92,17 @@ void check_triangles_lie_in_roof(const SurfaceMesh& mesh, const RoofProjector& r
         const Vec3d p = mesh.point(*fv), q = mesh.point(*++fv), s = mesh.point(*++fv);
         const Vec3d centroid = (p + q + s) / 3.0;
         CHECK(centroid[2] == doctest::Approx(height * (1.0 - std::abs(centroid[0]))));
-        CHECK(triangle_normal(p, q, s).dot(roof.project(centroid, VertexClass::Smooth, kNoCurve).normal) == doctest::Approx(1.0));
+        CHECK(triangle_normal(p, q, s).dot(
+                  roof.project(centroid, VertexClass::Smooth, kNoCurve).normal) ==
+              doctest::Approx(1.0));
     }
 }
 
 }  // namespace
 
-TEST_CASE("a chord under a sharp crease is split onto the crease although its triangles turn past 60 degrees")
+TEST_CASE(
+    "a chord under a sharp crease is split onto the crease although its triangles turn past 60 "
+    "degrees")
 {
     const double w = 0.3;
     SurfaceMesh mesh = chord_under_crease(w);
@@ -144,7 +149,9 @@ TEST_CASE("the same split is refused, leaving the mesh untouched, when it would 
     CHECK(mesh.point(VertexHandle(0)) == Vec3d(-1, 0, 0));
 }
 
-TEST_CASE("a distance flip turns a chord under a crease along it; a flip that brings nothing nearer is refused")
+TEST_CASE(
+    "a distance flip turns a chord under a crease along it; a flip that brings nothing nearer is "
+    "refused")
 {
     // The same pair under a lower roof (sides at 31°, within the flips' 35° turn): (a, b) becomes
     // (c, d), the crease itself, and both new triangles lie in the roof.
@@ -161,7 +168,8 @@ TEST_CASE("a distance flip turns a chord under a crease along it; a flip that br
     CHECK(projected_area_xy(mesh) == doctest::Approx(area_before));
 
     // Flipped back, the chord would leave the roof again (and fold the pair): refused, untouched.
-    const EdgeHandle crease = mesh.edge_handle(mesh.find_halfedge(VertexHandle(2), VertexHandle(3)));
+    const EdgeHandle crease =
+        mesh.edge_handle(mesh.find_halfedge(VertexHandle(2), VertexHandle(3)));
     CHECK_FALSE(try_flip(ctx, crease, FlipGoal::Distance).done());
     CHECK(mesh.find_halfedge(VertexHandle(2), VertexHandle(3)).is_valid());
 }
@@ -189,7 +197,9 @@ private:
 
 }  // namespace
 
-TEST_CASE("across a crease sharper than the turn limit, a distance flip lays the pair onto the model's two sides")
+TEST_CASE(
+    "across a crease sharper than the turn limit, a distance flip lays the pair onto the model's "
+    "two sides")
 {
     // The roof of the split tests (sides at 38.7°): the flipped triangles turn 38.7° from the
     // old pair's mean normal, past the flips' 35°. The old pair is folded over the crease (its
@@ -209,7 +219,9 @@ TEST_CASE("across a crease sharper than the turn limit, a distance flip lays the
     CHECK(projected_area_xy(mesh) == doctest::Approx(area_before));
 }
 
-TEST_CASE("the same flip is refused, leaving the mesh untouched, when the model's normals do not follow it or are degenerate")
+TEST_CASE(
+    "the same flip is refused, leaving the mesh untouched, when the model's normals do not follow "
+    "it or are degenerate")
 {
     for (const Vec3d& normal : {Vec3d(0, 0, 1), Vec3d(0, 0, 0)})
     {

@@ -17,13 +17,13 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "surface/detail/closest_point_tree.h"
+#include "surface/detail/local_ops_geometry.h"
 #include "surface/features.h"
 #include "surface/local_ops.h"
-#include "surface/detail/local_ops_geometry.h"
-#include "surface_fixtures.h"
 #include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
 #include "surface/surface_quality.h"
+#include "surface_fixtures.h"
 #pragma GCC diagnostic pop
 
 using namespace hdimesh::surface;
@@ -37,7 +37,8 @@ using hdimesh::surface::fixtures::PlaneProjector;
 // with the vertex (cx, cy) lifted to `tip` (a spike). Unclassified.
 SurfaceMesh grid(int n, int cx = -1, int cy = -1, double tip = 0.0)
 {
-    return hdimesh::surface::fixtures::triangulated_grid(n, [&](int i, int j) { return i == cx && j == cy ? tip : 0.0; });
+    return hdimesh::surface::fixtures::triangulated_grid(
+        n, [&](int i, int j) { return i == cx && j == cy ? tip : 0.0; });
 }
 
 // Classified as the operators expect: the rim is boundary curve 0, the rest smooth, one ref.
@@ -51,7 +52,8 @@ void classify_flat(SurfaceMesh& mesh)
         mesh.property(props.vertex_curve, x) = rim ? 0 : kNoCurve;
         mesh.property(props.vertex_size, x) = 1.0;
     }
-    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
+    for (auto e : mesh.edges())
+        mesh.property(props.edge_curve, e) = mesh.is_boundary(e) ? 0 : kNoCurve;
     for (auto f : mesh.faces()) mesh.property(props.face_ref, f) = 1;
 }
 
@@ -66,9 +68,13 @@ std::size_t boundary_loops(const SurfaceMesh& mesh)
     std::size_t loops = 0;
     for (auto h : mesh.halfedges())
     {
-        if (mesh.status(mesh.edge_handle(h)).deleted() || !mesh.is_boundary(h) || seen.count(h.idx())) continue;
+        if (mesh.status(mesh.edge_handle(h)).deleted() || !mesh.is_boundary(h) ||
+            seen.count(h.idx()))
+            continue;
         ++loops;
-        for (auto g = h; seen.insert(g.idx()).second; g = mesh.next_halfedge_handle(g)) {}
+        for (auto g = h; seen.insert(g.idx()).second; g = mesh.next_halfedge_handle(g))
+        {
+        }
     }
     return loops;
 }
@@ -108,7 +114,8 @@ std::array<double, 2> sphere_deviation(const SurfaceMesh& mesh, const std::vecto
     for (auto e : mesh.edges())
     {
         const auto h = mesh.halfedge_handle(e, 0);
-        const Vec3d mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+        const Vec3d mid =
+            0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
         out_to_sphere = std::max(out_to_sphere, 1.0 - mid.norm());
     }
     for (auto f : mesh.faces())
@@ -124,7 +131,9 @@ std::array<double, 2> sphere_deviation(const SurfaceMesh& mesh, const std::vecto
 
 }  // namespace
 
-TEST_CASE("a spike whose creases are dropped as noise stays an isolated corner, and the remesher keeps its tip")
+TEST_CASE(
+    "a spike whose creases are dropped as noise stays an isolated corner, and the remesher keeps "
+    "its tip")
 {
     // A 6×6 grid in z = 0 with its centre vertex (3,3) lifted to z = 1.5: a spike whose angle
     // sum is far below 360° (defect > 60°). Its creases are short against min_ridge_length
@@ -180,10 +189,13 @@ TEST_CASE("a flat grid has no cone tip: no corner inside it")
     detect_features(mesh);
     SurfaceProperties props(mesh);
     for (auto v : mesh.vertices())
-        if (!mesh.is_boundary(v)) CHECK(mesh.property(props.vertex_class, v) == VertexClass::Smooth);
+        if (!mesh.is_boundary(v))
+            CHECK(mesh.property(props.vertex_class, v) == VertexClass::Smooth);
 }
 
-TEST_CASE("refinement to a tolerance brings a coarse sphere within it both ways, closed and on the sphere")
+TEST_CASE(
+    "refinement to a tolerance brings a coarse sphere within it both ways, closed and on the "
+    "sphere")
 {
     // The icosahedron (edges ≈ 1.05) at size 1.0: nothing is too long, but its faces sink up to
     // 0.2 below the unit sphere. With a tolerance, the remesher splits where the output strays
@@ -204,7 +216,8 @@ TEST_CASE("refinement to a tolerance brings a coarse sphere within it both ways,
         CHECK(euler(mesh) == 2);
         CHECK(boundary_loops(mesh) == 0);
         check_manifold(mesh);
-        for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
+        for (auto v : mesh.vertices())
+            CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
         return std::make_pair(sphere_deviation(mesh, points), report);
     };
     const double tolerance = 0.04;
@@ -217,7 +230,9 @@ TEST_CASE("refinement to a tolerance brings a coarse sphere within it both ways,
     CHECK(refined[1] <= tolerance + 1e-12);
 }
 
-TEST_CASE("after the polish, snaps and the angle repair keep the tolerance: within it both ways, fewer vertices")
+TEST_CASE(
+    "after the polish, snaps and the angle repair keep the tolerance: within it both ways, fewer "
+    "vertices")
 {
     // The same coarse sphere, refined to the tolerance once with the final refinement's snaps
     // and angle repair and once without them (snap_min_angle_deg = 0): snapping a vertex onto
@@ -249,7 +264,8 @@ TEST_CASE("after the polish, snaps and the angle repair keep the tolerance: with
         const RemeshReport report = remesh_surface(mesh, options, sphere);
         CHECK(euler(mesh) == 2);
         check_manifold(mesh);
-        for (auto v : mesh.vertices()) CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
+        for (auto v : mesh.vertices())
+            CHECK(mesh.point(v).norm() == doctest::Approx(1.0).epsilon(1e-9));
         const auto deviation = sphere_deviation(mesh, points);
         CHECK(deviation[0] <= options.tolerance.tolerance + 1e-12);
         CHECK(deviation[1] <= options.tolerance.tolerance + 1e-12);
@@ -267,8 +283,9 @@ TEST_CASE("after the polish, snaps and the angle repair keep the tolerance: with
     CHECK(snapped.refinement_snaps > 0);
     CHECK(snapped_vertices <= plain_vertices);
     CHECK(snapped_angle >= 20.0);
-    MESSAGE("vertices " << plain_vertices << " -> " << snapped_vertices << ", min angle " << plain_angle << " -> "
-                        << snapped_angle << ", snaps " << snapped.refinement_snaps);
+    MESSAGE("vertices " << plain_vertices << " -> " << snapped_vertices << ", min angle "
+                        << plain_angle << " -> " << snapped_angle << ", snaps "
+                        << snapped.refinement_snaps);
 }
 
 TEST_CASE("the refinement's short-edge budget stops it: no split once the budget is spent")
@@ -304,8 +321,10 @@ TEST_CASE("split onto a given model point puts the new vertex there, a curve edg
         for (auto e : mesh.edges())
         {
             const auto h = mesh.halfedge_handle(e, 0);
-            const Vec3d p = mesh.point(mesh.from_vertex_handle(h)), q = mesh.point(mesh.to_vertex_handle(h));
-            if (((p - a).norm() < 1e-12 && (q - b).norm() < 1e-12) || ((p - b).norm() < 1e-12 && (q - a).norm() < 1e-12))
+            const Vec3d p = mesh.point(mesh.from_vertex_handle(h)),
+                        q = mesh.point(mesh.to_vertex_handle(h));
+            if (((p - a).norm() < 1e-12 && (q - b).norm() < 1e-12) ||
+                ((p - b).norm() < 1e-12 && (q - a).norm() < 1e-12))
                 return e;
         }
         return EdgeHandle();
@@ -403,7 +422,8 @@ TEST_CASE("the V tips of fandisk and spot are corners whose input wedge is under
         INFO(tip.model);
         SurfaceMesh mesh = read_surface(std::string(HDIMESH_DATA_DIR) + "/" + tip.model + ".obj");
         FeatureOptions options;
-        options.min_corner_spacing = 0.005 * bounding_box_diagonal(mesh);  // as remesh_surface at h = 1 %
+        options.min_corner_spacing =
+            0.005 * bounding_box_diagonal(mesh);  // as remesh_surface at h = 1 %
         detect_features(mesh, options);
         const SurfaceProperties props(mesh);
         VertexHandle v;
@@ -414,7 +434,8 @@ TEST_CASE("the V tips of fandisk and spot are corners whose input wedge is under
         // Exactly two ridge edges at the tip, and one face between them spans the wedge.
         std::vector<VertexHandle> ridge_ends;
         for (auto h : mesh.voh_range(v))
-            if (mesh.property(props.edge_curve, mesh.edge_handle(h)) != kNoCurve) ridge_ends.push_back(mesh.to_vertex_handle(h));
+            if (mesh.property(props.edge_curve, mesh.edge_handle(h)) != kNoCurve)
+                ridge_ends.push_back(mesh.to_vertex_handle(h));
         REQUIRE(ridge_ends.size() == 2);
         double wedge = 360.0;
         for (auto f : mesh.vf_range(v))
@@ -422,7 +443,8 @@ TEST_CASE("the V tips of fandisk and spot are corners whose input wedge is under
             std::set<VertexHandle> corners_of_f;
             for (auto w : mesh.fv_range(f)) corners_of_f.insert(w);
             if (!corners_of_f.count(ridge_ends[0]) || !corners_of_f.count(ridge_ends[1])) continue;
-            wedge = triangle_angles_deg(mesh.point(v), mesh.point(ridge_ends[0]), mesh.point(ridge_ends[1]))[0];
+            wedge = triangle_angles_deg(mesh.point(v), mesh.point(ridge_ends[0]),
+                                        mesh.point(ridge_ends[1]))[0];
         }
         CHECK(wedge == doctest::Approx(tip.wedge_deg).epsilon(0.001));
         CHECK(wedge < 20.0);

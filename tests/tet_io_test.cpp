@@ -2,6 +2,8 @@
 // refs, feature entities, bitwise coordinates, Gmsh numbering and tags, libMeshb versions,
 // .sol values, .vtu layout, atomic writes.
 
+#include "volume/tet_io.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -15,11 +17,10 @@
 #include <sstream>
 #include <string>
 
-#include "fixtures.h"
 #include "common/atomic_file.h"
-#include "volume/check.h"
 #include "common/errors.h"
-#include "volume/tet_io.h"
+#include "fixtures.h"
+#include "volume/check.h"
 
 using namespace hdimesh;
 namespace fs = std::filesystem;
@@ -153,8 +154,8 @@ void check_same_medit_entities(const TetMesh& a, const TetMesh& b)
 /// Elements with their refs, sorted: Gmsh 4.1 groups elements by entity (ref), so only the
 /// order within one ref is kept.
 template <std::size_t N>
-std::vector<std::pair<int, std::array<int, N>>> sorted_with_refs(const std::vector<std::array<int, N>>& items,
-                                                                 const std::vector<int>& refs)
+std::vector<std::pair<int, std::array<int, N>>> sorted_with_refs(
+    const std::vector<std::array<int, N>>& items, const std::vector<int>& refs)
 {
     std::vector<std::pair<int, std::array<int, N>>> out;
     for (std::size_t i = 0; i < items.size(); ++i) out.push_back({refs[i], items[i]});
@@ -191,7 +192,8 @@ struct GmshVariant
     const char* version;
     bool binary;
 };
-constexpr GmshVariant kGmshVariants[] = {{"2.2", false}, {"2.2", true}, {"4.1", false}, {"4.1", true}};
+constexpr GmshVariant kGmshVariants[] = {
+    {"2.2", false}, {"2.2", true}, {"4.1", false}, {"4.1", true}};
 
 }  // namespace
 
@@ -206,13 +208,14 @@ TEST_CASE("sphere480: the shipped example reads as documented")
     require_clean(mesh);
 }
 
-TEST_CASE("sphere480 round trips .mesh -> .meshb -> .msh 2.2 -> .msh 4.1 (ASCII and binary) -> .mesh")
+TEST_CASE(
+    "sphere480 round trips .mesh -> .meshb -> .msh 2.2 -> .msh 4.1 (ASCII and binary) -> .mesh")
 {
     const TetMesh original = read_mesh(fixtures::data_path("sphere480.mesh"));
     TetMesh current = original;
     const std::string chain[] = {"a.mesh", "b.meshb", "c.msh", "d.msh", "e.msh", "f.msh", "g.mesh"};
-    const WriteOptions options[] = {{}, {}, {{}, "2.2", false}, {{}, "2.2", true},
-                                    {{}, "4.1", false}, {{}, "4.1", true}, {}};
+    const WriteOptions options[] = {
+        {}, {}, {{}, "2.2", false}, {{}, "2.2", true}, {{}, "4.1", false}, {{}, "4.1", true}, {}};
     for (std::size_t k = 0; k < std::size(chain); ++k)
     {
         CAPTURE(chain[k]);
@@ -223,7 +226,8 @@ TEST_CASE("sphere480 round trips .mesh -> .meshb -> .msh 2.2 -> .msh 4.1 (ASCII 
         require_clean(current);
     }
     // the last .mesh is byte-identical to the first: nothing drifted along the chain
-    CHECK(read_bytes(scratch().file("sphere_a.mesh")) == read_bytes(scratch().file("sphere_g.mesh")));
+    CHECK(read_bytes(scratch().file("sphere_a.mesh")) ==
+          read_bytes(scratch().file("sphere_g.mesh")));
 }
 
 TEST_CASE("Medit .mesh and .meshb keep every entity and ref of the feature fixture")
@@ -368,34 +372,43 @@ public:
         unsigned char bytes[sizeof(T)];
         std::memcpy(bytes, &value, sizeof(T));
         if (swap_)
-            for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
+            for (std::size_t i = 0; i < sizeof(T) / 2; ++i)
+                std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
         data_.append(reinterpret_cast<const char*>(bytes), sizeof(T));
     }
     void integer(long long v)
     {
-        if (version_ == 4) put<std::int64_t>(v);
-        else put<std::int32_t>(static_cast<std::int32_t>(v));
+        if (version_ == 4)
+            put<std::int64_t>(v);
+        else
+            put<std::int32_t>(static_cast<std::int32_t>(v));
     }
     void real(double v)
     {
-        if (version_ == 1) put<float>(static_cast<float>(v));
-        else put<double>(v);
+        if (version_ == 1)
+            put<float>(static_cast<float>(v));
+        else
+            put<double>(v);
     }
     /// keyword code, then the next position patched once the block is complete
     void begin(int code)
     {
         put<std::int32_t>(code);
         position_at_ = data_.size();
-        if (version_ >= 3) put<std::int64_t>(0);
-        else put<std::int32_t>(0);
+        if (version_ >= 3)
+            put<std::int64_t>(0);
+        else
+            put<std::int32_t>(0);
     }
     void end_block()
     {
         const long long next = static_cast<long long>(data_.size());
         const std::string after = data_.substr(position_at_ + (version_ >= 3 ? 8 : 4));
         data_.resize(position_at_);
-        if (version_ >= 3) put<std::int64_t>(next);
-        else put<std::int32_t>(static_cast<std::int32_t>(next));
+        if (version_ >= 3)
+            put<std::int64_t>(next);
+        else
+            put<std::int32_t>(static_cast<std::int32_t>(next));
         data_ += after;
     }
     std::string bytes() const { return data_; }
@@ -453,7 +466,8 @@ TEST_CASE("libMeshb versions 1-4, both byte orders, skipping Normals and empty Q
         {
             CAPTURE(version);
             CAPTURE(swap);
-            const std::string path = scratch().file("v" + std::to_string(version) + (swap ? "s" : "") + ".meshb");
+            const std::string path =
+                scratch().file("v" + std::to_string(version) + (swap ? "s" : "") + ".meshb");
             write_text(path, single_tet_meshb(version, swap, version % 2 == 0));
             const TetMesh mesh = read_mesh(path);
             REQUIRE(mesh.num_vertices() == 4);
@@ -532,14 +546,15 @@ TEST_CASE(".vtu: header counts and appended arrays are consistent")
     const std::string vtu = read_bytes(scratch().file("sphere.vtu"));
     CHECK(vtu.find("NumberOfPoints=\"156\"") != std::string::npos);
     CHECK(vtu.find("NumberOfCells=\"739\"") != std::string::npos);  // 483 tets + 256 triangles
-    for (const char* name : {"\"size\"", "\"ref\"", "\"Qe\"", "\"connectivity\"", "\"offsets\"", "\"types\""})
+    for (const char* name :
+         {"\"size\"", "\"ref\"", "\"Qe\"", "\"connectivity\"", "\"offsets\"", "\"types\""})
         CHECK(vtu.find(name) != std::string::npos);
     // the appended block holds exactly the announced arrays (each with its 8-byte size)
     const std::size_t start = vtu.find('_', vtu.find("<AppendedData")) + 1;
     const std::size_t stop = vtu.rfind("\n  </AppendedData>");
     const std::size_t nv = 156, nc = 739;
-    const std::size_t expected = 7 * 8 + 8 * nv + 4 * nc + 8 * nc + 24 * nv + 8 * (4 * 483 + 3 * 256) +
-                                 8 * nc + nc;
+    const std::size_t expected =
+        7 * 8 + 8 * nv + 4 * nc + 8 * nc + 24 * nv + 8 * (4 * 483 + 3 * 256) + 8 * nc + nc;
     CHECK(stop - start == expected);
 
     options.vertex_sizes.pop_back();
@@ -562,6 +577,7 @@ TEST_CASE("atomic writes: a failing writer leaves the old file intact and no tem
     for (const auto& entry : fs::directory_iterator(scratch().path))
         files += entry.path().filename().string().rfind("atomic.txt", 0) == 0;
     CHECK(files == 1);
-    CHECK_THROWS_AS(write_mesh(fixtures::single_tet(), scratch().file("no/such/dir/x.mesh")), IoError);
+    CHECK_THROWS_AS(write_mesh(fixtures::single_tet(), scratch().file("no/such/dir/x.mesh")),
+                    IoError);
     CHECK_THROWS_AS(write_mesh(fixtures::single_tet(), scratch().file("x.stl")), InputError);
 }

@@ -114,7 +114,8 @@ TEST_CASE("spatial renumbering is a permutation that keeps the mesh, its adjacen
     std::vector<int> seen_verts(before.points.size(), 0), seen_tets(before.tets.size(), 0);
     for (int v : maps.old2new_verts) ++seen_verts[static_cast<std::size_t>(v)];
     for (int t : maps.old2new_tets) ++seen_tets[static_cast<std::size_t>(t)];
-    CHECK(std::count(seen_verts.begin(), seen_verts.end(), 1) == static_cast<long>(seen_verts.size()));
+    CHECK(std::count(seen_verts.begin(), seen_verts.end(), 1) ==
+          static_cast<long>(seen_verts.size()));
     CHECK(std::count(seen_tets.begin(), seen_tets.end(), 1) == static_cast<long>(seen_tets.size()));
     for (int v = 0; v < before.num_vertices(); ++v)
     {
@@ -128,12 +129,14 @@ TEST_CASE("spatial renumbering is a permutation that keeps the mesh, its adjacen
         {
             CHECK(m.tets[nt][k] == maps.old2new_verts[before.tets[t][k]]);
             const int old_neighbor = before.neighbors[t][k];
-            CHECK(m.neighbors[nt][k] == (old_neighbor == kNoTet ? kNoTet : maps.old2new_tets[old_neighbor]));
+            CHECK(m.neighbors[nt][k] ==
+                  (old_neighbor == kNoTet ? kNoTet : maps.old2new_tets[old_neighbor]));
         }
         CHECK(m.volume(nt) == before.volume(t));
     }
     for (std::size_t i = 0; i < before.triangles.size(); ++i)
-        for (int k = 0; k < 3; ++k) CHECK(m.triangles[i][k] == maps.old2new_verts[before.triangles[i][k]]);
+        for (int k = 0; k < 3; ++k)
+            CHECK(m.triangles[i][k] == maps.old2new_verts[before.triangles[i][k]]);
     CHECK(check_mesh(m).empty());
     // tets are sorted by their smallest vertex
     auto smallest = [&](int t) { return *std::min_element(m.tets[t].begin(), m.tets[t].end()); };

@@ -80,11 +80,11 @@ const double kPi = 3.14159265358979323846;
 TetMesh three_tet_shell(double height, double r0_z = 0.0)
 {
     return mesh_from_tets({{0, 0, -height},
-                      {0, 0, height},
-                      {1, 0, r0_z},
-                      {-0.5, kRoot3 / 2, 0},
-                      {-0.5, -kRoot3 / 2, 0}},
-                     {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}});
+                           {0, 0, height},
+                           {1, 0, r0_z},
+                           {-0.5, kRoot3 / 2, 0},
+                           {-0.5, -kRoot3 / 2, 0}},
+                          {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}});
 }
 
 }  // namespace
@@ -222,7 +222,8 @@ TEST_CASE("edge removal, ring of 6: the dynamic program finds the best of all tr
     {
         const double angle = 2 * kPi * i / m + 0.03 * std::sin(3.0 * i + 1);
         const double radius = 1.0 + 0.05 * std::cos(5.0 * i);
-        points.push_back({radius * std::cos(angle), radius * std::sin(angle), 0.04 * std::sin(7.0 * i)});
+        points.push_back(
+            {radius * std::cos(angle), radius * std::sin(angle), 0.04 * std::sin(7.0 * i)});
     }
     std::vector<TetVertices> tets;
     for (int i = 0; i < m; ++i) tets.push_back({0, 1, 2 + i, 2 + (i + 1) % m});
@@ -269,9 +270,9 @@ TEST_CASE("edge removal, ring of 6: the dynamic program finds the best of all tr
 TEST_CASE("2-3 flip: flat tet pair becomes three tets around the apex edge")
 {
     auto pair_mesh = [](double h, double q_shift) {
-        return mesh_from_tets({{1, 0, 0}, {-0.5, kRoot3 / 2, 0}, {-0.5, -kRoot3 / 2, 0},
-                          {0, 0, -h}, {q_shift, 0, h}},
-                         {{0, 1, 2, 4}, {0, 2, 1, 3}});
+        return mesh_from_tets(
+            {{1, 0, 0}, {-0.5, kRoot3 / 2, 0}, {-0.5, -kRoot3 / 2, 0}, {0, 0, -h}, {q_shift, 0, h}},
+            {{0, 1, 2, 4}, {0, 2, 1, 3}});
     };
     SUBCASE("legal and better (h = 0.2: 0.27 -> 0.37)")
     {
@@ -524,7 +525,8 @@ void sweep_all_operators(TetMesh& mesh, OperatorContext& context,
         bool replaced = false;
         for (int e = 0; e < 6 && !replaced; ++e)
             replaced = remove_edge(mesh, context, t, e, edge_options).removed;
-        for (int f = 0; f < 4 && !replaced; ++f) replaced = remove_multi_face(mesh, context, t, f).removed;
+        for (int f = 0; f < 4 && !replaced; ++f)
+            replaced = remove_multi_face(mesh, context, t, f).removed;
         if (replaced) continue;
         for (int v : TetVertices(mesh.tets[t]))
         {
@@ -535,7 +537,8 @@ void sweep_all_operators(TetMesh& mesh, OperatorContext& context,
         {
             const int a = mesh.tets[t][tet::kEdgeVertices[e][0]];
             const int b = mesh.tets[t][tet::kEdgeVertices[e][1]];
-            if (context.too_short(mesh.points[a], mesh.points[b])) collapse_edge(mesh, context, a, b);
+            if (context.too_short(mesh.points[a], mesh.points[b]))
+                collapse_edge(mesh, context, a, b);
         }
     }
 }

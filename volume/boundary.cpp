@@ -202,7 +202,8 @@ VertexGraph vertex_graph(const TetMesh& mesh)
         graph.neighbors[fill[e[1]]++] = e[0];
     }
     for (int v = 0; v < nv; ++v)
-        std::sort(graph.neighbors.begin() + graph.start[v], graph.neighbors.begin() + graph.start[v + 1]);
+        std::sort(graph.neighbors.begin() + graph.start[v],
+                  graph.neighbors.begin() + graph.start[v + 1]);
     return graph;
 }
 

@@ -23,10 +23,7 @@ std::string ids(const Triangle& t)
 
 /// Parity (0 even, 1 odd) of the permutation that sorts the three ids: two listings of the
 /// same face have opposite orientations exactly when their parities differ.
-int parity(const Triangle& t)
-{
-    return ((t[0] > t[1]) + (t[0] > t[2]) + (t[1] > t[2])) % 2;
-}
+int parity(const Triangle& t) { return ((t[0] > t[1]) + (t[0] > t[2]) + (t[1] > t[2])) % 2; }
 
 Triangle sorted(Triangle t)
 {
@@ -65,8 +62,9 @@ private:
     {
         auto expect = [&](std::size_t actual, std::size_t expected, const char* what) {
             if (actual == expected) return;
-            add("array_size", -1, std::string(what) + " has " + std::to_string(actual) +
-                                      " entries, expected " + std::to_string(expected));
+            add("array_size", -1,
+                std::string(what) + " has " + std::to_string(actual) + " entries, expected " +
+                    std::to_string(expected));
         };
         const std::size_t nv = mesh_.points.size(), nt = mesh_.tets.size();
         expect(mesh_.vertex_refs.size(), nv, "vertex_refs");
@@ -81,7 +79,8 @@ private:
     {
         for (int v = 0; v < mesh_.num_vertices(); ++v)
             if (!mesh_.points[v].allFinite())
-                add("nan_coordinate", v, "vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+                add("nan_coordinate", v,
+                    "vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
     }
 
     void check_ids()
@@ -96,7 +95,8 @@ private:
             {
                 usable_ = false;
                 add("tet_vertex_out_of_range", t,
-                    "tet " + std::to_string(t) + " has a vertex id outside [0, " + std::to_string(nv) + ")");
+                    "tet " + std::to_string(t) + " has a vertex id outside [0, " +
+                        std::to_string(nv) + ")");
             }
         }
         for (std::size_t i = 0; i < mesh_.triangles.size(); ++i)
@@ -104,13 +104,14 @@ private:
             const auto& tri = mesh_.triangles[i];
             if (std::any_of(tri.begin(), tri.end(), bad))
                 add("triangle_vertex_out_of_range", static_cast<int>(i),
-                    "triangle " + std::to_string(i) + " " + ids(tri) + " has a vertex id outside [0, " +
-                        std::to_string(nv) + ")");
+                    "triangle " + std::to_string(i) + " " + ids(tri) +
+                        " has a vertex id outside [0, " + std::to_string(nv) + ")");
         }
         for (std::size_t i = 0; i < mesh_.edges.size(); ++i)
             if (bad(mesh_.edges[i][0]) || bad(mesh_.edges[i][1]))
                 add("edge_vertex_out_of_range", static_cast<int>(i),
-                    "edge " + std::to_string(i) + " has a vertex id outside [0, " + std::to_string(nv) + ")");
+                    "edge " + std::to_string(i) + " has a vertex id outside [0, " +
+                        std::to_string(nv) + ")");
         auto check_indices = [&](const std::vector<int>& list, int size, const char* what) {
             for (int i : list)
                 if (i < 0 || i >= size)
@@ -123,7 +124,8 @@ private:
         check_indices(mesh_.required_edges, ne, "required_edges");
         check_indices(mesh_.corners, nv, "corners");
         check_indices(mesh_.required_vertices, nv, "required_vertices");
-        check_indices(mesh_.required_triangles, static_cast<int>(mesh_.triangles.size()), "required_triangles");
+        check_indices(mesh_.required_triangles, static_cast<int>(mesh_.triangles.size()),
+                      "required_triangles");
         check_indices(mesh_.required_tets, mesh_.num_tet_slots(), "required_tets");
     }
 
@@ -153,7 +155,8 @@ private:
             {
                 std::ostringstream out;
                 out << "tet " << t << " (" << mesh_.tets[t][0] << ", " << mesh_.tets[t][1] << ", "
-                    << mesh_.tets[t][2] << ", " << mesh_.tets[t][3] << ") has volume " << volume << " <= 0";
+                    << mesh_.tets[t][2] << ", " << mesh_.tets[t][3] << ") has volume " << volume
+                    << " <= 0";
                 add("non_positive_volume", t, out.str());
             }
         }
@@ -168,8 +171,9 @@ private:
             if (count > 2)
             {
                 add("face_shared_by_more_than_two", first.tet,
-                    "face " + ids(face_vertices(mesh_, first)) + " is used by " + std::to_string(count) +
-                        " tets (first: tet " + std::to_string(first.tet) + ")");
+                    "face " + ids(face_vertices(mesh_, first)) + " is used by " +
+                        std::to_string(count) + " tets (first: tet " + std::to_string(first.tet) +
+                        ")");
             }
             else if (count == 2)
             {
@@ -197,9 +201,9 @@ private:
                 const int stored = mesh_.neighbors[use.tet][use.local_face];
                 if (stored != expected)
                     add("adjacency_stale", use.tet,
-                        "tet " + std::to_string(use.tet) + " face " + std::to_string(use.local_face) +
-                            " links to " + std::to_string(stored) + ", the faces say " +
-                            std::to_string(expected));
+                        "tet " + std::to_string(use.tet) + " face " +
+                            std::to_string(use.local_face) + " links to " + std::to_string(stored) +
+                            ", the faces say " + std::to_string(expected));
             }
         }
         // asymmetric: a link the neighbour does not return
@@ -220,8 +224,8 @@ private:
                 const auto& back = mesh_.neighbors[n];
                 if (std::find(back.begin(), back.end(), t) == back.end())
                     add("adjacency_asymmetric", t,
-                        "tet " + std::to_string(t) + " face " + std::to_string(f) + " links to tet " +
-                            std::to_string(n) + ", which does not link back");
+                        "tet " + std::to_string(t) + " face " + std::to_string(f) +
+                            " links to tet " + std::to_string(n) + ", which does not link back");
             }
         }
     }
@@ -259,8 +263,9 @@ private:
             const TetFace& first = groups.uses[groups.start[k]];
             const Triangle face = face_vertices(mesh_, first);
             const Triangle key = sorted(face);
-            auto range = std::equal_range(declared.begin(), declared.end(), Declared{key, -1},
-                                          [](const Declared& a, const Declared& b) { return a.key < b.key; });
+            auto range = std::equal_range(
+                declared.begin(), declared.end(), Declared{key, -1},
+                [](const Declared& a, const Declared& b) { return a.key < b.key; });
             if (count == 1)
             {
                 if (range.first == range.second)
@@ -272,8 +277,9 @@ private:
                     matched[it->index] = 1;
                     if (parity(mesh_.triangles[it->index]) != parity(face))
                         add("boundary_triangle_reversed", it->index,
-                            "triangle " + std::to_string(it->index) + " " + ids(mesh_.triangles[it->index]) +
-                                " points into tet " + std::to_string(first.tet));
+                            "triangle " + std::to_string(it->index) + " " +
+                                ids(mesh_.triangles[it->index]) + " points into tet " +
+                                std::to_string(first.tet));
                 }
             }
             else
@@ -314,7 +320,9 @@ private:
             int triangle;
             bool operator<(const DirectedEdge& o) const
             {
-                return low != o.low ? low < o.low : high != o.high ? high < o.high : triangle < o.triangle;
+                return low != o.low     ? low < o.low
+                       : high != o.high ? high < o.high
+                                        : triangle < o.triangle;
             }
         };
         std::vector<DirectedEdge> edges;
@@ -334,14 +342,17 @@ private:
         for (std::size_t i = 0; i < edges.size();)
         {
             std::size_t j = i + 1;
-            while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
+            while (j < edges.size() && edges[j].low == edges[i].low &&
+                   edges[j].high == edges[i].high)
+                ++j;
             const std::string where = "boundary edge (" + std::to_string(edges[i].low) + ", " +
                                       std::to_string(edges[i].high) + ")";
             if (j - i == 1)
             {
                 if (options_.require_closed_boundary)
                     add("open_boundary_edge", edges[i].triangle,
-                        where + " is in only one boundary triangle (" + std::to_string(edges[i].triangle) + ")");
+                        where + " is in only one boundary triangle (" +
+                            std::to_string(edges[i].triangle) + ")");
             }
             else if (j - i > 2)
             {
@@ -399,7 +410,8 @@ private:
             if (steps != n)
                 add("nonmanifold_boundary_vertex", v,
                     "boundary vertex " + std::to_string(v) + " has " + std::to_string(n) +
-                        " triangles but its link cycle has " + std::to_string(steps) + ": the surface is pinched");
+                        " triangles but its link cycle has " + std::to_string(steps) +
+                        ": the surface is pinched");
         }
     }
 
@@ -416,8 +428,9 @@ private:
         {
             std::ostringstream out;
             out.precision(17);
-            out << "sum of tet volumes " << tet_volume_sum_ << " != volume enclosed by the boundary "
-                << enclosed << " (relative difference " << (scale > 0 ? difference / scale : difference) << ")";
+            out << "sum of tet volumes " << tet_volume_sum_
+                << " != volume enclosed by the boundary " << enclosed << " (relative difference "
+                << (scale > 0 ? difference / scale : difference) << ")";
             add("volume_mismatch", -1, out.str());
         }
     }
@@ -432,7 +445,8 @@ private:
         std::vector<int> used_ids;
         for (int v = 0; v < mesh_.num_vertices(); ++v)
         {
-            if (used[v]) used_ids.push_back(v);
+            if (used[v])
+                used_ids.push_back(v);
             else if (options_.report_unused_vertices)
                 add("unused_vertex", v, "vertex " + std::to_string(v) + " is used by no tet");
         }
@@ -451,7 +465,8 @@ private:
             const int a = used_ids[i - 1], b = used_ids[i];
             if (mesh_.points[a] == mesh_.points[b])
                 add("coincident_vertices", b,
-                    "vertices " + std::to_string(a) + " and " + std::to_string(b) + " are at the same point");
+                    "vertices " + std::to_string(a) + " and " + std::to_string(b) +
+                        " are at the same point");
         }
     }
 
@@ -481,7 +496,8 @@ std::string format_violations(const std::vector<MeshViolation>& violations, std:
     out << "\n";
     for (std::size_t i = 0; i < violations.size() && i < max_lines; ++i)
         out << "  " << violations[i].kind << ": " << violations[i].message << "\n";
-    if (violations.size() > max_lines) out << "  ... and " << violations.size() - max_lines << " more\n";
+    if (violations.size() > max_lines)
+        out << "  ... and " << violations.size() - max_lines << " more\n";
     return out.str();
 }
 

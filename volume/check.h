@@ -16,29 +16,30 @@ namespace hdimesh::volume
 /// entity named in the kind's description (-1 when global); `message` is for humans.
 ///
 ///  kind                          element    meaning
-///  array_size                    -1         a per-entity array (refs, classes, neighbors) has the wrong length
-///  nan_coordinate                vertex     a coordinate is NaN or infinite
+///  array_size                    -1         a per-entity array (refs, classes, neighbors) has the
+///  wrong length nan_coordinate                vertex     a coordinate is NaN or infinite
 ///  tet_vertex_out_of_range       tet        a vertex id < 0 or >= num_vertices
 ///  triangle_vertex_out_of_range  triangle
 ///  edge_vertex_out_of_range      edge       (mesh.edges)
 ///  entity_index_out_of_range     -1         ridges/corners/required_* index nothing
 ///  non_positive_volume           tet        signed volume <= 0
-///  face_shared_by_more_than_two  tet        a face (vertex set) used by 3+ live tets; element = first user
-///  face_same_orientation         tet        two tets list a shared face the same way (they overlap)
-///  adjacency_stale               tet        neighbors[t][f] differs from the recomputed adjacency
-///  adjacency_asymmetric          tet        neighbors[t][f] = n but no face of n points back to t
-///  missing_boundary_triangle     tet        a boundary face of the tets is not in mesh.triangles
-///  boundary_triangle_reversed    triangle   in mesh.triangles but oriented inward
-///  triangle_not_a_tet_face       triangle   in mesh.triangles but no live tet has that face
+///  face_shared_by_more_than_two  tet        a face (vertex set) used by 3+ live tets; element =
+///  first user face_same_orientation         tet        two tets list a shared face the same way
+///  (they overlap) adjacency_stale               tet        neighbors[t][f] differs from the
+///  recomputed adjacency adjacency_asymmetric          tet        neighbors[t][f] = n but no face
+///  of n points back to t missing_boundary_triangle     tet        a boundary face of the tets is
+///  not in mesh.triangles boundary_triangle_reversed    triangle   in mesh.triangles but oriented
+///  inward triangle_not_a_tet_face       triangle   in mesh.triangles but no live tet has that face
 ///  interior_triangle             triangle   on a face between two tets of the same ref
 ///  duplicate_triangle            triangle   the same vertex set listed twice in mesh.triangles
 ///  open_boundary_edge            triangle   a boundary edge in only one boundary triangle
 ///  nonmanifold_boundary_edge     triangle   a boundary edge in three or more boundary triangles
-///  boundary_edge_same_direction  triangle   the two triangles at a boundary edge are not consistently oriented
-///  nonmanifold_boundary_vertex   vertex     a boundary vertex whose link is several cycles (pinched)
-///  volume_mismatch               -1         sum of tet volumes != volume enclosed by the tets' boundary
-///  coincident_vertices           vertex     two vertices used by tets at the same point (a hidden crack)
-///  unused_vertex                 vertex     no live tet uses it (only with report_unused_vertices)
+///  boundary_edge_same_direction  triangle   the two triangles at a boundary edge are not
+///  consistently oriented nonmanifold_boundary_vertex   vertex     a boundary vertex whose link is
+///  several cycles (pinched) volume_mismatch               -1         sum of tet volumes != volume
+///  enclosed by the tets' boundary coincident_vertices           vertex     two vertices used by
+///  tets at the same point (a hidden crack) unused_vertex                 vertex     no live tet
+///  uses it (only with report_unused_vertices)
 ///
 /// The boundary-manifold checks run on the boundary triangles of mesh.triangles (interface
 /// triangles on faces between two tets excluded): that is the surface other modules consume.

@@ -154,12 +154,11 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         result.worst_after = worst;
         if (rejected) continue;
         bool sizes_ok = true;
-        for (int v : config.new_neighbours)
-            sizes_ok = sizes_ok && !context.too_long(place, p[v]);
+        for (int v : config.new_neighbours) sizes_ok = sizes_ok && !context.too_long(place, p[v]);
         if (attempt > 0)
             for (int v : to_neighbours)
-                sizes_ok = sizes_ok && !(context.too_long(place, p[v]) &&
-                                         !context.too_long(to_position, p[v]));
+                sizes_ok = sizes_ok &&
+                           !(context.too_long(place, p[v]) && !context.too_long(to_position, p[v]));
         if (!sizes_ok) continue;
         found = true;
         chosen = place;

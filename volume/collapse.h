@@ -34,7 +34,7 @@ struct CollapseResult
     /// Worst Qe of from's ball when the test needed it (a new tet below options.min_quality),
     /// else -1: computing it for every attempt would cost more than the attempt.
     double worst_before = -1;
-    double worst_after = 0;   ///< worst Qe of the new tets (when they could be formed)
+    double worst_after = 0;  ///< worst Qe of the new tets (when they could be formed)
 };
 
 /// Collapses edge (from, to) onto `to` (or, see the options, both onto the midpoint, the

@@ -134,8 +134,7 @@ EdgeRemovalResult summarize(const EdgeRemovalPlan& plan)
 }  // namespace
 
 EdgeRemovalResult evaluate_edge_removal(const TetMesh& mesh, const OperatorContext& context,
-                                        int seed, int local_edge,
-                                        const EdgeRemovalOptions& options)
+                                        int seed, int local_edge, const EdgeRemovalOptions& options)
 {
     return summarize(plan_edge_removal(mesh, context, seed, local_edge, options));
 }

@@ -17,8 +17,8 @@ namespace hdimesh::volume
 
 struct EdgeRemovalOptions
 {
-    int max_ring = 16;        ///< larger shells are left alone (the program is O(m^3))
-    double min_gain = 1e-6;   ///< the new worst quality must beat the old one by this much
+    int max_ring = 16;       ///< larger shells are left alone (the program is O(m^3))
+    double min_gain = 1e-6;  ///< the new worst quality must beat the old one by this much
     /// false: remove_edge's program drops every partial triangulation that can no longer beat
     /// the shell's worst by min_gain (the same removals, found faster); worst_after is then
     /// exact only when the edge is removed, else -infinity. The optimizer's choice.

@@ -45,11 +45,11 @@ inline double tet_quality_from_parts(double volume, double area, double longest2
 inline double tet_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 {
     const double volume = signed_volume(a, b, c, d);
-    const double area = triangle_area(b, c, d) + triangle_area(a, d, c) +
-                        triangle_area(a, b, d) + triangle_area(a, c, b);
-    const double longest2 = std::max({(b - a).squaredNorm(), (c - a).squaredNorm(),
-                                      (d - a).squaredNorm(), (c - b).squaredNorm(),
-                                      (d - b).squaredNorm(), (d - c).squaredNorm()});
+    const double area = triangle_area(b, c, d) + triangle_area(a, d, c) + triangle_area(a, b, d) +
+                        triangle_area(a, c, b);
+    const double longest2 =
+        std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), (d - a).squaredNorm(),
+                  (c - b).squaredNorm(), (d - b).squaredNorm(), (d - c).squaredNorm()});
     return tet_quality_from_parts(volume, area, longest2);
 }
 

@@ -101,7 +101,8 @@ public:
             expect_end(section);
         }
         // Gmsh always writes both; requiring $Elements catches a file cut after $EndNodes
-        if (!seen_nodes || !seen_elements) text_.fail(seen_nodes ? "no $Elements section (truncated file?)" : "no $Nodes section");
+        if (!seen_nodes || !seen_elements)
+            text_.fail(seen_nodes ? "no $Elements section (truncated file?)" : "no $Nodes section");
         return std::move(mesh_);
     }
 
@@ -150,8 +151,10 @@ private:
         const std::string end = "$End" + std::string(section.substr(1));
         const std::size_t from = text_.position();
         const std::size_t at = data_.find(end, from);
-        if (at == std::string::npos) text_.fail("section " + std::string(section) + " has no " + end);
-        const int lines = static_cast<int>(std::count(data_.begin() + from, data_.begin() + at, '\n'));
+        if (at == std::string::npos)
+            text_.fail("section " + std::string(section) + " has no " + end);
+        const int lines =
+            static_cast<int>(std::count(data_.begin() + from, data_.begin() + at, '\n'));
         text_.set_position(at + end.size(), text_.current_line() + lines);
     }
 
@@ -167,11 +170,13 @@ private:
 
     long long text_or_size(const char* what, long long lo, long long hi)
     {
-        return binary_ ? bin_.integer_in<std::uint64_t>(what, lo, hi) : text_.integer_in(what, lo, hi);
+        return binary_ ? bin_.integer_in<std::uint64_t>(what, lo, hi)
+                       : text_.integer_in(what, lo, hi);
     }
     long long text_or_int(const char* what, long long lo, long long hi)
     {
-        return binary_ ? bin_.integer_in<std::int32_t>(what, lo, hi) : text_.integer_in(what, lo, hi);
+        return binary_ ? bin_.integer_in<std::int32_t>(what, lo, hi)
+                       : text_.integer_in(what, lo, hi);
     }
     double text_or_real(const char* what)
     {
@@ -198,13 +203,15 @@ private:
     {
         if (binary_) start_binary();
         std::size_t counts[4];
-        for (int d = 0; d < 4; ++d) counts[d] = bounded_count("entity count", binary_ ? 20 : 8, true);
+        for (int d = 0; d < 4; ++d)
+            counts[d] = bounded_count("entity count", binary_ ? 20 : 8, true);
         for (int d = 0; d < 4; ++d)
             for (std::size_t i = 0; i < counts[d]; ++i)
             {
                 const int tag = static_cast<int>(text_or_int("entity tag", INT_MIN, INT_MAX));
                 for (int k = 0; k < (d == 0 ? 3 : 6); ++k) text_or_real("entity bounding box");
-                const std::size_t nphys = bounded_count("physical tag count", binary_ ? 4 : 2, true);
+                const std::size_t nphys =
+                    bounded_count("physical tag count", binary_ ? 4 : 2, true);
                 int physical = 0;
                 for (std::size_t k = 0; k < nphys; ++k)
                 {
@@ -214,7 +221,8 @@ private:
                 entity_physical_[{d, tag}] = physical;
                 if (d > 0)
                 {
-                    const std::size_t nbound = bounded_count("bounding entity count", binary_ ? 4 : 2, true);
+                    const std::size_t nbound =
+                        bounded_count("bounding entity count", binary_ ? 4 : 2, true);
                     for (std::size_t k = 0; k < nbound; ++k)
                         text_or_int("bounding entity tag", INT_MIN, INT_MAX);
                 }
@@ -259,7 +267,8 @@ private:
             text_or_int("entity tag", INT_MIN, INT_MAX);
             const int parametric = static_cast<int>(text_or_int("parametric flag", 0, 1));
             const std::size_t in_block = bounded_count("nodes in block", binary_ ? 32 : 8, true);
-            if (node_tags_.size() + in_block > n) fail("node blocks hold more nodes than announced");
+            if (node_tags_.size() + in_block > n)
+                fail("node blocks hold more nodes than announced");
             for (std::size_t i = 0; i < in_block; ++i)
                 node_tags_.push_back(text_or_size("node tag", 1, LLONG_MAX));
             for (std::size_t i = 0; i < in_block; ++i)
@@ -301,7 +310,8 @@ private:
         int index = -1;
         if (dense_)
         {
-            if (tag >= 0 && tag < static_cast<long long>(tag_to_index_.size())) index = tag_to_index_[tag];
+            if (tag >= 0 && tag < static_cast<long long>(tag_to_index_.size()))
+                index = tag_to_index_[tag];
         }
         else
         {
@@ -364,7 +374,8 @@ private:
                 int physical = 0;
                 for (std::size_t k = 0; k < ntags; ++k)
                 {
-                    const int t = static_cast<int>(text_.integer_in("element tag", INT_MIN, INT_MAX));
+                    const int t =
+                        static_cast<int>(text_.integer_in("element tag", INT_MIN, INT_MAX));
                     if (k == 0) physical = t;
                 }
                 long long nodes[4];
@@ -377,12 +388,14 @@ private:
         std::size_t done = 0;
         while (done < n)
         {
-            const int type = static_cast<int>(bin_.integer_in<std::int32_t>("element type", 0, INT_MAX));
+            const int type =
+                static_cast<int>(bin_.integer_in<std::int32_t>("element type", 0, INT_MAX));
             const int nn = supported_nodes(type);
             const long long count = bin_.integer_in<std::int32_t>("elements in block", 1,
                                                                   static_cast<long long>(n - done));
             const int ntags = static_cast<int>(bin_.integer_in<std::int32_t>("tag count", 0, 64));
-            bin_.require(static_cast<unsigned long long>(count), 4 * (1 + ntags + nn), "element block");
+            bin_.require(static_cast<unsigned long long>(count), 4 * (1 + ntags + nn),
+                         "element block");
             for (long long i = 0; i < count; ++i)
             {
                 const long long tag = bin_.get<std::int32_t>("element tag");
@@ -415,7 +428,8 @@ private:
             const int entity = static_cast<int>(text_or_int("entity tag", INT_MIN, INT_MAX));
             const int type = static_cast<int>(text_or_int("element type", 0, INT_MAX));
             const int nn = supported_nodes(type);
-            const std::size_t count = bounded_count("elements in block", binary_ ? 8 * (1 + nn) : 2 * (1 + nn), true);
+            const std::size_t count =
+                bounded_count("elements in block", binary_ ? 8 * (1 + nn) : 2 * (1 + nn), true);
             if (done + count > n) fail("element blocks hold more elements than announced");
             const auto it = entity_physical_.find({dim, entity});
             const int physical = it == entity_physical_.end() ? 0 : it->second;
@@ -488,8 +502,11 @@ EntityPlan plan_entities(const TetMesh& mesh, const LiveTets& live)
         for (int i : ids)
         {
             const int ref = refs[i];
-            auto [it, added] = entity_of_ref.emplace(ref, static_cast<int>(plan.entities[dim].size()));
-            if (added) plan.entities[dim].emplace_back(dim, static_cast<int>(plan.entities[dim].size()) + 1, ref);
+            auto [it, added] =
+                entity_of_ref.emplace(ref, static_cast<int>(plan.entities[dim].size()));
+            if (added)
+                plan.entities[dim].emplace_back(
+                    dim, static_cast<int>(plan.entities[dim].size()) + 1, ref);
             Entity& e = plan.entities[dim][it->second];
             e.elements.push_back(i);
             plan.entity_of[dim][i] = it->second;
@@ -506,9 +523,11 @@ EntityPlan plan_entities(const TetMesh& mesh, const LiveTets& live)
         return ids;
     };
     group(1, iota(mesh.edges.size()), mesh.edge_refs, [&](int i) { return mesh.edges[i]; });
-    group(2, iota(mesh.triangles.size()), mesh.triangle_refs, [&](int i) { return mesh.triangles[i]; });
+    group(2, iota(mesh.triangles.size()), mesh.triangle_refs,
+          [&](int i) { return mesh.triangles[i]; });
     group(3, live.ids, mesh.tet_refs, [&](int i) { return mesh.tets[i]; });
-    plan.element_count = mesh.corners.size() + mesh.edges.size() + mesh.triangles.size() + live.ids.size();
+    plan.element_count =
+        mesh.corners.size() + mesh.edges.size() + mesh.triangles.size() + live.ids.size();
 
     // nodes are all listed in one block, on the first entity of the highest dimension
     plan.node_dim = -1;
@@ -537,7 +556,8 @@ class GmshWriter
 {
 public:
     GmshWriter(const TetMesh& mesh, std::ostream& out, bool binary)
-        : mesh_(mesh), w_(out), binary_(binary), live_(live_tets(mesh)), plan_(plan_entities(mesh, live_))
+        : mesh_(mesh), w_(out), binary_(binary), live_(live_tets(mesh)),
+          plan_(plan_entities(mesh, live_))
     {
     }
 
@@ -557,11 +577,20 @@ public:
             }
             else
             {
-                w_.integer(v + 1).character(' ').real(p.x()).character(' ').real(p.y()).character(' ').real(p.z()).character('\n');
+                w_.integer(v + 1)
+                    .character(' ')
+                    .real(p.x())
+                    .character(' ')
+                    .real(p.y())
+                    .character(' ')
+                    .real(p.z())
+                    .character('\n');
             }
         }
         if (binary_) w_.character('\n');
-        w_.text("$EndNodes\n$Elements\n").integer(static_cast<long long>(plan_.element_count)).character('\n');
+        w_.text("$EndNodes\n$Elements\n")
+            .integer(static_cast<long long>(plan_.element_count))
+            .character('\n');
         // 2.2 elements carry their own tags, so the input order is kept
         long long element_tag = 0;
         for (int d = 0; d < 4; ++d)
@@ -569,9 +598,11 @@ public:
             const int type = kGmshType[d];
             const int nn = d + 1;
             std::vector<int> ids;
-            if (d == 3) ids = live_.ids;
+            if (d == 3)
+                ids = live_.ids;
             else
-                for (std::size_t i = 0; i < plan_.entity_of[d].size(); ++i) ids.push_back(static_cast<int>(i));
+                for (std::size_t i = 0; i < plan_.entity_of[d].size(); ++i)
+                    ids.push_back(static_cast<int>(i));
             if (binary_ && !ids.empty())
             {
                 const std::int32_t header[3] = {type, static_cast<std::int32_t>(ids.size()), 2};
@@ -585,13 +616,20 @@ public:
                 ++element_tag;
                 if (binary_)
                 {
-                    std::int32_t record[3 + 4] = {static_cast<std::int32_t>(element_tag), e.physical, e.tag};
+                    std::int32_t record[3 + 4] = {static_cast<std::int32_t>(element_tag),
+                                                  e.physical, e.tag};
                     for (int k = 0; k < nn; ++k) record[3 + k] = v[k] + 1;
                     w_.bytes(record, sizeof(std::int32_t) * (3 + nn));
                 }
                 else
                 {
-                    w_.integer(element_tag).character(' ').integer(type).text(" 2 ").integer(e.physical).character(' ').integer(e.tag);
+                    w_.integer(element_tag)
+                        .character(' ')
+                        .integer(type)
+                        .text(" 2 ")
+                        .integer(e.physical)
+                        .character(' ')
+                        .integer(e.tag);
                     for (int k = 0; k < nn; ++k) w_.character(' ').integer(v[k] + 1);
                     w_.character('\n');
                 }
@@ -665,7 +703,8 @@ public:
                     int v[4];
                     vertices(d, i, v);
                     size(++element_tag, ' ');
-                    for (int k = 0; k <= d; ++k) size(static_cast<std::size_t>(v[k]) + 1, k == d ? '\n' : ' ');
+                    for (int k = 0; k <= d; ++k)
+                        size(static_cast<std::size_t>(v[k]) + 1, k == d ? '\n' : ' ');
                 }
             }
         end_binary_line();
@@ -695,18 +734,24 @@ private:
     // 4.1 fields: text with a separator, or binary (size_t = uint64, int = int32, double)
     void size(std::size_t v, char separator)
     {
-        if (binary_) w_.raw(static_cast<std::uint64_t>(v));
-        else w_.integer(static_cast<long long>(v)).character(separator);
+        if (binary_)
+            w_.raw(static_cast<std::uint64_t>(v));
+        else
+            w_.integer(static_cast<long long>(v)).character(separator);
     }
     void integer(int v, char separator)
     {
-        if (binary_) w_.raw(static_cast<std::int32_t>(v));
-        else w_.integer(v).character(separator);
+        if (binary_)
+            w_.raw(static_cast<std::int32_t>(v));
+        else
+            w_.integer(v).character(separator);
     }
     void real(double v, char separator)
     {
-        if (binary_) w_.raw(v);
-        else w_.real(v).character(separator);
+        if (binary_)
+            w_.raw(v);
+        else
+            w_.real(v).character(separator);
     }
     void end_binary_line()
     {
@@ -730,8 +775,10 @@ TetMesh read_gmsh(const std::string& path, const std::string& data)
 void write_gmsh(const TetMesh& mesh, std::ostream& out, const WriteOptions& options)
 {
     GmshWriter writer(mesh, out, options.gmsh_binary);
-    if (options.gmsh_version == "2.2") writer.write_v2();
-    else writer.write_v4();
+    if (options.gmsh_version == "2.2")
+        writer.write_v2();
+    else
+        writer.write_v4();
 }
 
 }  // namespace hdimesh::volume::io_detail

@@ -83,9 +83,9 @@ public:
 
     TetMesh read()
     {
-        medit::read_ascii_keywords(in_, medit::EndKeyword::Required, nullptr,
-                                   [this](std::string_view keyword)
-                                   { return read_section(keyword); });
+        medit::read_ascii_keywords(
+            in_, medit::EndKeyword::Required, nullptr,
+            [this](std::string_view keyword) { return read_section(keyword); });
         return std::move(mesh_);
     }
 
@@ -155,7 +155,8 @@ private:
         once(seen_flag(keyword), keyword);
         const std::size_t n = in_.count(keyword, 2 * (N + 1));
         if (n > static_cast<std::size_t>(INT_MAX)) in_.fail(std::string("too many ") + keyword);
-        const long long max_vertex = seen_vertices_ ? static_cast<long long>(mesh_.points.size()) : INT_MAX;
+        const long long max_vertex =
+            seen_vertices_ ? static_cast<long long>(mesh_.points.size()) : INT_MAX;
         items.resize(n);
         refs.resize(n);
         for (std::size_t i = 0; i < n; ++i)
@@ -184,14 +185,10 @@ private:
     {
         switch (target)
         {
-            case IndexTarget::Vertices:
-                return seen_vertices_;
-            case IndexTarget::Edges:
-                return seen_edges_;
-            case IndexTarget::Triangles:
-                return seen_triangles_;
-            case IndexTarget::Tetrahedra:
-                return seen_tets_;
+            case IndexTarget::Vertices: return seen_vertices_;
+            case IndexTarget::Edges: return seen_edges_;
+            case IndexTarget::Triangles: return seen_triangles_;
+            case IndexTarget::Tetrahedra: return seen_tets_;
         }
         return false;
     }
@@ -200,14 +197,10 @@ private:
     {
         switch (target)
         {
-            case IndexTarget::Vertices:
-                return mesh_.points.size();
-            case IndexTarget::Edges:
-                return mesh_.edges.size();
-            case IndexTarget::Triangles:
-                return mesh_.triangles.size();
-            case IndexTarget::Tetrahedra:
-                return mesh_.tets.size();
+            case IndexTarget::Vertices: return mesh_.points.size();
+            case IndexTarget::Edges: return mesh_.edges.size();
+            case IndexTarget::Triangles: return mesh_.triangles.size();
+            case IndexTarget::Tetrahedra: return mesh_.tets.size();
         }
         return 0;
     }
@@ -243,21 +236,13 @@ private:
     {
         switch (keyword.code)
         {
-            case gmf::kDimension:
-                file_.dimension();
-                break;
-            case gmf::kVertices:
-                read_vertices();
-                break;
-            case gmf::kEdges:
-                read_elements(mesh_.edges, mesh_.edge_refs, "Edges");
-                break;
+            case gmf::kDimension: file_.dimension(); break;
+            case gmf::kVertices: read_vertices(); break;
+            case gmf::kEdges: read_elements(mesh_.edges, mesh_.edge_refs, "Edges"); break;
             case gmf::kTriangles:
                 read_elements(mesh_.triangles, mesh_.triangle_refs, "Triangles");
                 break;
-            case gmf::kTetrahedra:
-                read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra");
-                break;
+            case gmf::kTetrahedra: read_elements(mesh_.tets, mesh_.tet_refs, "Tetrahedra"); break;
             case gmf::kNormals:
             case gmf::kTangents:
             case gmf::kNormalAtVertices:
@@ -350,7 +335,8 @@ MeditSections prepare(const TetMesh& mesh)
     return s;
 }
 
-void write_index_section(TextWriter& w, const char* keyword, const std::vector<int>& ids, int offset)
+void write_index_section(TextWriter& w, const char* keyword, const std::vector<int>& ids,
+                         int offset)
 {
     if (ids.empty()) return;
     w.text(keyword).character('\n').integer(static_cast<long long>(ids.size())).character('\n');
@@ -360,7 +346,8 @@ void write_index_section(TextWriter& w, const char* keyword, const std::vector<i
 
 template <std::size_t N>
 void write_element_section(TextWriter& w, const char* keyword,
-                           const std::vector<std::array<int, N>>& items, const std::vector<int>& refs)
+                           const std::vector<std::array<int, N>>& items,
+                           const std::vector<int>& refs)
 {
     if (items.empty()) return;
     w.text(keyword).character('\n').integer(static_cast<long long>(items.size())).character('\n');
@@ -382,11 +369,12 @@ public:
     {
         const std::size_t header_bytes = 4 + (wide_ ? 8 : 4) + (counted ? 4 : 0);
         // libMeshb ends the chain with a zero position on End
-        const std::size_t next =
-            code == gmf::kEnd ? 0 : w_.offset() + header_bytes + payload_bytes;
+        const std::size_t next = code == gmf::kEnd ? 0 : w_.offset() + header_bytes + payload_bytes;
         w_.raw(static_cast<std::int32_t>(code));
-        if (wide_) w_.raw(static_cast<std::int64_t>(next));
-        else w_.raw(static_cast<std::int32_t>(next));
+        if (wide_)
+            w_.raw(static_cast<std::int64_t>(next));
+        else
+            w_.raw(static_cast<std::int32_t>(next));
         if (counted) w_.raw(static_cast<std::int32_t>(count));
     }
 
@@ -437,7 +425,8 @@ void write_medit_ascii(const TetMesh& mesh, std::ostream& out)
         {
             const Vec3& p = mesh.points[v];
             w.real(p.x()).character(' ').real(p.y()).character(' ').real(p.z()).character(' ');
-            w.integer(v < static_cast<int>(mesh.vertex_refs.size()) ? mesh.vertex_refs[v] : 0).character('\n');
+            w.integer(v < static_cast<int>(mesh.vertex_refs.size()) ? mesh.vertex_refs[v] : 0)
+                .character('\n');
         }
         w.character('\n');
     }
@@ -469,12 +458,11 @@ void write_medit_binary(const TetMesh& mesh, std::ostream& out)
     const std::size_t nv = mesh.points.size();
     const std::size_t nt = s.live.ids.size();
     // 32-bit positions (version 2) unless the file would pass 2 GiB (then version 3)
-    const std::size_t estimate = nv * 28 + nt * 20 + mesh.triangles.size() * 16 +
-                                 mesh.edges.size() * 12 +
-                                 4 * (mesh.corners.size() + mesh.ridges.size() +
-                                      mesh.required_vertices.size() + mesh.required_edges.size() +
-                                      mesh.required_triangles.size() + nt) +
-                                 4096;
+    const std::size_t estimate =
+        nv * 28 + nt * 20 + mesh.triangles.size() * 16 + mesh.edges.size() * 12 +
+        4 * (mesh.corners.size() + mesh.ridges.size() + mesh.required_vertices.size() +
+             mesh.required_edges.size() + mesh.required_triangles.size() + nt) +
+        4096;
     const bool wide = estimate > static_cast<std::size_t>(INT_MAX);
     TextWriter w(out);
     MeshbWriter b(w, wide);

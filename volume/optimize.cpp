@@ -183,7 +183,8 @@ public:
             {
                 if (mesh_.is_dead(t)) continue;
                 const auto& tv = mesh_.tets[t];
-                if (std::any_of(tv.begin(), tv.end(), [&](int v) { return changed_vertex_[v] != 0; }))
+                if (std::any_of(tv.begin(), tv.end(),
+                                [&](int v) { return changed_vertex_[v] != 0; }))
                     work.push_back(t);
             }
             for (int t : context_.touched)
@@ -248,8 +249,8 @@ private:
     struct ShortEdge
     {
         static constexpr double kRatioBands = 16;
-        long band;     // floor(L / hth * kRatioBands)
-        int u, v;      // u < v
+        long band;  // floor(L / hth * kRatioBands)
+        int u, v;   // u < v
         ShortEdge(double ratio, int u_, int v_)
             : band(static_cast<long>(std::floor(ratio * kRatioBands))), u(u_), v(v_)
         {

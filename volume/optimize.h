@@ -17,14 +17,15 @@ namespace hdimesh::volume
 
 struct OptimizeOptions
 {
-    bool swap = true;              ///< edge removal / face removal (--noswap turns off)
-    bool move = true;              ///< nodal shifting (--nomove)
-    bool collapse = true;          ///< too-short edge collapse (derefinement)
-    double bad_quality = 0.2;      ///< elements below are "bad" (the paper's threshold)
-    double target_quality = 0.5;   ///< optimize_mesh works on every tet below this
+    bool swap = true;                   ///< edge removal / face removal (--noswap turns off)
+    bool move = true;                   ///< nodal shifting (--nomove)
+    bool collapse = true;               ///< too-short edge collapse (derefinement)
+    double bad_quality = 0.2;           ///< elements below are "bad" (the paper's threshold)
+    double target_quality = 0.5;        ///< optimize_mesh works on every tet below this
     double collapse_min_quality = 0.3;  ///< a collapse may not create a tet worse than this
     int max_sweeps = 10;
-    int verbosity = 0;  ///< 2: per-sweep table on stdout (operator, attempts, successes, min Qe, % Qe>=0.5, time)
+    int verbosity = 0;  ///< 2: per-sweep table on stdout (operator, attempts, successes, min Qe, %
+                        ///< Qe>=0.5, time)
 };
 
 struct OperatorStats
@@ -51,7 +52,8 @@ OptimizeReport improve_bad_elements(TetMesh& mesh, const SizeField& field,
 /// In detail, up to three rounds of: collapse too-short edges (shortest L/hth first; passes
 /// until none collapses), move the free ends of those left toward their target lengths,
 /// collapse again, then sweep the tets below target_quality (worst first) with edge removal,
-/// multi-face removal and smoothing (at most max_sweeps sweeps). A round that changes no edge ends it.
+/// multi-face removal and smoothing (at most max_sweeps sweeps). A round that changes no edge ends
+/// it.
 OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field,
                              const OptimizeOptions& options = {});
 

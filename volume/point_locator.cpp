@@ -29,14 +29,12 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
                                std::array<double, 3>& w)
 {
     // the answer at vertex k, or at x + v * along on the edge from vertex i to vertex j
-    auto at_vertex = [&w](const Vec3& x, int k)
-    {
+    auto at_vertex = [&w](const Vec3& x, int k) {
         w = {0, 0, 0};
         w[k] = 1;
         return x;
     };
-    auto on_edge = [&w](const Vec3& x, const Vec3& along, double v, int i, int j) -> Vec3
-    {
+    auto on_edge = [&w](const Vec3& x, const Vec3& along, double v, int i, int j) -> Vec3 {
         w = {0, 0, 0};
         w[i] = 1 - v;
         w[j] = v;
@@ -66,7 +64,8 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 
 /// Visits the cells at Chebyshev distance exactly r from c (the shell of a cube), clipped.
 template <class Visit>
-void for_each_cell_in_ring(const std::array<int, 3>& c, int r, const std::array<int, 3>& dims, Visit&& visit)
+void for_each_cell_in_ring(const std::array<int, 3>& c, int r, const std::array<int, 3>& dims,
+                           Visit&& visit)
 {
     for (int k = std::max(0, c[2] - r); k <= std::min(dims[2] - 1, c[2] + r); ++k)
         for (int j = std::max(0, c[1] - r); j <= std::min(dims[1] - 1, c[1] + r); ++j)
@@ -74,7 +73,8 @@ void for_each_cell_in_ring(const std::array<int, 3>& c, int r, const std::array<
             const bool shell_kj = std::abs(k - c[2]) == r || std::abs(j - c[1]) == r;
             if (shell_kj)
             {
-                for (int i = std::max(0, c[0] - r); i <= std::min(dims[0] - 1, c[0] + r); ++i) visit(i, j, k);
+                for (int i = std::max(0, c[0] - r); i <= std::min(dims[0] - 1, c[0] + r); ++i)
+                    visit(i, j, k);
             }
             else
             {
@@ -90,7 +90,8 @@ void for_each_cell_in_ring(const std::array<int, 3>& c, int r, const std::array<
 /// cell): such a cell lies beyond the ring on some axis i, so it is at least the gap to that
 /// slab along i away, plus, on the other axes, p's distance to the grid's box (which matters
 /// for points far outside; a plain r * cell bound would make those scan the whole grid).
-double TetLocator::unvisited_distance_bound(const Grid& grid, const Vec3& p, const std::array<int, 3>& c, int r)
+double TetLocator::unvisited_distance_bound(const Grid& grid, const Vec3& p,
+                                            const std::array<int, 3>& c, int r)
 {
     std::array<double, 3> outside_box{};
     for (int i = 0; i < 3; ++i)
@@ -102,7 +103,8 @@ double TetLocator::unvisited_distance_bound(const Grid& grid, const Vec3& p, con
     for (int i = 0; i < 3; ++i)
     {
         double gap = std::numeric_limits<double>::infinity();
-        if (c[i] - r - 1 >= 0) gap = std::min(gap, std::max(0.0, p[i] - (grid.origin[i] + (c[i] - r) * grid.cell)));
+        if (c[i] - r - 1 >= 0)
+            gap = std::min(gap, std::max(0.0, p[i] - (grid.origin[i] + (c[i] - r) * grid.cell)));
         if (c[i] + r + 1 < grid.dims[i])
             gap = std::min(gap, std::max(0.0, grid.origin[i] + (c[i] + r + 1) * grid.cell - p[i]));
         if (!std::isfinite(gap)) continue;  // no cells beyond the ring on this axis
@@ -139,7 +141,8 @@ TetLocator::Grid TetLocator::build_grid(const std::vector<Vec3>& positions, doub
     const double diagonal = std::max((high - low).norm(), 1e-300);
     // flat point sets (a planar boundary) still get a 3D cell size
     const Vec3 extent = (high - low).cwiseMax(Vec3::Constant(1e-3 * diagonal));
-    const double cells_wanted = std::clamp(positions.size() / target_per_cell, 1.0, double(1 << 24));
+    const double cells_wanted =
+        std::clamp(positions.size() / target_per_cell, 1.0, double(1 << 24));
     grid.cell = std::cbrt(extent.prod() / cells_wanted);
     grid.origin = low;
     for (int i = 0; i < 3; ++i)
@@ -156,7 +159,8 @@ TetLocator::Grid TetLocator::build_grid(const std::vector<Vec3>& positions, doub
     for (int c = 0; c < num_cells; ++c) grid.start[c + 1] += grid.start[c];
     grid.items.resize(positions.size());
     std::vector<int> fill(grid.start.begin(), grid.start.end() - 1);
-    for (std::size_t i = 0; i < positions.size(); ++i) grid.items[fill[cell_of_item[i]]++] = static_cast<int>(i);
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        grid.items[fill[cell_of_item[i]]++] = static_cast<int>(i);
     return grid;
 }
 
@@ -253,7 +257,8 @@ int TetLocator::start_tet(const Vec3& p) const
             {
                 const int t = tet_grid_.items[n];
                 const auto& v = tets_[t];
-                const Vec3 centroid = 0.25 * (points_[v[0]] + points_[v[1]] + points_[v[2]] + points_[v[3]]);
+                const Vec3 centroid =
+                    0.25 * (points_[v[0]] + points_[v[1]] + points_[v[2]] + points_[v[3]]);
                 const double distance = (centroid - p).squaredNorm();
                 if (distance < best_distance)
                 {
@@ -276,8 +281,7 @@ std::optional<TetLocation> TetLocator::walk(const Vec3& p, int from) const
     std::uint32_t state = 0x9e3779b9u;
     for (int step = 0; step < kMaxWalkSteps; ++step)
     {
-        if (contains(t, p, weights))
-            return TetLocation{original_tet_[t], tets_[t], weights};
+        if (contains(t, p, weights)) return TetLocation{original_tet_[t], tets_[t], weights};
         state = state * 1664525u + 1013904223u;
         const int offset = static_cast<int>(state >> 30);
         int next = kNoTet;
@@ -297,7 +301,8 @@ std::optional<TetLocation> TetLocator::scan_near(const Vec3& p) const
     // only for points inside the grid's box: a far point is plainly outside
     const Vec3 offset = p - tet_grid_.origin;
     for (int i = 0; i < 3; ++i)
-        if (!(offset[i] >= -tet_grid_.cell && offset[i] <= (tet_grid_.dims[i] + 1) * tet_grid_.cell))
+        if (!(offset[i] >= -tet_grid_.cell &&
+              offset[i] <= (tet_grid_.dims[i] + 1) * tet_grid_.cell))
             return std::nullopt;
     const auto c = tet_grid_.cell_of(p);
     std::array<double, 4> weights;
@@ -363,7 +368,8 @@ BoundaryPoint TetLocator::nearest_boundary_point(const Vec3& p) const
     {
         const Triangle& tri = boundary_[vertex_triangles_[n]];
         std::array<double, 3> weights;
-        const Vec3 q = closest_point_on_triangle(p, points_[tri[0]], points_[tri[1]], points_[tri[2]], weights);
+        const Vec3 q = closest_point_on_triangle(p, points_[tri[0]], points_[tri[1]],
+                                                 points_[tri[2]], weights);
         const double distance = (q - p).norm();
         if (distance < best.distance) best = {tri, weights, q, distance};
     }

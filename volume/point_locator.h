@@ -58,7 +58,10 @@ private:
         std::vector<int> start;  // per cell, into items
         std::vector<int> items;
         std::array<int, 3> cell_of(const Vec3& p) const;
-        int index(const std::array<int, 3>& c) const { return c[0] + dims[0] * (c[1] + dims[1] * c[2]); }
+        int index(const std::array<int, 3>& c) const
+        {
+            return c[0] + dims[0] * (c[1] + dims[1] * c[2]);
+        }
     };
 
     static Grid build_grid(const std::vector<Vec3>& positions, double target_per_cell);
@@ -67,7 +70,8 @@ private:
     std::optional<TetLocation> scan_near(const Vec3& p) const;
     bool contains(int t, const Vec3& p, std::array<double, 4>& weights) const;
     int nearest_boundary_vertex(const Vec3& p) const;
-    static double unvisited_distance_bound(const Grid& grid, const Vec3& p, const std::array<int, 3>& c, int r);
+    static double unvisited_distance_bound(const Grid& grid, const Vec3& p,
+                                           const std::array<int, 3>& c, int r);
 
     std::vector<Vec3> points_;
     std::vector<TetVertices> tets_;       // live tets only, renumbered
@@ -76,7 +80,7 @@ private:
     Grid tet_grid_;                       // tet centroids
     std::vector<Triangle> boundary_;      // outward boundary faces
     std::vector<int> boundary_vertices_;
-    Grid boundary_vertex_grid_;           // items index boundary_vertices_
+    Grid boundary_vertex_grid_;                // items index boundary_vertices_
     std::vector<int> vertex_triangles_start_;  // boundary triangles around each boundary vertex
     std::vector<int> vertex_triangles_;        // (by position in boundary_vertices_)
 };

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "common/atomic_file.h"
-#include "volume/boundary.h"
 #include "common/errors.h"
+#include "volume/boundary.h"
 #include "volume/tet_tables.h"
 
 namespace hdimesh::volume
@@ -20,7 +20,10 @@ namespace
 
 constexpr double kPi = 3.14159265358979323846;
 
-double percent(long part, long whole) { return whole > 0 ? 100.0 * double(part) / double(whole) : 0.0; }
+double percent(long part, long whole)
+{
+    return whole > 0 ? 100.0 * double(part) / double(whole) : 0.0;
+}
 
 /// Outward unit normals of the four faces (zero for a degenerate face).
 std::array<Vec3, 4> face_normals(const std::array<const Vec3*, 4>& p)
@@ -56,10 +59,14 @@ std::string xml_escape(const std::string& text)
     std::string out;
     for (char c : text)
     {
-        if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else if (c == '&') out += "&amp;";
-        else out += c;
+        if (c == '<')
+            out += "&lt;";
+        else if (c == '>')
+            out += "&gt;";
+        else if (c == '&')
+            out += "&amp;";
+        else
+            out += c;
     }
     return out;
 }
@@ -70,7 +77,8 @@ void draw_histogram(std::ostringstream& svg, double x0, double y0, double width,
                     const std::vector<std::string>& labels, const std::vector<std::string>& colors)
 {
     svg << "<text x='" << x0 + width / 2 << "' y='" << y0 - 12
-        << "' text-anchor='middle' font-size='15' font-weight='bold'>" << xml_escape(title) << "</text>\n";
+        << "' text-anchor='middle' font-size='15' font-weight='bold'>" << xml_escape(title)
+        << "</text>\n";
     svg << "<rect x='" << x0 << "' y='" << y0 << "' width='" << width << "' height='" << height
         << "' fill='none' stroke='#999'/>\n";
     const long largest = std::max<long>(1, *std::max_element(counts.begin(), counts.end()));
@@ -94,21 +102,26 @@ int qe_histogram_bin(double qe)
 {
     if (!(qe > 0.0)) return 0;
     if (qe >= 1.0) return 9;
-    // numpy.histogram's edges are k*0.1 (0.30000000000000004, ...): correct floor(10 q) against them
+    // numpy.histogram's edges are k*0.1 (0.30000000000000004, ...): correct floor(10 q) against
+    // them
     int bin = std::min(9, static_cast<int>(qe * 10.0));
-    if (qe < bin * 0.1) --bin;
-    else if (bin < 9 && qe >= (bin + 1) * 0.1) ++bin;
+    if (qe < bin * 0.1)
+        --bin;
+    else if (bin < 9 && qe >= (bin + 1) * 0.1)
+        ++bin;
     return bin;
 }
 
 int length_ratio_histogram_bin(double ratio)
 {
-    const auto it = std::upper_bound(kLengthRatioBinEdges.begin(), kLengthRatioBinEdges.end(), ratio);
+    const auto it =
+        std::upper_bound(kLengthRatioBinEdges.begin(), kLengthRatioBinEdges.end(), ratio);
     const int bin = static_cast<int>(it - kLengthRatioBinEdges.begin()) - 1;
     return std::clamp(bin, 0, 7);
 }
 
-std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c,
+                                          const Vec3& d)
 {
     const auto normals = face_normals({&a, &b, &c, &d});
     std::array<double, 6> angles;
@@ -189,7 +202,8 @@ QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field
         double sum = 0.0, lowest = std::numeric_limits<double>::infinity();
         for (const auto& tri : boundary)
         {
-            const double q = triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]);
+            const double q =
+                triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]);
             sum += q;
             lowest = std::min(lowest, q);
         }
@@ -249,10 +263,11 @@ std::string format_quality_table(const QualityReport& r)
     rows.push_back({"vertices", std::to_string(r.vertices)});
     rows.push_back({"tets", std::to_string(r.tets)});
     rows.push_back({"edges", std::to_string(r.edges)});
-    rows.push_back({"boundary triangles",
-                    std::to_string(r.boundary_triangles) + "  (stored triangles " +
-                        std::to_string(r.declared_triangles) + ")"});
-    rows.push_back({"volume", fixed(r.volume, 9) + "  (enclosed " + fixed(r.enclosed_volume, 9) + ")"});
+    rows.push_back({"boundary triangles", std::to_string(r.boundary_triangles) +
+                                              "  (stored triangles " +
+                                              std::to_string(r.declared_triangles) + ")"});
+    rows.push_back(
+        {"volume", fixed(r.volume, 9) + "  (enclosed " + fixed(r.enclosed_volume, 9) + ")"});
     rows.push_back({"Qe min / mean", fixed(r.min_qe, 6) + " / " + fixed(r.mean_qe, 6)});
     rows.push_back({"Qe >= 0.5", fixed(r.percent_qe_ge_05, 2) + " %"});
     rows.push_back({"Qe < 0.2", fixed(r.percent_qe_lt_02, 2) + " %"});
@@ -263,9 +278,11 @@ std::string format_quality_table(const QualityReport& r)
     }
     rows.push_back({"dihedral min / max",
                     fixed(r.min_dihedral_deg, 2) + " / " + fixed(r.max_dihedral_deg, 2) + " deg"});
-    rows.push_back({"boundary triangle Qe min / mean",
-                    fixed(r.min_boundary_triangle_qe, 6) + " / " + fixed(r.mean_boundary_triangle_qe, 6)});
-    rows.push_back({"edge length min / max", fixed(r.min_edge_length, 6) + " / " + fixed(r.max_edge_length, 6)});
+    rows.push_back(
+        {"boundary triangle Qe min / mean",
+         fixed(r.min_boundary_triangle_qe, 6) + " / " + fixed(r.mean_boundary_triangle_qe, 6)});
+    rows.push_back({"edge length min / max",
+                    fixed(r.min_edge_length, 6) + " / " + fixed(r.max_edge_length, 6)});
     if (r.has_size)
     {
         rows.push_back({"Qt >= 0.66", fixed(r.percent_qt_ge_066, 2) + " %"});
@@ -273,10 +290,11 @@ std::string format_quality_table(const QualityReport& r)
         rows.push_back({"too short (L < 0.66 hth)", fixed(r.percent_too_short, 2) + " %"});
         rows.push_back({"Qt min / mean", fixed(r.min_qt, 6) + " / " + fixed(r.mean_qt, 6)});
         rows.push_back({"L/hth min / mean / max", fixed(r.min_length_ratio, 4) + " / " +
-                                                     fixed(r.mean_length_ratio, 4) + " / " +
-                                                     fixed(r.max_length_ratio, 4)});
+                                                      fixed(r.mean_length_ratio, 4) + " / " +
+                                                      fixed(r.max_length_ratio, 4)});
         std::string bins;
-        for (int k = 0; k < 8; ++k) bins += (k ? " " : "") + std::to_string(r.length_ratio_histogram[k]);
+        for (int k = 0; k < 8; ++k)
+            bins += (k ? " " : "") + std::to_string(r.length_ratio_histogram[k]);
         rows.push_back({"L/hth histogram", bins});
         rows.push_back({"  (bins)", "<0.5 0.5-0.66 0.66-0.8 0.8-1 1-1.25 1.25-1.515 1.515-2 >2"});
     }
@@ -297,7 +315,8 @@ std::string quality_report_json(const QualityReport& r)
     std::ostringstream out;
     auto array = [](const auto& values) {
         std::string text = "[";
-        for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + std::to_string(values[i]);
+        for (std::size_t i = 0; i < values.size(); ++i)
+            text += (i ? ", " : "") + std::to_string(values[i]);
         return text + "]";
     };
     out << "{\n";
@@ -366,18 +385,20 @@ void write_quality_svg(const QualityReport& r, const std::string& path)
         qe_colors.push_back(k < 2 ? "#d62728" : k < 5 ? "#ff9f1c" : "#2ca02c");
     }
     draw_histogram(svg, margin, top, panel_width, panel_height,
-                   "Qe (shape), " + fixed(r.percent_qe_ge_05, 1) + " % >= 0.5", qe_counts, qe_labels, qe_colors);
+                   "Qe (shape), " + fixed(r.percent_qe_ge_05, 1) + " % >= 0.5", qe_counts,
+                   qe_labels, qe_colors);
 
     const double x1 = 2 * margin + panel_width;
     if (r.has_size)
     {
         std::vector<long> counts(r.length_ratio_histogram.begin(), r.length_ratio_histogram.end());
-        const std::vector<std::string> labels = {"<0.5", "0.5", "0.66", "0.8", "1", "1.25", "1.515", ">2"};
+        const std::vector<std::string> labels = {"<0.5", "0.5",  "0.66",  "0.8",
+                                                 "1",    "1.25", "1.515", ">2"};
         const std::vector<std::string> colors = {"#d62728", "#ff9f1c", "#2ca02c", "#2ca02c",
                                                  "#2ca02c", "#2ca02c", "#ff9f1c", "#d62728"};
         draw_histogram(svg, x1, top, panel_width, panel_height,
-                       "L/hth (size), " + fixed(r.percent_qt_ge_066, 1) + " % with Qt >= 0.66", counts, labels,
-                       colors);
+                       "L/hth (size), " + fixed(r.percent_qt_ge_066, 1) + " % with Qt >= 0.66",
+                       counts, labels, colors);
     }
     else
     {

@@ -21,11 +21,11 @@ inline constexpr std::array<double, 9> kLengthRatioBinEdges = {
 struct QualityReport
 {
     // counts
-    int vertices = 0;            ///< vertices used by live tets
-    int tets = 0;                ///< live tets
-    int boundary_triangles = 0;  ///< faces used by exactly one live tet (the true boundary)
-    int declared_triangles = 0;  ///< mesh.triangles (boundary + interfaces as stored)
-    long edges = 0;              ///< unique edges of live tets
+    int vertices = 0;              ///< vertices used by live tets
+    int tets = 0;                  ///< live tets
+    int boundary_triangles = 0;    ///< faces used by exactly one live tet (the true boundary)
+    int declared_triangles = 0;    ///< mesh.triangles (boundary + interfaces as stored)
+    long edges = 0;                ///< unique edges of live tets
     double volume = 0.0;           ///< sum of signed tet volumes
     double enclosed_volume = 0.0;  ///< volume enclosed by the boundary faces (divergence theorem)
 
@@ -72,6 +72,7 @@ int length_ratio_histogram_bin(double ratio);
 
 /// The six dihedral angles of a tet in degrees, at edges e0..e5 (tet_tables.h); 0 for a
 /// degenerate face.
-std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c,
+                                          const Vec3& d);
 
 }  // namespace hdimesh::volume

@@ -145,7 +145,8 @@ std::array<MaskFaces, 64> make_mask_faces()
             for (int k = 0; k < 3; ++k)
             {
                 const int c = fv[k], a = fv[(k + 1) % 3], b = fv[(k + 2) % 3];
-                if ((mask >> tet::kEdgeOfVertices[a][b]) & 1) continue;  // corner: opposite the unsplit edge
+                if ((mask >> tet::kEdgeOfVertices[a][b]) & 1)
+                    continue;  // corner: opposite the unsplit edge
                 info.corner[f] = c;
                 info.others[f] = {std::min(a, b), std::max(a, b)};
             }
@@ -218,7 +219,9 @@ ChildBuild make_child_build(std::vector<std::array<std::uint8_t, 4>> tets, bool 
     std::sort(keys.begin(), keys.end());
     for (std::size_t j = 0; j < keys.size(); ++j)
     {
-        const bool with_next = j + 1 < keys.size() && std::equal(keys[j].begin(), keys[j].begin() + 3, keys[j + 1].begin());
+        const bool with_next =
+            j + 1 < keys.size() &&
+            std::equal(keys[j].begin(), keys[j].begin() + 3, keys[j + 1].begin());
         if (with_next)
         {
             b.link[keys[j][3]] = keys[j + 1][3];
@@ -248,7 +251,8 @@ struct PatternBuilds
             std::vector<std::array<std::uint8_t, 4>> tets, cone_tets;
             for (int k = 0; k < p.num_tets; ++k)
                 tets.push_back({p.tets[k][0], p.tets[k][1], p.tets[k][2], p.tets[k][3]});
-            for (int k = 0; k < p.num_triangles; ++k)  // outward triangle (u, v, w): tet (u, w, v, apex)
+            for (int k = 0; k < p.num_triangles;
+                 ++k)  // outward triangle (u, v, w): tet (u, w, v, apex)
                 cone_tets.push_back({p.triangles[k][0], p.triangles[k][2], p.triangles[k][1],
                                      static_cast<std::uint8_t>(kPatternSteinerPoint)});
             table.push_back(make_child_build(std::move(tets), p.steiner));
@@ -266,7 +270,8 @@ const PatternBuilds& pattern_builds()
 const ChildBuild& child_build(std::uint16_t choice)
 {
     const PatternBuilds& b = pattern_builds();
-    return build_of(choice) == Build::Table ? b.table[pattern_of(choice)] : b.cone[pattern_of(choice)];
+    return build_of(choice) == Build::Table ? b.table[pattern_of(choice)]
+                                            : b.cone[pattern_of(choice)];
 }
 
 /// Pass state shared by the steps below.
@@ -329,8 +334,8 @@ private:
         for (int k = 0; k < 4; ++k) p[k] = mesh_.points[s.v[k]];
         for (int e = 0; e < 6; ++e)
             if ((s.mask >> e) & 1)
-                p[pattern_midpoint(e)] = midpoint_position(s.v[tet::kEdgeVertices[e][0]],
-                                                           s.v[tet::kEdgeVertices[e][1]]);
+                p[pattern_midpoint(e)] =
+                    midpoint_position(s.v[tet::kEdgeVertices[e][0]], s.v[tet::kEdgeVertices[e][1]]);
         p[kPatternSteinerPoint] = 0.25 * (p[0] + p[1] + p[2] + p[3]);
     }
 
@@ -351,7 +356,8 @@ private:
     }
 
     /// All children of the build positive with the local points p (apex: point 10).
-    static bool children_positive(const ChildBuild& build, const std::array<Vec3, kPatternNumLocalPoints>& p)
+    static bool children_positive(const ChildBuild& build,
+                                  const std::array<Vec3, kPatternNumLocalPoints>& p)
     {
         for (const auto& c : build.tets)
             if (!(signed_volume6(p[c[0]], p[c[1]], p[c[2]], p[c[3]]) > 0.0)) return false;
@@ -377,15 +383,15 @@ private:
     const QuadDiagonalRule* rule_;
     int num_vertices_before_ = 0;
 
-    std::vector<int> midpoint_;           // per edge slot: vertex id, 1 while only marked, or -1
-    std::vector<char> touched_;           // per vertex: an end of a split edge
-    std::vector<std::uint16_t> choice_;   // per tet
+    std::vector<int> midpoint_;          // per edge slot: vertex id, 1 while only marked, or -1
+    std::vector<char> touched_;          // per vertex: an end of a split edge
+    std::vector<std::uint16_t> choice_;  // per tet
     std::uint16_t unsplit_ = 0;
-    std::vector<int> refined_;            // the refined tets, increasing
+    std::vector<int> refined_;                       // the refined tets, increasing
     std::vector<std::array<int, 6>> refined_slots_;  // per refined tet: edge slot per local edge
-    std::vector<int> ordinal_;            // per tet: its index in refined_, or -1
-    std::vector<int> extra_start_;        // per refined tet (ordinal): slot of its child 1
-    std::vector<TetVertices> old_rows_;   // per refined tet (ordinal): its neighbours before
+    std::vector<int> ordinal_;                       // per tet: its index in refined_, or -1
+    std::vector<int> extra_start_;       // per refined tet (ordinal): slot of its child 1
+    std::vector<TetVertices> old_rows_;  // per refined tet (ordinal): its neighbours before
     long long num_children_ = 0;
     int num_new_points_ = 0;
     int num_fallbacks_ = 0;
@@ -441,8 +447,10 @@ void RefinePass::choose_patterns(const EdgeTable& edges)
             ++num_fallbacks_;
             const bool centroid_sees_all = children_positive(builds.cone[index], p);
             p[kPatternSteinerPoint] = point_average(s, p);
-            if (centroid_sees_all) build = Build::ConeCentroid;
-            else if (children_positive(builds.cone[index], p)) build = Build::ConePointAverage;
+            if (centroid_sees_all)
+                build = Build::ConeCentroid;
+            else if (children_positive(builds.cone[index], p))
+                build = Build::ConePointAverage;
             else
                 throw InputError("refine: tet " + std::to_string(t) +
                                  " cannot be split without a non-positive child (signed volume " +
@@ -535,8 +543,9 @@ void RefinePass::rebuild_tets()
             const int id = next_point++;
             g[kPatternSteinerPoint] = id;
             local_points(s, p);
-            const Vec3 position = build_of(choice) == Build::ConePointAverage ? point_average(s, p)
-                                                                                 : p[kPatternSteinerPoint];
+            const Vec3 position = build_of(choice) == Build::ConePointAverage
+                                      ? point_average(s, p)
+                                      : p[kPatternSteinerPoint];
             const int vref = mesh_.vertex_refs[s.v[0]];
             bool common = true;
             for (int k = 1; k < 4; ++k) common = common && mesh_.vertex_refs[s.v[k]] == vref;
@@ -557,7 +566,8 @@ void RefinePass::rebuild_tets()
             if (!required.empty() && required[t] && i > 0) required_children.push_back(slot);
         }
     }
-    mesh_.required_tets.insert(mesh_.required_tets.end(), required_children.begin(), required_children.end());
+    mesh_.required_tets.insert(mesh_.required_tets.end(), required_children.begin(),
+                               required_children.end());
 }
 
 /// Adjacency of the children: inside a parent from the pattern, across a parent face by
@@ -575,13 +585,16 @@ void RefinePass::link_children()
         int n = 0;
         auto add = [&](int slot, int k) {
             const auto& fv = tet::kFaceVertices[k];
-            std::array<int, 3> key = {mesh_.tets[slot][fv[0]], mesh_.tets[slot][fv[1]], mesh_.tets[slot][fv[2]]};
+            std::array<int, 3> key = {mesh_.tets[slot][fv[0]], mesh_.tets[slot][fv[1]],
+                                      mesh_.tets[slot][fv[2]]};
             std::sort(key.begin(), key.end());
             out[n++] = {key, slot, k};
         };
-        if (!is_refined(t)) add(t, f);
+        if (!is_refined(t))
+            add(t, f);
         else
-            for (int cf : child_build(choice_[t]).on_parent_face[f]) add(child_slot(t, cf / 4), cf % 4);
+            for (int cf : child_build(choice_[t]).on_parent_face[f])
+                add(child_slot(t, cf / 4), cf % 4);
         return n;
     };
 
@@ -613,12 +626,17 @@ void RefinePass::link_children()
             int g = 0;
             while (g < 4 && old_neighbor(other, g) != t) ++g;
             const auto& mine_faces = build.on_parent_face[f];
-            if (g < 4 && mine_faces.size() == 1 && (!is_refined(other) || child_build(choice_[other]).on_parent_face[g].size() == 1))
+            if (g < 4 && mine_faces.size() == 1 &&
+                (!is_refined(other) || child_build(choice_[other]).on_parent_face[g].size() == 1))
             {
                 // an unsplit face: one child face on each side, no matching needed
                 const int slot = child_slot(t, mine_faces[0] / 4);
-                const int their_slot = is_refined(other) ? child_slot(other, child_build(choice_[other]).on_parent_face[g][0] / 4) : other;
-                const int their_face = is_refined(other) ? child_build(choice_[other]).on_parent_face[g][0] % 4 : g;
+                const int their_slot =
+                    is_refined(other)
+                        ? child_slot(other, child_build(choice_[other]).on_parent_face[g][0] / 4)
+                        : other;
+                const int their_face =
+                    is_refined(other) ? child_build(choice_[other]).on_parent_face[g][0] % 4 : g;
                 nb[slot][mine_faces[0] % 4] = their_slot;
                 nb[their_slot][their_face] = slot;
                 continue;
@@ -677,7 +695,8 @@ void RefinePass::split_triangles(const EdgeTable& edges)
             triangles.push_back({x, y, z});
             refs.push_back(ref);
         };
-        if (split == 0) add(v[0], v[1], v[2]);
+        if (split == 0)
+            add(v[0], v[1], v[2]);
         else if (split == 1)
         {
             for (int k = 0; k < 3; ++k)
@@ -790,7 +809,8 @@ RefinePassResult RefinePass::run()
     std::vector<TetVertices>().swap(old_rows_);
 
     for (int m = num_vertices_before_; m < num_vertices_before_ + report.edges_split; ++m)
-        if (mesh_.vertex_classes[m] != VertexClass::Interior) result_.new_boundary_vertices.push_back(m);
+        if (mesh_.vertex_classes[m] != VertexClass::Interior)
+            result_.new_boundary_vertices.push_back(m);
     report.steiner_points = num_new_points_;
     report.fallback_tets = num_fallbacks_;
     report.tets = mesh_.num_tet_slots();

@@ -44,8 +44,10 @@ struct RefinePassReport
 struct RefinePassResult
 {
     RefinePassReport report;
-    std::vector<int> new_boundary_vertices;  ///< midpoints of boundary edges (Surface or Ridge class), to be projected onto the surface model
-    std::vector<int> steiner_vertices;       ///< interior points added for Schönhardt configurations, for the optimizer
+    std::vector<int> new_boundary_vertices;  ///< midpoints of boundary edges (Surface or Ridge
+                                             ///< class), to be projected onto the surface model
+    std::vector<int> steiner_vertices;  ///< interior points added for Schönhardt configurations,
+                                        ///< for the optimizer
 };
 
 /// One pass: marks every too-long edge (is_too_long(L, edge_target_size(field, a, b)), interior

@@ -33,20 +33,18 @@ inline int paper_face_code(int mask, int diagonals, int face)
     std::array<int, 3> pos = {tet::kFaceVertices[face][0], tet::kFaceVertices[face][1],
                               tet::kFaceVertices[face][2]};
     std::sort(pos.begin(), pos.end(), [](int x, int y) { return x > y; });
-    auto split_opposite = [&](int k)
-    { return ((mask >> tet::kEdgeOfVertices[pos[(k + 1) % 3]][pos[(k + 2) % 3]]) & 1) != 0; };
+    auto split_opposite = [&](int k) {
+        return ((mask >> tet::kEdgeOfVertices[pos[(k + 1) % 3]][pos[(k + 2) % 3]]) & 1) != 0;
+    };
     switch (face_split_count(mask, face))
     {
-        case 0:
-            return 0;
-        case 3:
-            return 1 + 2 + 4;
+        case 0: return 0;
+        case 3: return 1 + 2 + 4;
         case 1:
             for (int k = 0; k < 3; ++k)
                 if (split_opposite(k)) return 1 << (3 + k);
             return -1;  // unreachable
-        default:
-            break;
+        default: break;
     }
     int corner = 0;  // opposite the face's one unsplit edge
     while (split_opposite(corner)) ++corner;

@@ -25,7 +25,8 @@ struct PatternRecord
 
 #include "volume/refine_patterns_table.inc"
 
-static_assert(kTableNumPatterns == kNumRefinePatterns, "the generated table must hold 239 patterns");
+static_assert(kTableNumPatterns == kNumRefinePatterns,
+              "the generated table must hold 239 patterns");
 
 struct PatternLookup
 {

@@ -32,8 +32,8 @@ struct RefinePattern
 {
     int mask = 0;
     int diagonals = 0;
-    int paper_code = 0;    ///< the paper's eq. 3 (volume/refine_pattern_code.h)
-    bool steiner = false;  ///< uses local point 10
+    int paper_code = 0;                       ///< the paper's eq. 3 (volume/refine_pattern_code.h)
+    bool steiner = false;                     ///< uses local point 10
     const std::uint8_t (*tets)[4] = nullptr;  ///< positive child tets over local points
     int num_tets = 0;
     const std::uint8_t (*triangles)[3] = nullptr;  ///< the sub-polyhedron's boundary, outward

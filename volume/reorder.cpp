@@ -13,7 +13,8 @@ namespace hdimesh::volume
 
 CompactionMaps renumber_spatially(TetMesh& mesh)
 {
-    assert(mesh.num_live_tets() == mesh.num_tet_slots() && "renumber_spatially needs a compact mesh");
+    assert(mesh.num_live_tets() == mesh.num_tet_slots() &&
+           "renumber_spatially needs a compact mesh");
     CompactionMaps maps;
     const int nv = mesh.num_vertices();
     const int nt = mesh.num_tet_slots();
@@ -30,9 +31,9 @@ CompactionMaps renumber_spatially(TetMesh& mesh)
     for (int v = 0; v < nv; ++v)
     {
         const Vec3 cell = (mesh.points[v] - low) * scale;
-        const std::uint64_t code = morton_key(static_cast<std::uint64_t>(cell.x()),
-                                              static_cast<std::uint64_t>(cell.y()),
-                                              static_cast<std::uint64_t>(cell.z()));
+        const std::uint64_t code =
+            morton_key(static_cast<std::uint64_t>(cell.x()), static_cast<std::uint64_t>(cell.y()),
+                       static_cast<std::uint64_t>(cell.z()));
         keyed[v] = {code, v};
     }
     std::sort(keyed.begin(), keyed.end());

@@ -10,8 +10,8 @@
 #include <string>
 #include <utility>
 
-#include "volume/boundary.h"
 #include "common/errors.h"
+#include "volume/boundary.h"
 
 namespace hdimesh::volume
 {
@@ -48,7 +48,8 @@ void validate_vertex_sizes(const TetMesh& mesh, const std::vector<double>& sizes
 
 ConstantSize::ConstantSize(double h) : h_(h)
 {
-    if (!finite_positive(h)) throw InputError("constant size " + number(h) + ": must be finite and > 0");
+    if (!finite_positive(h))
+        throw InputError("constant size " + number(h) + ": must be finite and > 0");
 }
 
 BenchmarkFieldParams benchmark_case(char name)
@@ -67,10 +68,11 @@ BenchmarkFieldParams benchmark_case(char name)
 BenchmarkSize::BenchmarkSize(const BenchmarkFieldParams& params) : params_(params)
 {
     const auto& p = params;
-    if (!(finite_positive(p.dmin) && finite_positive(p.dmax) && p.dmin <= p.dmax && std::isfinite(p.r) &&
-          p.r >= 0.0 && finite_positive(p.R)))
-        throw InputError("benchmark field: dmin " + number(p.dmin) + ", r " + number(p.r) + ", dmax " +
-                         number(p.dmax) + ", R " + number(p.R) + ": need 0 < dmin <= dmax, r >= 0, R > 0");
+    if (!(finite_positive(p.dmin) && finite_positive(p.dmax) && p.dmin <= p.dmax &&
+          std::isfinite(p.r) && p.r >= 0.0 && finite_positive(p.R)))
+        throw InputError("benchmark field: dmin " + number(p.dmin) + ", r " + number(p.r) +
+                         ", dmax " + number(p.dmax) + ", R " + number(p.R) +
+                         ": need 0 < dmin <= dmax, r >= 0, R > 0");
 }
 
 double BenchmarkSize::size(const Vec3& p) const
@@ -78,7 +80,8 @@ double BenchmarkSize::size(const Vec3& p) const
     const auto& [dmin, r, dmax, R] = params_;
     const double x = p.x(), y = p.y(), z = p.z();
     double h = dmax;
-    for (const double rho : {std::sqrt(y * y + z * z), std::sqrt(x * x + z * z), std::sqrt(x * x + y * y)})
+    for (const double rho :
+         {std::sqrt(y * y + z * z), std::sqrt(x * x + z * z), std::sqrt(x * x + y * y)})
     {
         const double d = std::abs(rho - r);
         const double cylinder = (1.0 - d / R) * dmin + (d / R) * dmax;

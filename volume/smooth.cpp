@@ -41,10 +41,10 @@ struct BallFace
         const Vec3& c = f[2];
         const Vec3& d = p;
         const double volume = e1.dot(e2.cross(d - a)) / 6.0;
-        const double area = triangle_area(b, c, d) + triangle_area(a, d, c) +
-                            triangle_area(a, b, d) + fixed_area;
-        const double longest2 = std::max({face_longest2, (d - a).squaredNorm(),
-                                          (d - b).squaredNorm(), (d - c).squaredNorm()});
+        const double area =
+            triangle_area(b, c, d) + triangle_area(a, d, c) + triangle_area(a, b, d) + fixed_area;
+        const double longest2 = std::max(
+            {face_longest2, (d - a).squaredNorm(), (d - b).squaredNorm(), (d - c).squaredNorm()});
         return tet_quality_from_parts(volume, area, longest2);
     }
 };
@@ -211,8 +211,8 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
     const Vec3 start = mesh.points[v];
     // the index of the current worst tet comes with every full evaluation at the current point
     std::size_t current_worst_index = 0;
-    const double worst_start = ball.worst_at(start, -std::numeric_limits<double>::infinity(),
-                                             &current_worst_index);
+    const double worst_start =
+        ball.worst_at(start, -std::numeric_limits<double>::infinity(), &current_worst_index);
     result.worst_before = result.worst_after = worst_start;
 
     Vec3 current = start;
@@ -283,7 +283,8 @@ SmoothResult equalize_edge_sizes(TetMesh& mesh, OperatorContext& context, int v,
     const Vec3 start = mesh.points[v];
     auto worst_size = [&](const Vec3& p) {
         double worst = 1.0;
-        for (int n : ball.neighbours) worst = std::min(worst, context.size_quality(p, mesh.points[n]));
+        for (int n : ball.neighbours)
+            worst = std::min(worst, context.size_quality(p, mesh.points[n]));
         return worst;
     };
     const double size_before = worst_size(start);

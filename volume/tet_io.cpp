@@ -49,9 +49,10 @@ void check_index_list(const std::string& path, const std::vector<int>& items, in
 {
     for (std::size_t i = 0; i < items.size(); ++i)
         if (items[i] < 0 || items[i] >= n)
-            throw_input(path, entity_error(entity, i,
-                                           std::string(target) + " " + std::to_string(items[i] + 1) +
-                                               " out of range [1, " + std::to_string(n) + "]"));
+            throw_input(path,
+                        entity_error(entity, i,
+                                     std::string(target) + " " + std::to_string(items[i] + 1) +
+                                         " out of range [1, " + std::to_string(n) + "]"));
 }
 
 }  // namespace
@@ -156,7 +157,8 @@ TetMesh read_mesh(const std::string& path)
 void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions& options)
 {
     const MeshFormat format = mesh_format_from_path(path);
-    if (format == MeshFormat::Gmsh && options.gmsh_version != "2.2" && options.gmsh_version != "4.1")
+    if (format == MeshFormat::Gmsh && options.gmsh_version != "2.2" &&
+        options.gmsh_version != "4.1")
         throw InputError(path + ": unsupported Gmsh version '" + options.gmsh_version +
                          "' (2.2 or 4.1)");
     if (!options.vertex_sizes.empty() &&

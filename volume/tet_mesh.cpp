@@ -24,10 +24,10 @@ Classification to_classification(VertexClass c, int id)
 {
     switch (c)
     {
-    case VertexClass::Interior: return {Dimension::Volume, id, false};
-    case VertexClass::Surface: return {Dimension::Surface, id, false};
-    case VertexClass::Ridge: return {Dimension::Curve, id, false};
-    case VertexClass::Corner: return {Dimension::Corner, id, false};
+        case VertexClass::Interior: return {Dimension::Volume, id, false};
+        case VertexClass::Surface: return {Dimension::Surface, id, false};
+        case VertexClass::Ridge: return {Dimension::Curve, id, false};
+        case VertexClass::Corner: return {Dimension::Corner, id, false};
     }
     return {};
 }
@@ -36,10 +36,10 @@ VertexClass to_vertex_class(const Classification& c)
 {
     switch (c.dimension)
     {
-    case Dimension::Volume: return VertexClass::Interior;
-    case Dimension::Surface: return VertexClass::Surface;
-    case Dimension::Curve: return VertexClass::Ridge;
-    case Dimension::Corner: return VertexClass::Corner;
+        case Dimension::Volume: return VertexClass::Interior;
+        case Dimension::Surface: return VertexClass::Surface;
+        case Dimension::Curve: return VertexClass::Ridge;
+        case Dimension::Corner: return VertexClass::Corner;
     }
     return VertexClass::Interior;
 }
@@ -120,10 +120,7 @@ struct FaceEntry
 {
     int mid, high;
     int tet_face;  // 4 * tet + local face
-    bool operator<(const FaceEntry& o) const
-    {
-        return mid != o.mid ? mid < o.mid : high < o.high;
-    }
+    bool operator<(const FaceEntry& o) const { return mid != o.mid ? mid < o.mid : high < o.high; }
 };
 
 }  // namespace
@@ -244,7 +241,8 @@ CompactionMaps TetMesh::compact()
             for (int& n : row)
                 if (n != kNoTet) n = t2t[n];
     }
-    else neighbors.clear();
+    else
+        neighbors.clear();
 
     std::vector<int> kept_required_tets;
     for (int t : required_tets)

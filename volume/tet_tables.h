@@ -25,17 +25,29 @@ namespace hdimesh::volume::tet
 
 /// Local vertices of each edge, lower local index first.
 inline constexpr std::array<std::array<int, 2>, 6> kEdgeVertices = {{
-    {0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3},
+    {0, 1},
+    {0, 2},
+    {0, 3},
+    {1, 2},
+    {1, 3},
+    {2, 3},
 }};
 
 /// Local vertices of face i (the face opposite vertex i), outward orientation.
 inline constexpr std::array<std::array<int, 3>, 4> kFaceVertices = {{
-    {1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1},
+    {1, 2, 3},
+    {0, 3, 2},
+    {0, 1, 3},
+    {0, 2, 1},
 }};
 
-/// Local edges of face i: kFaceEdges[i][k] joins kFaceVertices[i][k] and kFaceVertices[i][k+1 mod 3].
+/// Local edges of face i: kFaceEdges[i][k] joins kFaceVertices[i][k] and kFaceVertices[i][k+1 mod
+/// 3].
 inline constexpr std::array<std::array<int, 3>, 4> kFaceEdges = {{
-    {3, 5, 4}, {2, 5, 1}, {0, 4, 2}, {1, 3, 0},
+    {3, 5, 4},
+    {2, 5, 1},
+    {0, 4, 2},
+    {1, 3, 0},
 }};
 
 /// Local edge joining two local vertices (symmetric; -1 on the diagonal).
@@ -48,7 +60,12 @@ inline constexpr std::array<std::array<int, 4>, 4> kEdgeOfVertices = {{
 
 /// The two faces that contain edge i (the faces opposite the vertices not on it).
 inline constexpr std::array<std::array<int, 2>, 6> kEdgeFaces = {{
-    {2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1},
+    {2, 3},
+    {1, 3},
+    {1, 2},
+    {0, 3},
+    {0, 2},
+    {0, 1},
 }};
 
 /// The edge opposite edge i (sharing no vertex with it).

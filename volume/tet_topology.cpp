@@ -98,8 +98,7 @@ bool edge_shell(const TetMesh& mesh, int seed, int a, int b, EdgeShell& shell)
         }
         if (mesh.is_dead(next)) return false;
         const int e = fourth_vertex(mesh.tets[next], a, b, d);
-        if (e < 0 || local_index(mesh, next, a) < 0 || local_index(mesh, next, b) < 0)
-            return false;
+        if (e < 0 || local_index(mesh, next, a) < 0 || local_index(mesh, next, b) < 0) return false;
         shell.tets.push_back(next);
         shell.ring.push_back(e);
         t = next;
@@ -195,8 +194,8 @@ bool MeshConstraints::is_constrained_edge(int a, int b) const
 
 bool MeshConstraints::is_removable_tet(int t) const
 {
-    return required_tets_.empty() || !std::binary_search(required_tets_.begin(),
-                                                         required_tets_.end(), t);
+    return required_tets_.empty() ||
+           !std::binary_search(required_tets_.begin(), required_tets_.end(), t);
 }
 
 void MeshConstraints::grow(int num_vertices)

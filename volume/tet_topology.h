@@ -72,7 +72,7 @@ private:
     std::vector<std::array<int, 2>> edges_;  // sorted pairs, sorted
     std::vector<char> free_vertex_;
     std::vector<char> on_listed_face_;  // per vertex: a vertex of some face in faces_
-    std::vector<int> required_tets_;  // sorted
+    std::vector<int> required_tets_;    // sorted
 };
 
 /// The state every operator reads and keeps current: the size field (nullptr: no size checks),
@@ -106,7 +106,10 @@ struct OperatorContext
     /// Records that the tets [begin, end) were created or reshaped: appended to touched, and
     /// their cached qualities dropped.
     void tets_changed(const int* begin, const int* end);
-    void tets_changed(const std::vector<int>& tets) { tets_changed(tets.data(), tets.data() + tets.size()); }
+    void tets_changed(const std::vector<int>& tets)
+    {
+        tets_changed(tets.data(), tets.data() + tets.size());
+    }
 
     /// Edge (p, q) would be too long for the field (false without a field).
     bool too_long(const Vec3& p, const Vec3& q) const;
@@ -122,7 +125,7 @@ private:
         std::vector<int> tets;
     };
     bool cache_enabled_ = false;
-    mutable std::vector<double> quality_cache_;  // per tet slot; NaN: not known
+    mutable std::vector<double> quality_cache_;     // per tet slot; NaN: not known
     mutable std::array<CachedBall, 4> ball_cache_;  // filled round-robin
     mutable std::size_t next_ball_ = 0;
 };

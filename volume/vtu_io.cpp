@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "volume/geometry.h"
 #include "volume/detail/io.h"
+#include "volume/geometry.h"
 
 namespace hdimesh::volume::io_detail
 {
@@ -67,7 +67,9 @@ void write_vtu(const TetMesh& mesh, std::ostream& out, const WriteOptions& optio
     };
 
     TextWriter w(out);
-    w.text("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"")
+    w.text(
+         "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+         "byte_order=\"")
         .text(little_endian() ? "LittleEndian" : "BigEndian")
         .text("\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"")
         .integer(static_cast<long long>(nv))
@@ -86,7 +88,9 @@ void write_vtu(const TetMesh& mesh, std::ostream& out, const WriteOptions& optio
     group("      <Cells>\n", 3, "      </Cells>\n");
     w.text("    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _");
 
-    auto block_size = [&](std::size_t index) { w.raw(static_cast<std::uint64_t>(arrays[index].bytes)); };
+    auto block_size = [&](std::size_t index) {
+        w.raw(static_cast<std::uint64_t>(arrays[index].bytes));
+    };
     k = 0;
     if (with_size)
     {

@@ -1,10 +1,11 @@
-#include "surface/detail/prefetch.h"
 #include "surface/detail/closest_point_tree.h"
-#include "surface/detail/vector_room.h"
 
 #include <algorithm>
 #include <cassert>
 #include <limits>
+
+#include "surface/detail/prefetch.h"
+#include "surface/detail/vector_room.h"
 
 namespace hdimesh::surface
 {
@@ -15,8 +16,8 @@ namespace
 // edge region of ax (then `closest` is set, true). The dots are those of ax and ay with ap
 // (ax_ap, ay_ap) and with xp (ax_xp, ay_xp); `area` gets the numerator of y's barycentric
 // weight (vc at x = b, vb at x = c), which the interior case needs.
-bool in_corner_region(const Vec3d& a, const Vec3d& x, const Vec3d& ax, double ax_ap, double ay_ap, double ax_xp,
-                      double ay_xp, double& area, Vec3d& closest)
+bool in_corner_region(const Vec3d& a, const Vec3d& x, const Vec3d& ax, double ax_ap, double ay_ap,
+                      double ax_xp, double ay_xp, double& area, Vec3d& closest)
 {
     if (ax_xp >= 0.0 && ay_xp <= ax_xp)
     {
@@ -84,7 +85,7 @@ double box_distance2(const Vec3d& p, const Vec3d& lo, const Vec3d& hi)
     }
     return d2;
 }
-}
+}  // namespace
 
 ClosestPointTree ClosestPointTree::from_triangles(std::vector<std::array<Vec3d, 3>> triangles)
 {
@@ -133,8 +134,10 @@ void ClosestPointTree::build(bool lazy)
     BuildScratch eager_scratch;
     BuildScratch& scratch = lazy ? scratch_ : eager_scratch;
     auto size_scratch = [&](auto& v) {
-        if (lazy) detail::resize_with_room(v, primitives_.size());
-        else v.resize(primitives_.size());  // (built once, dropped after the build)
+        if (lazy)
+            detail::resize_with_room(v, primitives_.size());
+        else
+            v.resize(primitives_.size());  // (built once, dropped after the build)
     };
     size_scratch(scratch.lo);
     size_scratch(scratch.hi);
@@ -150,7 +153,8 @@ void ClosestPointTree::build(bool lazy)
         }
         scratch.lo[i] = lo;
         scratch.hi[i] = hi;
-        for (int axis = 0; axis < 3; ++axis) scratch.centroid[i][axis] = t[0][axis] + t[1][axis] + t[2][axis];
+        for (int axis = 0; axis < 3; ++axis)
+            scratch.centroid[i][axis] = t[0][axis] + t[1][axis] + t[2][axis];
     }
     if (lazy)
     {
@@ -165,7 +169,8 @@ void ClosestPointTree::build(bool lazy)
         if (primitives_.size() < count_) detail::resize_with_room(primitives_, count_);
         if (boxes_.size() < count_) detail::resize_with_room(boxes_, count_);
         if (given_.empty()) return;
-        detail::reserve_with_room(nodes_, 2 * count_ + 1);  // a binary tree over n primitives: < 2n nodes
+        detail::reserve_with_room(nodes_,
+                                  2 * count_ + 1);  // a binary tree over n primitives: < 2n nodes
         nodes_.push_back(Node{});
         set_node(0, 0, static_cast<int>(given_.size()), scratch_);
         return;
@@ -178,7 +183,8 @@ void ClosestPointTree::build(bool lazy)
         set_node(0, 0, static_cast<int>(primitives_.size()), scratch);
         build_node(0, scratch);
         boxes_.resize(primitives_.size());
-        for (std::size_t i = 0; i < order_.size(); ++i) boxes_[i] = {scratch.lo[order_[i]], scratch.hi[order_[i]]};
+        for (std::size_t i = 0; i < order_.size(); ++i)
+            boxes_[i] = {scratch.lo[order_[i]], scratch.hi[order_[i]]};
     }
     // The primitives in leaf order, so a leaf reads one contiguous block; position_ maps back.
     std::vector<std::array<Vec3d, 3>> in_leaf_order(primitives_.size());
@@ -217,10 +223,12 @@ void ClosestPointTree::split_node(int index, const BuildScratch& scratch) const
     const int first = nodes_[index].first, count = nodes_[index].count;
     // Split at the median centroid along the widest axis.
     const Vec3d extent = nodes_[index].hi - nodes_[index].lo;
-    const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0 : (extent[1] >= extent[2] ? 1 : 2);
+    const int axis =
+        extent[0] >= extent[1] && extent[0] >= extent[2] ? 0 : (extent[1] >= extent[2] ? 1 : 2);
     const int half = count / 2;
-    std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
-                     [&](int a, int b) { return scratch.centroid[a][axis] < scratch.centroid[b][axis]; });
+    std::nth_element(
+        order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+        [&](int a, int b) { return scratch.centroid[a][axis] < scratch.centroid[b][axis]; });
     // The two children side by side: a search reads both boxes when it opens their parent.
     const int left = static_cast<int>(nodes_.size());
     nodes_.push_back(Node{});
@@ -243,7 +251,8 @@ void ClosestPointTree::build_node(int index, const BuildScratch& scratch) const
 Vec3d ClosestPointTree::closest_on(const std::array<Vec3d, 3>& primitive, const Vec3d& p) const
 {
     const auto& t = primitive;
-    return segments_ ? closest_point_on_segment(p, t[0], t[1]) : closest_point_on_triangle(p, t[0], t[1], t[2]);
+    return segments_ ? closest_point_on_segment(p, t[0], t[1])
+                     : closest_point_on_triangle(p, t[0], t[1], t[2]);
 }
 
 ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p) const
@@ -258,7 +267,8 @@ ClosestPointTree::Hit ClosestPointTree::closest(const Vec3d& p, int hint) const
     // the first of them in traversal order wins, as without a bound. The relative margin covers
     // the rounding of box distances against point distances.
     // (A lazy tree may not have put the hint in leaf order yet: read it as given.)
-    const double hint_d2 = (closest_on(lazy_ ? given_[hint] : primitives_[position_[hint]], p) - p).sqrnorm();
+    const double hint_d2 =
+        (closest_on(lazy_ ? given_[hint] : primitives_[position_[hint]], p) - p).sqrnorm();
     const Hit hit = search(p, hint_d2 * (1.0 + 1e-9) + std::numeric_limits<double>::min());
     return hit.primitive >= 0 ? hit : closest(p);
 }
@@ -314,7 +324,8 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
         if (pending.d2 >= best_d2) continue;
         // Lazy: a node opened for the first time is split now (before n is taken: a copied tree
         // has no spare capacity, its nodes may move).
-        if (nodes_[pending.node].left < 0 && nodes_[pending.node].count > kLeafSize) split_node(pending.node, scratch_);
+        if (nodes_[pending.node].left < 0 && nodes_[pending.node].count > kLeafSize)
+            split_node(pending.node, scratch_);
         const Node& n = nodes_[pending.node];
         if (n.left < 0)
         {
@@ -325,7 +336,8 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
                 // The margin keeps every near tie to the exact test, so the winner is unchanged:
                 // relative for distances away from zero, absolute (far above the rounding of a
                 // squared distance at p's magnitude) for points on the surface.
-                if (box_d2(boxes_[i][0], boxes_[i][1]) > best_d2 * (1.0 + 1e-9) + tie_slack) continue;
+                if (box_d2(boxes_[i][0], boxes_[i][1]) > best_d2 * (1.0 + 1e-9) + tie_slack)
+                    continue;
                 const Vec3d q = closest_on(primitives_[i], p);
                 const double d2 = (q - p).sqrnorm();
                 if (d2 < best_d2)
@@ -337,7 +349,8 @@ ClosestPointTree::Hit ClosestPointTree::search(const Vec3d& p, double bound_d2) 
             }
             continue;
         }
-        const double dl = box_d2(nodes_[n.left].lo, nodes_[n.left].hi), dr = box_d2(nodes_[n.right].lo, nodes_[n.right].hi);
+        const double dl = box_d2(nodes_[n.left].lo, nodes_[n.left].hi),
+                     dr = box_d2(nodes_[n.right].lo, nodes_[n.right].hi);
         // The farther child is pushed first (popped last); a child already beyond the best
         // distance would be skipped when popped, so it is not pushed at all.
         const Pending left{n.left, dl}, right{n.right, dr};

@@ -78,18 +78,19 @@ private:
     // axis of its box into two new nodes; and, eagerly built, those too, recursively.
     void split_node(int index, const BuildScratch& scratch) const;
     void build_node(int index, const BuildScratch& scratch) const;
-    Vec3d closest_on(const std::array<Vec3d, 3>& primitive, const Vec3d& p) const;  // a segment: points 0, 1
+    Vec3d closest_on(const std::array<Vec3d, 3>& primitive,
+                     const Vec3d& p) const;  // a segment: points 0, 1
     // The nearest primitive among those closer than sqrt(bound_d2) (primitive -1 if none).
     Hit search(const Vec3d& p, double bound_d2) const;
 
     // Mutable: a lazy tree's search splits the nodes it opens first (an eager tree's never
     // changes after the build).
-    std::size_t count_ = 0;                                 // primitives
+    std::size_t count_ = 0;  // primitives
     // In leaf order once built. Lazy: only the first count_ entries are the tree's, each written
     // when its leaf is opened (the rest, and unopened leaves, hold an earlier build's: never
     // read; primitives_.size() is not the count).
     mutable std::vector<std::array<Vec3d, 3>> primitives_;
-    mutable std::vector<std::array<Vec3d, 2>> boxes_;       // per primitive in leaf order: lo, hi
+    mutable std::vector<std::array<Vec3d, 2>> boxes_;  // per primitive in leaf order: lo, hi
     bool segments_ = false;
     mutable std::vector<int> order_;  // leaf-order position -> index as given
     std::vector<int> position_;       // index as given -> leaf-order position (eager)

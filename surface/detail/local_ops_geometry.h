@@ -19,11 +19,13 @@ namespace hdimesh::surface::detail
 inline std::array<VertexHandle, 3> face_vertices(const SurfaceMesh& mesh, FaceHandle f)
 {
     const HalfedgeHandle h = mesh.halfedge_handle(f);
-    return {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h), mesh.to_vertex_handle(mesh.next_halfedge_handle(h))};
+    return {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h),
+            mesh.to_vertex_handle(mesh.next_halfedge_handle(h))};
 }
 
 /// The points of f with vertex `moved` (if it is one of f's) placed at `at`.
-inline std::array<Vec3d, 3> face_points_with(const SurfaceMesh& mesh, FaceHandle f, VertexHandle moved, const Vec3d& at)
+inline std::array<Vec3d, 3> face_points_with(const SurfaceMesh& mesh, FaceHandle f,
+                                             VertexHandle moved, const Vec3d& at)
 {
     const auto v = face_vertices(mesh, f);
     std::array<Vec3d, 3> p;
@@ -48,7 +50,8 @@ inline double cos_deg(double degrees) { return std::cos(degrees * M_PI / 180.0);
 inline bool turn_ok_cos(const Vec3d& old_normal, const Vec3d& new_normal, double min_cos)
 {
     if (!(new_normal.sqrnorm() > 0.5)) return false;
-    if (!(old_normal.sqrnorm() > 0.5)) return true;  // the old triangle was degenerate: no reference
+    if (!(old_normal.sqrnorm() > 0.5))
+        return true;  // the old triangle was degenerate: no reference
     return OpenMesh::dot(old_normal, new_normal) >= min_cos;
 }
 
@@ -67,7 +70,8 @@ inline bool norm_in_safe_range(double norm) { return norm >= 1e-140 && norm <= 1
 /// divisions. Where no product under- or overflows, the cosine times both norms decides when it
 /// is farther than 1e-12 of them from min_cos times both norms (either form's rounding is below
 /// 1e-14 of them); nearer, or out of that range, the normals are made and tested.
-inline bool turn_ok_cross(const Vec3d& old_cross, double old_norm, const Vec3d& new_cross, double new_norm, double min_cos)
+inline bool turn_ok_cross(const Vec3d& old_cross, double old_norm, const Vec3d& new_cross,
+                          double new_norm, double min_cos)
 {
     if (norm_in_safe_range(old_norm) && norm_in_safe_range(new_norm) && std::abs(min_cos) <= 1.0)
     {
@@ -113,7 +117,8 @@ inline bool clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double
     double box_d2 = 0.0, magnitude2 = 0.0;
     for (int k = 0; k < 3; ++k)
     {
-        const double lo = std::min({t[0][k], t[1][k], t[2][k]}), hi = std::max({t[0][k], t[1][k], t[2][k]});
+        const double lo = std::min({t[0][k], t[1][k], t[2][k]}),
+                     hi = std::max({t[0][k], t[1][k], t[2][k]});
         const double d = std::max({lo - p[k], p[k] - hi, 0.0});
         box_d2 += d * d;
         const double m = std::max({std::abs(lo), std::abs(hi), std::abs(p[k])});
@@ -126,11 +131,13 @@ inline bool clearly_beyond(const Vec3d& p, const std::array<Vec3d, 3>& t, double
 /// box is clearly beyond): the step of a search for the nearest of several triangles.
 inline void lower_to_squared_distance(const Vec3d& p, const std::array<Vec3d, 3>& t, double& best2)
 {
-    if (!clearly_beyond(p, t, best2)) best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
+    if (!clearly_beyond(p, t, best2))
+        best2 = std::min(best2, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).sqrnorm());
 }
 
 /// Distance from p to the nearest of `triangles` (a large value when there are none).
-inline double distance_to_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles)
+inline double distance_to_triangles(const Vec3d& p,
+                                    const std::vector<std::array<Vec3d, 3>>& triangles)
 {
     double best2 = 1e300;
     for (const auto& t : triangles) lower_to_squared_distance(p, t, best2);
@@ -146,7 +153,8 @@ inline bool within_triangle(const Vec3d& p, const std::array<Vec3d, 3>& t, doubl
 
 /// Whether distance_to_triangles(p, triangles) <= limit, decided at the first triangle within
 /// it (most witnesses of a tolerance check are, and need no other).
-inline bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles, double limit)
+inline bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d, 3>>& triangles,
+                             double limit)
 {
     for (const auto& t : triangles)
         if (within_triangle(p, t, limit)) return true;
@@ -157,7 +165,8 @@ inline bool within_triangles(const Vec3d& p, const std::vector<std::array<Vec3d,
 /// ends within the larger of `bound` and its distance before (plus `slack`): the change opens
 /// no gap at w.
 inline bool keeps_witness(const Vec3d& w, const std::vector<std::array<Vec3d, 3>>& before,
-                          const std::vector<std::array<Vec3d, 3>>& after, double bound, double slack)
+                          const std::vector<std::array<Vec3d, 3>>& after, double bound,
+                          double slack)
 {
     if (within_triangles(w, after, bound)) return true;
     return !(distance_to_triangles(w, after) > distance_to_triangles(w, before) + slack);
@@ -185,9 +194,12 @@ inline void collect_star(const SurfaceMesh& mesh, VertexHandle v, std::vector<St
             // face_vertices starts at the face's own halfedge.
             const HalfedgeHandle first = mesh.halfedge_handle(f);
             StarFace face;
-            if (first == h) face.points = {pv, pa, pb}, face.moved = 0;
-            else if (first == next) face.points = {pa, pb, pv}, face.moved = 2;
-            else face.points = {pb, pv, pa}, face.moved = 1;
+            if (first == h)
+                face.points = {pv, pa, pb}, face.moved = 0;
+            else if (first == next)
+                face.points = {pa, pb, pv}, face.moved = 2;
+            else
+                face.points = {pb, pv, pa}, face.moved = 1;
             face.normal = normal(face.points);
             out.push_back(face);
         }
@@ -238,7 +250,8 @@ struct TwoRingPatch
     double distance(const Vec3d& p, const Vec3d* v_at) const
     {
         double best2 = 1e300;
-        for (std::size_t i = 0; i < triangles.size(); ++i) lower_to_squared_distance(p, triangle(i, v_at), best2);
+        for (std::size_t i = 0; i < triangles.size(); ++i)
+            lower_to_squared_distance(p, triangle(i, v_at), best2);
         return std::sqrt(best2);
     }
 };
@@ -246,7 +259,8 @@ struct TwoRingPatch
 /// The farthest from the model beyond `tolerance` (OperatorContext::distance_beyond) of the
 /// samples of v's star (its faces' centroids, its edges' midpoints) with v at `at`: what a
 /// move of v may not make worse beyond the tolerance.
-inline double star_samples_beyond(const OperatorContext& ctx, VertexHandle v, const Vec3d& at, double tolerance)
+inline double star_samples_beyond(const OperatorContext& ctx, VertexHandle v, const Vec3d& at,
+                                  double tolerance)
 {
     const SurfaceMesh& mesh = ctx.mesh;
     double worst = 0.0;
@@ -255,7 +269,8 @@ inline double star_samples_beyond(const OperatorContext& ctx, VertexHandle v, co
         const auto t = face_points_with(mesh, f, v, at);
         worst = std::max(worst, ctx.distance_beyond((t[0] + t[1] + t[2]) / 3.0, v, tolerance));
     }
-    for (auto w : mesh.vv_range(v)) worst = std::max(worst, ctx.distance_beyond(0.5 * (mesh.point(w) + at), v, tolerance));
+    for (auto w : mesh.vv_range(v))
+        worst = std::max(worst, ctx.distance_beyond(0.5 * (mesh.point(w) + at), v, tolerance));
     return worst;
 }
 

@@ -48,8 +48,10 @@ std::vector<std::size_t> PointGrid::within(const Vec3d& p, double radius) const
     std::vector<std::size_t> found;
     if (empty() || !(radius >= 0.0)) return found;
     const double r2 = radius * radius;
-    const std::int64_t lo[3] = {coordinate(p[0] - radius), coordinate(p[1] - radius), coordinate(p[2] - radius)};
-    const std::int64_t hi[3] = {coordinate(p[0] + radius), coordinate(p[1] + radius), coordinate(p[2] + radius)};
+    const std::int64_t lo[3] = {coordinate(p[0] - radius), coordinate(p[1] - radius),
+                                coordinate(p[2] - radius)};
+    const std::int64_t hi[3] = {coordinate(p[0] + radius), coordinate(p[1] + radius),
+                                coordinate(p[2] + radius)};
     for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
         for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
             for (std::int64_t k = lo[2]; k <= hi[2]; ++k)

@@ -26,7 +26,10 @@ public:
 
 private:
     // (Inline: a query asks them for each of its 27 to 64 cells.)
-    std::int64_t coordinate(double x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
+    std::int64_t coordinate(double x) const
+    {
+        return static_cast<std::int64_t>(std::floor(x / cell_));
+    }
     std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) const
     {
         // 21 bits per axis (cells wrap beyond ±2^20: only more points to filter, never fewer).
@@ -39,7 +42,8 @@ private:
     {
         // Fibonacci hashing: the product's top bits.
         const std::size_t mask = slot_key_.size() - 1;
-        std::size_t slot = static_cast<std::size_t>((static_cast<std::uint64_t>(key) * 0x9e3779b97f4a7c15ULL) >> shift_);
+        std::size_t slot = static_cast<std::size_t>(
+            (static_cast<std::uint64_t>(key) * 0x9e3779b97f4a7c15ULL) >> shift_);
         while (slot_cell_[slot] >= 0 && slot_key_[slot] != key) slot = (slot + 1) & mask;
         return slot;
     }

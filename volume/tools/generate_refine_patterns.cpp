@@ -83,12 +83,16 @@ IPoint cross(const IPoint& a, const IPoint& b)
 {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-std::int64_t dot(const IPoint& a, const IPoint& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+std::int64_t dot(const IPoint& a, const IPoint& b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 /// Six times the signed volume, exact.
 std::int64_t orient(int a, int b, int c, int d)
 {
-    return dot(sub(kPoints[b], kPoints[a]), cross(sub(kPoints[c], kPoints[a]), sub(kPoints[d], kPoints[a])));
+    return dot(sub(kPoints[b], kPoints[a]),
+               cross(sub(kPoints[c], kPoints[a]), sub(kPoints[d], kPoints[a])));
 }
 std::int64_t orient(const LocalTet& t) { return orient(t[0], t[1], t[2], t[3]); }
 
@@ -148,7 +152,8 @@ std::vector<LocalTriangle> face_triangles(int mask, int diagonals, int f)
     const auto& e = kFaceEdges[f];  // e[k] joins v[k] and v[k+1]
     std::vector<LocalTriangle> out;
     const int n = face_split_count(mask, f);
-    if (n == 0) out.push_back({v[0], v[1], v[2]});
+    if (n == 0)
+        out.push_back({v[0], v[1], v[2]});
     else if (n == 1)
     {
         for (int k = 0; k < 3; ++k)
@@ -265,7 +270,11 @@ private:
             if (orient(t) <= 0 || !point_free(t)) continue;
             bool overlap = false;
             for (const auto& q : placed_)
-                if (interiors_overlap(t, q)) { overlap = true; break; }
+                if (interiors_overlap(t, q))
+                {
+                    overlap = true;
+                    break;
+                }
             if (!overlap) out.push_back(t);
         }
         return out;
@@ -335,13 +344,15 @@ std::string prove(const Configuration& config, const std::vector<LocalTet>& tets
             {
                 if (--it->second == 0) chain.erase(it);
             }
-            else ++chain[face];
+            else
+                ++chain[face];
         }
     }
     if (volume != kParentVolume6) return "children volumes do not sum to the parent's";
     std::map<LocalTriangle, int> expected;
     for (const auto& tri : config.boundary) ++expected[tri];
-    if (chain != expected) return "the children's boundary is not the prescribed face triangulation";
+    if (chain != expected)
+        return "the children's boundary is not the prescribed face triangulation";
     for (std::size_t i = 0; i < tets.size(); ++i)
         for (std::size_t j = i + 1; j < tets.size(); ++j)
             if (interiors_overlap(tets[i], tets[j])) return "two children overlap";
@@ -426,7 +437,8 @@ std::string format_table(const std::vector<Entry>& entries)
            "// (tests/cmake/refine.cmake checks this file is exactly what the generator writes).\n"
            "//\n"
            "// Every configuration of a tet with split edges, each proven by the generator on the\n"
-           "// reference tet in exact integer arithmetic: children positive, volumes summing to the\n"
+           "// reference tet in exact integer arithmetic: children positive, volumes summing to "
+           "the\n"
            "// parent's, boundary equal to the prescribed face triangulations.\n"
            "// Local points: 0-3 vertices, 4+e midpoint of edge e, 10 Steiner point (centroid).\n"
            "// Included by volume/refine_patterns.cpp only.\n\n";
@@ -488,7 +500,8 @@ int main(int argc, char** argv)
             for (int e = 0; e < 6; ++e)
                 if ((mask >> e) & 1) config.points.push_back(midpoint_of(e));
             for (int f = 0; f < 4; ++f)
-                for (const auto& t : face_triangles(mask, diagonals, f)) config.boundary.push_back(t);
+                for (const auto& t : face_triangles(mask, diagonals, f))
+                    config.boundary.push_back(t);
 
             const int code = hdimesh::volume::paper_pattern_code(mask, diagonals);
             Entry entry{mask, diagonals, code, false, {}, config.boundary};
@@ -516,7 +529,8 @@ int main(int argc, char** argv)
             const std::string failure = prove(config, entry.tets, entry.steiner);
             if (!failure.empty())
             {
-                std::cerr << "mask " << mask << " diagonals " << diagonals << ": " << failure << "\n";
+                std::cerr << "mask " << mask << " diagonals " << diagonals << ": " << failure
+                          << "\n";
                 return 1;
             }
             for (auto& t : entry.tets) t = smallest_even_permutation(t);
