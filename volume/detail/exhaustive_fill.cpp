@@ -306,6 +306,7 @@ private:
                 best_count = count;
                 best_face = i;
             }
+            if (best_count == 1) break;  // a forced move: no face can be better
         }
         Step step;
         step.base = front_[best_face];
@@ -537,20 +538,28 @@ void write_fill(const LocalCavity& local, const std::vector<Vec3>& search_points
     polish_steiner_points(points, fill);
 }
 
+struct SteinerCandidates
+{
+    std::vector<Vec3> points;
+    double kernel_cone_quality = -1;  // >= 0 when points is the kernel point alone
+};
+
 /// Steiner points the search may use: the kernel point when the kernel is not empty, else one
 /// point per group of faces that still has a kernel (groups grown face by face across edges,
 /// in face order), at most max_count.
-std::vector<Vec3> steiner_candidates(const std::vector<Vec3>& points,
+SteinerCandidates steiner_candidates(const std::vector<Vec3>& points,
                                      const std::vector<Triangle>& faces, int max_count)
 {
-    std::vector<Vec3> candidates;
-    if (max_count <= 0) return candidates;
+    SteinerCandidates result;
+    std::vector<Vec3>& candidates = result.points;
+    if (max_count <= 0) return result;
     Vec3 point;
     double quality = 0;
     if (best_kernel_point(points, faces, point, quality))
     {
         candidates.push_back(point);
-        return candidates;
+        result.kernel_cone_quality = quality;
+        return result;
     }
     const int num_faces = static_cast<int>(faces.size());
     std::vector<std::vector<int>> neighbours(num_faces);
@@ -600,7 +609,7 @@ std::vector<Vec3> steiner_candidates(const std::vector<Vec3>& points,
         if (members.size() < 4) continue;
         if (best_kernel_point(points, group, point, quality)) candidates.push_back(point);
     }
-    return candidates;
+    return result;
 }
 
 }  // namespace
@@ -623,9 +632,9 @@ bool fill_exhaustive_above(const std::vector<Vec3>& points, const std::vector<Tr
     std::vector<Vec3> search_points = local.points;
     if (!best.found || best.quality < options.accept_quality)
     {
-        const std::vector<Vec3> candidates =
+        const SteinerCandidates candidates =
             steiner_candidates(points, faces, std::min(kMaxCandidates, max_points - num_required));
-        if (candidates.empty())
+        if (candidates.points.empty())
         {
             if (!plain_done) plain.search(budget - plain.nodes());
             best = plain.best();
@@ -633,15 +642,22 @@ bool fill_exhaustive_above(const std::vector<Vec3>& points, const std::vector<Tr
         else
         {
             std::vector<Vec3> with_candidates = local.points;
-            with_candidates.insert(with_candidates.end(), candidates.begin(), candidates.end());
-            ReconnectionSearch steiner(with_candidates, num_required, local.faces,
-                                       best.found ? best.quality : quality_floor);
-            steiner.search(budget - plain.nodes());
-            if (steiner.best().found)
+            with_candidates.insert(with_candidates.end(), candidates.points.begin(),
+                                   candidates.points.end());
+            double floor = best.found ? best.quality : quality_floor;
+            // the kernel point's cone is a fill already: the search looks for better ones
+            const bool cone_wins = candidates.kernel_cone_quality > floor;
+            if (cone_wins)
             {
-                best = steiner.best();
-                search_points = std::move(with_candidates);
+                best.found = true;
+                best.quality = floor = candidates.kernel_cone_quality;
+                best.tets.clear();
+                for (const auto& f : local.faces) best.tets.push_back(cone_tet(f, num_required));
             }
+            ReconnectionSearch steiner(with_candidates, num_required, local.faces, floor);
+            steiner.search(budget - plain.nodes());
+            if (steiner.best().found) best = steiner.best();
+            if (steiner.best().found || cone_wins) search_points = std::move(with_candidates);
         }
     }
     if (!best.found) return false;
