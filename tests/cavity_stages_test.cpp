@@ -447,9 +447,9 @@ TEST_CASE("small cavity: random connected tet sets cut out of a jittered box are
         }
         std::vector<TetVertices> tets;
         for (int t : set) tets.push_back(mesh.tets[t]);
-        Cavity cavity{"cut of " + std::to_string(set.size()) + " tets, trial " +
-                          std::to_string(trial),
-                      mesh.points, cavity_corpus::boundary_of(tets)};
+        Cavity cavity{
+            "cut of " + std::to_string(set.size()) + " tets, trial " + std::to_string(trial),
+            mesh.points, cavity_corpus::boundary_of(tets)};
         try
         {
             cavity_corpus::require_closed(cavity);
