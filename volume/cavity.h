@@ -25,6 +25,7 @@
 #include "volume/advancing_front.h"
 #include "volume/size_field.h"
 #include "volume/tet_mesh.h"
+#include "volume/tet_topology.h"
 
 namespace hdimesh::volume
 {
@@ -69,6 +70,7 @@ struct CavityFill
     /// new_points[k].
     std::vector<TetVertices> tets;
     std::vector<Vec3> new_points;  ///< Steiner points, strictly inside
+    int first_new_vertex = 0;      ///< the mesh's vertex count when the fill was computed
     /// The faces filled: the input faces, or the boundary of removed_tets after growing.
     std::vector<Triangle> faces;
     /// refill_tets: the live tets the fill replaces (the given ones plus the grown layers).
@@ -89,15 +91,18 @@ CavityFill fill_cavity(const TetMesh& mesh, const std::vector<Triangle>& faces,
 /// Fills the hole left by removing the live tets `tets` (connected, one ref; needs adjacency),
 /// growing it by whole layers of interior tets (never across mesh.triangles, a tet ref change
 /// or the boundary) when stages 1-4 fail.
+/// constraints: what may not be crossed when growing (nullptr: built from the mesh, O(mesh)).
 CavityFill refill_tets(const TetMesh& mesh, const std::vector<int>& tets, const SizeField* field,
-                       const CavityOptions& options = {});
+                       const CavityOptions& options = {},
+                       const MeshConstraints* constraints = nullptr);
 
 /// Puts a fill into the mesh in one step: adds new_points (Interior, ref 0), kills
 /// removed_tets, adds the new tets with fill.ref into the freed slots first. Keeps the
 /// adjacency when the mesh has it (the new tets are linked to each other and to the tets
 /// across fill.faces). mesh.triangles, refs and the classes of existing vertices are
 /// unchanged: the faces are the cavity's boundary, kept exactly. Returns the new tet ids.
-/// \pre fill.filled.
+/// O(n log n) in the fill's size, so whole volumes go through it too.
+/// \pre fill.filled and mesh.num_vertices() == fill.first_new_vertex.
 std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill);
 
 /// Counts of fills by stage, for reports and benchmarks.

@@ -1,0 +1,294 @@
+#!/usr/bin/python3
+"""A volume from a surface: our adapt beside TetGen and Gmsh on the same closed surfaces (issue 15).
+
+  bench/compare_volume_peers.py [--build build] [--inputs sphere3k,sphere12k,fandisk,...]
+                                [--keep-surface | --remesh]
+
+Inputs: unit spheres meshed by Gmsh 2-D at h = 0.1 / 0.05 / 0.025 (sphere3k, sphere12k,
+sphere48k; interior h = that h) and the raw OBJs of data/ (interior h = 2 % of the bounding box
+diagonal). Tools, one thread each:
+  hdimesh  build/apps/adapt IN -o OUT.mesh --hsiz H --keep-surface   (or without, --remesh)
+  TetGen   tetgen -pYq1.414a(H^3/(6 sqrt 2))                          (when `tetgen` is installed)
+  Gmsh 1   Merge the STL, Surface Loop, Volume, MeshSizeMax = H, Delaunay, Optimize = 1
+  Gmsh 10  the same with HXT                                           (when `gmsh` is installed)
+  Netgen   build/bench/netgen_volume IN.off OUT.mesh H: nglib, outward triangles, maxh = H, the
+           default 3 optimization steps                   (when libnglib-dev was found by CMake)
+Every output is scored here by one computation: Qe = 2 sqrt 6 rho / longest edge, dihedral
+angles, and Qt of every edge against H; the figures are given over all tets and over the tets
+with no boundary face whose smallest angle is under 10 degrees (a raw input triangle can force
+a bad tet). Time is the child process's CPU time (user + system), read with getrusage; for
+Netgen the note also gives the driver's own thread CPU time around Ng_GenerateVolumeMesh alone.
+Netgen's output changes with the order of the input points and with small changes of H, so it
+gets the points in the order every other tool gets (Gmsh's for the spheres, the OBJ's otherwise)
+and the same unrounded H.
+"""
+import argparse, os, resource, shutil, subprocess, sys, tempfile
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SPHERES = {'sphere3k': 0.1, 'sphere12k': 0.05, 'sphere48k': 0.025}
+OBJS = ['fandisk', 'spot', 'rocker-arm', 'cheburashka']
+
+
+def read_medit(path):
+    """Vertices (n,3), tets (m,4) 0-based, of a Medit ASCII mesh."""
+    text = '\n'.join(line.split('#', 1)[0] for line in open(path))
+    tokens = text.split()
+    out, i = {}, 0
+    widths = {'Vertices': 4, 'Triangles': 4, 'Tetrahedra': 5, 'Edges': 3, 'Corners': 1,
+              'Ridges': 1, 'RequiredVertices': 1, 'RequiredEdges': 1, 'RequiredTriangles': 1}
+    while i < len(tokens):
+        key = tokens[i]
+        width = widths.get(key)
+        if width:
+            n = int(tokens[i + 1])
+            out[key] = np.array(tokens[i + 2:i + 2 + n * width], dtype=float).reshape(n, width)
+            i += 2 + n * width
+        else:
+            i += 1
+    return out['Vertices'][:, :3], out['Tetrahedra'][:, :4].astype(np.int64) - 1
+
+
+def read_obj(path):
+    verts, faces = [], []
+    for line in open(path):
+        parts = line.split()
+        if not parts:
+            continue
+        if parts[0] == 'v':
+            verts.append([float(x) for x in parts[1:4]])
+        elif parts[0] == 'f':
+            ids = [int(p.split('/')[0]) for p in parts[1:]]
+            for k in range(1, len(ids) - 1):
+                faces.append([ids[0], ids[k], ids[k + 1]])
+    v = np.array(verts)
+    f = np.array(faces) - 1
+    return v, f
+
+
+def write_stl(path, v, f):
+    with open(path, 'w') as out:
+        out.write('solid s\n')
+        for a, b, c in f:
+            n = np.cross(v[b] - v[a], v[c] - v[a])
+            n = n / (np.linalg.norm(n) or 1.0)
+            out.write(f'facet normal {n[0]!r} {n[1]!r} {n[2]!r}\nouter loop\n')
+            for p in (v[a], v[b], v[c]):
+                out.write(f'vertex {p[0]!r} {p[1]!r} {p[2]!r}\n')
+            out.write('endloop\nendfacet\n')
+        out.write('endsolid s\n')
+
+
+def write_off(path, v, f):
+    with open(path, 'w') as out:
+        out.write(f'OFF\n{len(v)} {len(f)} 0\n')
+        for p in v:
+            out.write(f'{p[0]!r} {p[1]!r} {p[2]!r}\n')
+        for a, b, c in f:
+            out.write(f'3 {a} {b} {c}\n')
+
+
+def gmsh_sphere(work, name, h):
+    """A unit sphere surface meshed by Gmsh 2-D: vertices and outward triangles."""
+    geo = os.path.join(work, name + '_surf.geo')
+    msh = os.path.join(work, name + '_surf.mesh')
+    with open(geo, 'w') as out:
+        out.write(f'SetFactory("OpenCASCADE");\nSphere(1) = {{0, 0, 0, 1}};\n'
+                  f'Mesh.MeshSizeMin = {h};\nMesh.MeshSizeMax = {h};\n'
+                  'Mesh.MeshSizeFromCurvature = 0;\n')
+    subprocess.run(['gmsh', geo, '-2', '-format', 'mesh', '-o', msh, '-v', '0'], check=True)
+    text = '\n'.join(line.split('#', 1)[0] for line in open(msh)).split()
+    i = text.index('Vertices')
+    n = int(text[i + 1])
+    v = np.array(text[i + 2:i + 2 + 4 * n], dtype=float).reshape(n, 4)[:, :3]
+    i = text.index('Triangles')
+    m = int(text[i + 1])
+    f = np.array(text[i + 2:i + 2 + 4 * m], dtype=np.int64).reshape(m, 4)[:, :3] - 1
+    # outward: the enclosed volume is positive
+    vol = np.einsum('ij,ij->i', v[f[:, 0]], np.cross(v[f[:, 1]], v[f[:, 2]])).sum()
+    if vol < 0:
+        f = f[:, [0, 2, 1]]
+    used = np.unique(f)
+    remap = -np.ones(len(v), dtype=np.int64)
+    remap[used] = np.arange(len(used))
+    return v[used], remap[f]
+
+
+def score(points, tets, h, bad_triangle_keys):
+    p = points
+    a, b, c, d = (p[tets[:, k]] for k in range(4))
+    vol = np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a)) / 6.0
+    faces = [(b, c, d), (a, d, c), (a, b, d), (a, c, b)]
+    area = sum(0.5 * np.linalg.norm(np.cross(y - x, z - x), axis=1) for x, y, z in faces)
+    edges = [(a, b), (a, c), (a, d), (b, c), (b, d), (c, d)]
+    longest = np.sqrt(np.max([np.sum((y - x) ** 2, axis=1) for x, y in edges], axis=0))
+    qe = 2 * np.sqrt(6) * (3 * vol / area) / longest
+    # dihedral at each edge from the two face normals
+    normals = [np.cross(y - x, z - x) for x, y, z in faces]
+    normals = [n / np.linalg.norm(n, axis=1)[:, None] for n in normals]
+    dihedral = []
+    for i in range(4):
+        for j in range(i + 1, 4):
+            cos = -np.einsum('ij,ij->i', normals[i], normals[j])
+            dihedral.append(np.degrees(np.arccos(np.clip(cos, -1, 1))))
+    dihedral = np.array(dihedral).T
+    # edges, once each
+    e = np.concatenate([tets[:, [0, 1]], tets[:, [0, 2]], tets[:, [0, 3]], tets[:, [1, 2]],
+                        tets[:, [1, 3]], tets[:, [2, 3]]])
+    e.sort(axis=1)
+    e = np.unique(e, axis=0)
+    length = np.linalg.norm(p[e[:, 1]] - p[e[:, 0]], axis=1)
+    qt = np.minimum(h / length, length / h)
+    # tets holding a bad input triangle
+    keep = np.ones(len(tets), dtype=bool)
+    if bad_triangle_keys:
+        for k, (x, y, z) in enumerate([(1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2)]):
+            keys = np.sort(tets[:, [x, y, z]], axis=1)
+            hits = np.array([tuple(r) in bad_triangle_keys for r in keys])
+            keep &= ~hits
+
+    def stats(mask):
+        return {'tets': int(mask.sum()), 'min_qe': float(qe[mask].min()),
+                'qe05': 100.0 * float((qe[mask] >= 0.5).mean()),
+                'min_dih': float(dihedral[mask].min()), 'max_dih': float(dihedral[mask].max())}
+
+    return stats(np.ones(len(tets), dtype=bool)), stats(keep), 100.0 * float((qt >= 0.66).mean()), \
+        int((vol <= 0).sum())
+
+
+def bad_triangles(v, f, max_angle_deg=10.0):
+    """Sorted vertex triples of input triangles with an angle under max_angle_deg."""
+    keys = set()
+    for tri in f:
+        pa, pb, pc = v[tri[0]], v[tri[1]], v[tri[2]]
+        angles = []
+        for x, y, z in ((pa, pb, pc), (pb, pc, pa), (pc, pa, pb)):
+            u, w = y - x, z - x
+            cos = np.dot(u, w) / (np.linalg.norm(u) * np.linalg.norm(w) + 1e-300)
+            angles.append(np.degrees(np.arccos(np.clip(cos, -1, 1))))
+        if min(angles) < max_angle_deg:
+            keys.add(tuple(sorted(int(x) for x in tri)))
+    return keys
+
+
+def child_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def timed(cmd, cwd=None, want_stdout=False):
+    start = child_cpu()
+    done = subprocess.run(cmd, check=True, cwd=cwd, stderr=subprocess.PIPE,
+                          stdout=subprocess.PIPE if want_stdout else subprocess.DEVNULL)
+    seconds = child_cpu() - start
+    return (seconds, done.stdout.decode(errors='replace')) if want_stdout else seconds
+
+
+def run_ours(build, work, name, v, f, h, keep):
+    obj = os.path.join(work, name + '.obj')
+    with open(obj, 'w') as out:
+        for p in v:
+            out.write(f'v {p[0]!r} {p[1]!r} {p[2]!r}\n')
+        for a, b, c in f:
+            out.write(f'f {a + 1} {b + 1} {c + 1}\n')
+    out = os.path.join(work, name + '_ours.mesh')
+    cmd = [f'{build}/apps/adapt', obj, '-o', out, '--hsiz', repr(h), '-v', '0']
+    if keep:
+        cmd.append('--keep-surface')
+    return out, timed(cmd)
+
+
+def run_tetgen(work, name, v, f, h):
+    off = os.path.join(work, name + '_tg.off')
+    write_off(off, v, f)
+    vol = h ** 3 / (6 * np.sqrt(2))
+    seconds = timed(['tetgen', f'-pYq1.414a{vol:.6g}gQ', off], cwd=work)
+    return os.path.join(work, name + '_tg.1.mesh'), seconds
+
+
+def run_gmsh(work, name, v, f, h, algorithm):
+    stl = os.path.join(work, name + '_gm.stl')
+    if not os.path.exists(stl):
+        write_stl(stl, v, f)
+    geo = os.path.join(work, f'{name}_gm{algorithm}.geo')
+    out = os.path.join(work, f'{name}_gm{algorithm}.mesh')
+    with open(geo, 'w') as g:
+        g.write(f'Merge "{stl}";\nSurface Loop(1) = {{1}};\nVolume(1) = {{1}};\n'
+                f'Mesh.MeshSizeMax = {h};\nMesh.Algorithm3D = {algorithm};\n'
+                'Mesh.Optimize = 1;\nGeneral.NumThreads = 1;\n')
+    return out, timed(['gmsh', geo, '-3', '-format', 'mesh', '-o', out, '-v', '0', '-nt', '1'])
+
+
+def run_netgen(binary, work, name, v, f, h):
+    off = os.path.join(work, name + '_ng.off')
+    write_off(off, v, f)
+    out = os.path.join(work, name + '_ng.mesh')
+    seconds, stdout = timed([binary, off, out, repr(h)], cwd=work, want_stdout=True)
+    meshing = [line.split()[1] for line in stdout.splitlines() if line.startswith('seconds ')]
+    note = f'Ng_GenerateVolumeMesh {float(meshing[-1]):.2f} s' if meshing else ''
+    return out, seconds, note
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--build', default=os.path.join(ROOT, 'build'))
+    ap.add_argument('--inputs', default='sphere3k,sphere12k,fandisk,spot,rocker-arm,cheburashka')
+    ap.add_argument('--remesh', action='store_true', help='let adapt remesh the surface first')
+    args = ap.parse_args()
+    work = tempfile.mkdtemp(prefix='hdimesh_volpeers_')
+    have_gmsh = shutil.which('gmsh') is not None
+    netgen = os.path.join(args.build, 'bench', 'netgen_volume')
+    print(f"{'input':<12}{'tool':<10}{'tets':>9}{'cpu s':>8}{'tets/s':>9}{'min Qe':>8}{'Qe>=.5':>8}"
+          f"{'dihedral':>13}{'Qt>=.66':>8}   {'without bad-triangle tets':<26}")
+    for name in args.inputs.split(','):
+        if name in SPHERES:
+            if not have_gmsh:
+                continue
+            h = SPHERES[name]
+            v, f = gmsh_sphere(work, name, h)
+        else:
+            v, f = read_obj(os.path.join(ROOT, 'data', name + '.obj'))
+            h = 0.02 * float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+        bad = bad_triangles(v, f)
+        runners = [('hdimesh', lambda: run_ours(args.build, work, name, v, f, h, not args.remesh))]
+        if shutil.which('tetgen'):
+            runners.append(('TetGen', lambda: run_tetgen(work, name, v, f, h)))
+        if have_gmsh:
+            runners.append(('Gmsh-1', lambda: run_gmsh(work, name, v, f, h, 1)))
+            runners.append(('Gmsh-10', lambda: run_gmsh(work, name, v, f, h, 10)))
+        if os.access(netgen, os.X_OK):
+            runners.append(('Netgen', lambda: run_netgen(netgen, work, name, v, f, h)))
+        for tool, run in runners:
+            try:
+                path, seconds, *extra = run()
+            except subprocess.CalledProcessError as e:
+                message = (e.stderr or b'').decode(errors='replace').strip().splitlines()
+                print(f'{name:<12}{tool:<10} failed: {message[-1] if message else e}', flush=True)
+                continue
+            points, tets = read_medit(path)
+            if len(tets) and (np.einsum('ij,ij->i', points[tets[:, 1]] - points[tets[:, 0]],
+                                        np.cross(points[tets[:, 2]] - points[tets[:, 0]],
+                                                 points[tets[:, 3]] - points[tets[:, 0]])) < 0).mean() > 0.5:
+                tets = tets[:, [0, 2, 1, 3]]  # a tool writing negative tets
+            # the bad input triangles, in the output's numbering (matched by position)
+            index = {tuple(np.round(p, 12)): i for i, p in enumerate(points)}
+            bad_out = set()
+            for key in bad:
+                ids = [index.get(tuple(np.round(v[k], 12))) for k in key]
+                if None not in ids:
+                    bad_out.add(tuple(sorted(ids)))
+            all_, clean, qt, negative = score(points, tets, h, bad_out)
+            rate = all_['tets'] / seconds if seconds > 0 else float('inf')
+            notes = ([f'{negative} non-positive'] if negative else []) + [x for x in extra if x]
+            note = f"  ({'; '.join(notes)})" if notes else ''
+            print(f"{name:<12}{tool:<10}{all_['tets']:>9}{seconds:>8.2f}{rate:>9.0f}"
+                  f"{all_['min_qe']:>8.3f}{all_['qe05']:>7.1f}%"
+                  f"{all_['min_dih']:>6.1f}-{all_['max_dih']:<6.1f}{qt:>7.1f}%   "
+                  f"min Qe {clean['min_qe']:.3f}, {clean['qe05']:.1f}%, dih >= {clean['min_dih']:.1f}"
+                  f"{note}", flush=True)
+    shutil.rmtree(work)
+
+
+if __name__ == '__main__':
+    main()
