@@ -9,9 +9,12 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
+#include <map>
 #include <cstdio>
 #include <cstdlib>
 
+#include "volume/cavity.h"
+#include "volume/detail/cavity_stages.h"
 #include "volume/detail/front.h"
 #include "volume/predicates.h"
 #include "volume/tet_tables.h"
@@ -22,6 +25,7 @@ namespace hdimesh::volume
 namespace
 {
 long g_reject[8];
+long g_attempts[8][2];
 using detail::Front;
 using detail::sorted_triple;
 
@@ -83,7 +87,7 @@ private:
     void gather(int face, const Box& region);
     bool valid_tet(int face, int p, bool is_new);
     void commit(int face, int p);
-    void add_face(const Triangle& t, int generation);
+    void add_face(const Triangle& t);
     int close_leftovers();
     bool retreat();
     float face_size(const Triangle& t) const;
@@ -99,6 +103,7 @@ private:
     int num_input_vertices_ = 0;
     std::vector<Vec3> points_;
     std::vector<int> component_;  // per point
+    std::vector<int> layer_;      // per point: 0 on the input, a new point one above its base
     std::vector<std::uint8_t> in_grid_;
     std::vector<TetVertices> tets_;
 
@@ -212,6 +217,7 @@ bool FrontMesher::setup(std::string& failure)
         front_.add(inward, 0, face_size(inward));
     }
     component_.assign(num_input_vertices_, 0);
+    layer_.assign(num_input_vertices_, 0);
     in_grid_.assign(num_input_vertices_, 0);
     face_stamp_.assign(front_.vertices.size(), 0);
 
@@ -401,9 +407,6 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
                     ++shared;
                 }
         if (shared == 3) continue;  // the face the new tet closes against
-        // A face across a base edge: p on its inner side, so the front does not fold there.
-        if ((shared_mask & 7) == 3 || (shared_mask & 7) == 5 || (shared_mask & 7) == 6)
-            if (!(shared_mask & 8) && orient3d(X, Y, Z, P) <= 0) { ++g_reject[2]; return false; }
         // quick reject: every vertex of t strictly outside one face plane or on it as a vertex
         bool apart = false;
         for (int i = 0; i < 4 && !apart; ++i)
@@ -420,7 +423,18 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
             apart = all;
         }
         if (apart) continue;
-        if (tet_triangle_intersect(points_, tet, t)) { ++g_reject[3]; return false; }
+        if (tet_triangle_intersect(points_, tet, t))
+        {
+            ++g_reject[3];
+            if (std::getenv("AF_DEBUG3") && front_.generation[face] == 1 && is_new)
+            {
+                std::fprintf(stderr, "new P cross: base gen %d face %d gen %d shared %d\n", front_.generation[face], f, front_.generation[f], shared);
+                for (int k = 0; k < 4; ++k) std::fprintf(stderr, "  T %d: %.4f %.4f %.4f\n", tet[k], points_[tet[k]][0], points_[tet[k]][1], points_[tet[k]][2]);
+                for (int k = 0; k < 3; ++k) std::fprintf(stderr, "  F %d: %.4f %.4f %.4f\n", t[k], points_[t[k]][0], points_[t[k]][1], points_[t[k]][2]);
+                static int cnt = 0; if (++cnt > 3) std::exit(0);
+            }
+            return false;
+        }
     }
 
     for (int v : local_vertices_)
@@ -438,9 +452,14 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
     return true;
 }
 
-void FrontMesher::add_face(const Triangle& t, int generation)
+/// A face's generation is its vertices' lowest layer (Netgen's FrontNr): the faces a tet raises
+/// beside the boundary stay in the boundary's layer, so valleys close before the next layer.
+void FrontMesher::add_face(const Triangle& t)
 {
-    const int id = front_.add(t, generation, face_size(t));
+    const int lowest = std::min({layer_[t[0]], layer_[t[1]], layer_[t[2]]});
+    for (int v : t) layer_[v] = std::min(layer_[v], lowest + 1);
+    const int id = front_.add(t, lowest, face_size(t));
+    if (std::getenv("AF_CHECK") && sorted_triple(t) == Triangle{12, 42, 44}) std::fprintf(stderr, "added 12 42 44 as %d %d %d after tet %zu (%d %d %d %d)\n", t[0], t[1], t[2], tets_.size() - 1, tets_.back()[0], tets_.back()[1], tets_.back()[2], tets_.back()[3]);
     if (face_stamp_.size() < front_.vertices.size()) face_stamp_.resize(front_.vertices.size(), 0);
     for (int v : t)
         if (!in_grid_[v])
@@ -453,12 +472,192 @@ void FrontMesher::add_face(const Triangle& t, int generation)
     front_.push(id);
 }
 
+static bool debug_tets_overlap(const std::vector<Vec3>& P, const TetVertices& s, const TetVertices& t)
+{
+    std::vector<Vec3> axes;
+    auto add_faces = [&](const TetVertices& x) {
+        for (int i = 0; i < 4; ++i)
+        {
+            const auto& fv = tet::kFaceVertices[i];
+            axes.push_back((P[x[fv[1]]] - P[x[fv[0]]]).cross(P[x[fv[2]]] - P[x[fv[0]]]));
+        }
+    };
+    add_faces(s);
+    add_faces(t);
+    for (auto& e : tet::kEdgeVertices)
+        for (auto& g : tet::kEdgeVertices)
+            axes.push_back((P[s[e[1]]] - P[s[e[0]]]).cross(P[t[g[1]]] - P[t[g[0]]]));
+    for (const Vec3& axis : axes)
+    {
+        const double n = axis.norm();
+        if (n < 1e-14) continue;
+        const Vec3 u = axis / n;
+        double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
+        for (int v : s) lo1 = std::min(lo1, u.dot(P[v])), hi1 = std::max(hi1, u.dot(P[v]));
+        for (int v : t) lo2 = std::min(lo2, u.dot(P[v])), hi2 = std::max(hi2, u.dot(P[v]));
+        if (std::min(hi1, hi2) - std::max(lo1, lo2) < 1e-9) return false;
+    }
+    return true;
+}
+
+static void debug_check_front(const Front& front, const std::vector<TetVertices>& tets, const char* where)
+{
+    std::map<std::pair<int,int>, int> count;
+    for (int f = 0; f < (int)front.vertices.size(); ++f)
+        if (front.alive[f])
+            for (int k = 0; k < 3; ++k)
+            {
+                int u = front.vertices[f][k], v = front.vertices[f][(k + 1) % 3];
+                count[{u, v}] += 1;
+                count[{v, u}] -= 1;
+            }
+    for (auto& [e, c] : count)
+        if (c != 0)
+        {
+            std::fprintf(stderr, "%s: front not closed at edge %d-%d (%d) after %zu tets\n", where, e.first, e.second, c, tets.size());
+            std::exit(1);
+        }
+}
+
 void FrontMesher::commit(int face, int p)
 {
     const Triangle base = front_.vertices[face];
-    const int generation = front_.generation[face] + 1;
     const int a = base[0], b = base[1], c = base[2];
     tets_.push_back({a, b, c, p});
+    if (std::getenv("AF_CHECK") && tets_.size() < 3000)
+    {
+        const TetVertices nt{a, b, c, p};
+        for (std::size_t k = 0; k + 1 < tets_.size(); ++k)
+        {
+            int sh = 0, other = -1;
+            for (int v : tets_[k]) { if (v == a || v == b || v == c) ++sh; else other = v; }
+            if (sh == 3)
+                std::fprintf(stderr, "tet %zu base behind: tet %zu other %d orient %d\n", tets_.size() - 1, k, other, orient3d(points_[a], points_[b], points_[c], points_[other]));
+            const auto& o = tets_[k];
+            {
+                int i = 0;
+                if (debug_tets_overlap(points_, nt, o))
+                {
+                    std::fprintf(stderr, "tet %zu overlaps tet %zu (face %d): new %d %d %d %d old %d %d %d %d nv %d\n", tets_.size() - 1, k, i, a, b, c, p, o[0], o[1], o[2], o[3], num_input_vertices_);
+                    for (int v : {a, b, c, p, o[0], o[1], o[2], o[3]}) std::fprintf(stderr, "   %d: %.5f %.5f %.5f val %d\n", v, points_[v][0], points_[v][1], points_[v][2], front_.valence[v]);
+                    for (int f = 0; f < (int)front_.vertices.size(); ++f)
+                    {
+                        if (!front_.alive[f] || f == face) continue;
+                        const Triangle& t = front_.vertices[f];
+                        // a flat tet from the triangle: its centroid pushed off a little
+                        const Vec3 nrm = (points_[t[1]] - points_[t[0]]).cross(points_[t[2]] - points_[t[0]]);
+                        std::vector<Vec3> P2 = points_;
+                        P2.push_back((points_[t[0]] + points_[t[1]] + points_[t[2]]) / 3 + 1e-6 * nrm);
+                        const TetVertices flat{t[0], t[1], t[2], (int)P2.size() - 1};
+                        if (debug_tets_overlap(P2, nt, flat))
+                            std::fprintf(stderr, "  SAT: crosses front face %d: %d %d %d  stub says %d\n", f, t[0], t[1], t[2], (int)tet_triangle_intersect(points_, nt, t));
+                    }
+                    {
+                        std::map<Triangle, int> chain;  // sorted triple -> +1 per orientation as stored key (rotated min first)
+                        auto canon = [](Triangle t) {
+                            while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
+                            return t;
+                        };
+                        auto addf = [&](Triangle t) {
+                            t = canon(t);
+                            const Triangle r = canon({t[0], t[2], t[1]});
+                            if (chain.count(r) && chain[r] > 0) { if (--chain[r] == 0) chain.erase(r); }
+                            else chain[t] += 1;
+                        };
+                        for (auto& f : input_faces_) (void)f;
+                        for (int f = 0; f < num_input_vertices_ * 0; ++f) {}
+                        for (std::size_t ti = 0; ti + 1 < tets_.size(); ++ti)
+                            for (int i = 0; i < 4; ++i)
+                            {
+                                const auto& fv = tet::kFaceVertices[i];
+                                addf({tets_[ti][fv[0]], tets_[ti][fv[1]], tets_[ti][fv[2]]});
+                            }
+                        std::fprintf(stderr, "meshed boundary %zu faces\n", chain.size());
+                        // stored front (unmeshed positive) should equal: outward(M) - outward(D covered)...
+                        int in_front = 0, missing = 0;
+                        for (auto& [t, c] : chain)
+                        {
+                            {
+                                bool is_input = false; int how = 0;
+                                for (auto& f : input_faces_)
+                                {
+                                    Triangle lf;
+                                    for (int k = 0; k < 3; ++k) lf[k] = std::lower_bound(local_to_global_.begin(), local_to_global_.end(), f[k]) - local_to_global_.begin();
+                                    if (sorted_triple(lf) == sorted_triple(t)) { is_input = true; how = detail::same_orientation(lf, t) ? 1 : -1; }
+                                }
+                                if (is_input && how != 1) std::fprintf(stderr, "input face in chain reversed\n");
+                                if (!is_input && front_.find(t) < 0) std::fprintf(stderr, "chain face %d %d %d neither input nor front\n", t[0], t[1], t[2]);
+                            }
+                            if (c != 1) std::fprintf(stderr, "chain count %d for %d %d %d\n", c, t[0], t[1], t[2]);
+                            const int g = front_.find(t);
+                            if (g >= 0 && detail::same_orientation(t, front_.vertices[g])) ++in_front; else if (g >= 0) std::fprintf(stderr, "reversed front face %d\n", g); else ++missing;
+                        }
+                        std::fprintf(stderr, "of which on the front %d, not %d; front has %d\n", in_front, missing, front_.alive_count);
+                        int outside = 0;
+                        for (auto& f : input_faces_)
+                        {
+                            int u = std::lower_bound(local_to_global_.begin(), local_to_global_.end(), f[0]) - local_to_global_.begin();
+                            int v = std::lower_bound(local_to_global_.begin(), local_to_global_.end(), f[1]) - local_to_global_.begin();
+                            int w = std::lower_bound(local_to_global_.begin(), local_to_global_.end(), f[2]) - local_to_global_.begin();
+                            if (orient3d(points_[u], points_[v], points_[w], points_[p]) > 0) ++outside;
+                        }
+                        std::fprintf(stderr, "new point outside %d input planes; in tet0 %d\n", outside, (int)point_in_tet(points_, p, tets_[0]));
+                        for (std::size_t ti = 0; ti + 1 < tets_.size(); ++ti) if (point_in_tet(points_, p, tets_[ti]))
+                        {
+                            const auto& o = tets_[ti];
+                            std::fprintf(stderr, " p in tet %zu: %d %d %d %d\n", ti,
+                                orient3d(points_[p], points_[o[1]], points_[o[2]], points_[o[3]]),
+                                orient3d(points_[o[0]], points_[p], points_[o[2]], points_[o[3]]),
+                                orient3d(points_[o[0]], points_[o[1]], points_[p], points_[o[3]]),
+                                orient3d(points_[o[0]], points_[o[1]], points_[o[2]], points_[p]));
+                        }
+                        {
+                            std::vector<Vec3> P3 = points_;
+                            P3.push_back(Vec3::Zero());
+                            const Vec3 q0 = (points_[a] + points_[b] + points_[c]) / 3;
+                            for (int k = 1; k < 100; ++k)
+                            {
+                                P3.back() = q0 + (points_[p] - q0) * (k / 100.0);
+                                int in = -1;
+                                for (std::size_t ti = 0; ti + 1 < tets_.size(); ++ti) if (point_in_tet(P3, (int)P3.size() - 1, tets_[ti])) in = (int)ti;
+                                std::fprintf(stderr, "%d:%d ", k, in);
+                            }
+                            std::fprintf(stderr, "\n");
+                        }
+                        std::vector<Vec3> P2 = points_;
+                        P2.push_back((points_[a] + points_[b] + points_[c]) / 3);
+                        const int q = (int)P2.size() - 1;
+                        for (int f = 0; f < (int)front_.vertices.size(); ++f)
+                        {
+                            if (!front_.alive[f] || f == face) continue;
+                            const Triangle& t = front_.vertices[f];
+                            const Vec3 &X = P2[t[0]], &Y = P2[t[1]], &Z = P2[t[2]];
+                            int s1 = orient3d(X, Y, Z, P2[q]), s2 = orient3d(X, Y, Z, P2[p]);
+                            if (s1 * s2 > 0) continue;
+                            int o1 = orient3d(P2[q], P2[p], X, Y), o2 = orient3d(P2[q], P2[p], Y, Z), o3 = orient3d(P2[q], P2[p], Z, X);
+                            if ((o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0))
+                                std::fprintf(stderr, "segment crosses front face %d (%d %d %d) s %d %d o %d %d %d; stub tet-tri %d\n", f, t[0], t[1], t[2], s1, s2, o1, o2, o3, (int)tet_triangle_intersect(points_, nt, t));
+                        }
+                    }
+                    std::exit(1);
+                }
+            }
+        }
+        const TetVertices tet{a, b, c, p};
+        for (int f = 0; f < (int)front_.vertices.size(); ++f)
+        {
+            if (!front_.alive[f] || f == face) continue;
+            const Triangle& t = front_.vertices[f];
+            int shared = 0;
+            for (int k = 0; k < 3; ++k) for (int j = 0; j < 4; ++j) shared += t[k] == tet[j];
+            if (shared == 3) continue;
+            if (tet_triangle_intersect(points_, tet, t))
+            {
+                bool local = std::find(local_faces_.begin(), local_faces_.end(), f) != local_faces_.end();
+                std::fprintf(stderr, "tet %zu crosses front face %d (shared %d, local %d)\n", tets_.size() - 1, f, shared, local);
+            }
+        }
+    }
     front_.remove(face);
     const std::array<Triangle, 3> sides{{{a, b, p}, {b, c, p}, {c, a, p}}};
     for (const Triangle& s : sides)
@@ -471,8 +670,9 @@ void FrontMesher::commit(int face, int p)
             front_.remove(g);
         }
         else
-            add_face(s, generation);
+            add_face(s);
     }
+    if (std::getenv("AF_CHECK")) debug_check_front(front_, tets_, "commit");
 }
 
 bool FrontMesher::attempt(int face)
@@ -559,7 +759,7 @@ bool FrontMesher::attempt(int face)
 
     if (candidates_.empty()) ++g_reject[5];
     static int dbg = std::getenv("AF_DEBUG2") ? 40 : 0;
-    if (dbg > 0 && fail == 4)
+    if (dbg > 0 && fail == 0)
     {
         --dbg;
         long before[6];
@@ -603,6 +803,7 @@ bool FrontMesher::attempt(int face)
         front_.valence.push_back(0);
         component_.push_back(comp);
         in_grid_.push_back(0);
+        layer_.push_back(1 + std::min({layer_[a], layer_[b], layer_[c]}));
         if (valid_tet(face, p, true))
         {
             commit(face, p);
@@ -612,6 +813,7 @@ bool FrontMesher::attempt(int face)
         front_.valence.pop_back();
         component_.pop_back();
         in_grid_.pop_back();
+        layer_.pop_back();
     }
     return false;
 }
@@ -628,7 +830,10 @@ bool FrontMesher::advance()
         if (front_.fail[face] >= stuck) return false;
         if (++iterations_ > iteration_budget_) return false;
         front_.pop();
-        if (!attempt(face))
+        const int level = std::min(front_.fail[face], 7);
+        const bool success = attempt(face);
+        ++g_attempts[level][success];
+        if (!success)
         {
             ++front_.fail[face];
             front_.push(face);
@@ -639,8 +844,101 @@ bool FrontMesher::advance()
 /// Closes the small groups of the front left over by the small-cavity stages; returns how many.
 int FrontMesher::close_leftovers()
 {
-    // TODO(issue 15): detail::fill_small_cavity (branch s15-stages) closes them once merged.
-    return 0;
+    const int n = static_cast<int>(points_.size());
+    std::vector<int> parent(n);
+    std::iota(parent.begin(), parent.end(), 0);
+    auto root = [&](int v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    std::vector<int> open;
+    for (int f = 0; f < static_cast<int>(front_.vertices.size()); ++f)
+        if (front_.alive[f])
+        {
+            open.push_back(f);
+            const Triangle& t = front_.vertices[f];
+            for (int k = 1; k < 3; ++k)
+            {
+                const int x = root(t[0]), y = root(t[k]);
+                if (x != y) parent[std::max(x, y)] = std::min(x, y);
+            }
+        }
+    // groups in the order of their smallest face id
+    std::vector<std::pair<int, int>> by_group;  // (root, face)
+    for (int f : open) by_group.push_back({root(front_.vertices[f][0]), f});
+    std::stable_sort(by_group.begin(), by_group.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    CavityOptions cavity_options;
+    cavity_options.max_exhaustive_points = options_.max_leftover_points;
+    int closed = 0;
+    std::vector<int> group_faces, group_vertices;
+    for (std::size_t i = 0; i < by_group.size();)
+    {
+        std::size_t j = i;
+        group_faces.clear();
+        while (j < by_group.size() && by_group[j].first == by_group[i].first)
+            group_faces.push_back(by_group[j++].second);
+        i = j;
+        group_vertices.clear();
+        for (int f : group_faces)
+            for (int v : front_.vertices[f]) group_vertices.push_back(v);
+        std::sort(group_vertices.begin(), group_vertices.end());
+        group_vertices.erase(std::unique(group_vertices.begin(), group_vertices.end()),
+                             group_vertices.end());
+        if (static_cast<int>(group_vertices.size()) > options_.max_leftover_points) continue;
+        std::vector<Vec3> group_points;
+        for (int v : group_vertices) group_points.push_back(points_[v]);
+        auto local = [&](int v) {
+            return static_cast<int>(
+                std::lower_bound(group_vertices.begin(), group_vertices.end(), v) -
+                group_vertices.begin());
+        };
+        std::vector<Triangle> outward;
+        for (int f : group_faces)
+        {
+            const Triangle& t = front_.vertices[f];
+            outward.push_back({local(t[0]), local(t[2]), local(t[1])});
+        }
+        CavityFill fill;
+        if (!detail::fill_small_cavity(group_points, outward, cavity_options, fill)) continue;
+        // The group is closed, but another part of the front might lie inside it.
+        const int m = static_cast<int>(group_vertices.size());
+        std::vector<Vec3> fill_points = group_points;
+        fill_points.insert(fill_points.end(), fill.new_points.begin(), fill.new_points.end());
+        bool clear = true;
+        for (int v = 0; v < n && clear; ++v)
+        {
+            if (front_.valence[v] == 0 || std::binary_search(group_vertices.begin(),
+                                                             group_vertices.end(), v))
+                continue;
+            fill_points.push_back(points_[v]);
+            const int probe = static_cast<int>(fill_points.size()) - 1;
+            for (const TetVertices& t : fill.tets)
+                if (point_in_tet(fill_points, probe, t))
+                {
+                    clear = false;
+                    break;
+                }
+            fill_points.pop_back();
+        }
+        if (!clear) continue;
+        std::vector<int> global(m + fill.new_points.size());
+        for (int k = 0; k < m; ++k) global[k] = group_vertices[k];
+        for (std::size_t k = 0; k < fill.new_points.size(); ++k)
+        {
+            global[m + k] = static_cast<int>(points_.size());
+            points_.push_back(fill.new_points[k]);
+            front_.valence.push_back(0);
+            component_.push_back(0);
+            in_grid_.push_back(0);
+            layer_.push_back(0);
+        }
+        for (const TetVertices& t : fill.tets)
+            tets_.push_back({global[t[0]], global[t[1]], global[t[2]], global[t[3]]});
+        for (int f : group_faces) front_.remove(f);
+        ++closed;
+    }
+    return closed;
 }
 
 /// Netgen's RemoveProblem: removes every tet with a vertex on an open face and the new points
@@ -676,7 +974,8 @@ bool FrontMesher::retreat()
             else
             {
                 const Triangle inward{outward[0], outward[2], outward[1]};
-                front_.add(inward, 0, face_size(inward));
+                const int lowest = std::min({layer_[inward[0]], layer_[inward[1]], layer_[inward[2]]});
+                front_.add(inward, lowest, face_size(inward));
             }
         }
     // every surviving face starts over: heap, grid and components rebuilt from the front
@@ -706,6 +1005,13 @@ bool FrontMesher::run(std::vector<TetVertices>& tets_out, std::vector<Vec3>& new
     for (int round = 0;; ++round)
     {
         const bool done = advance();
+        if (std::getenv("AF_DEBUG"))
+        {
+            double vol = 0, enclosed = 0;
+            for (auto& t : tets_) vol += signed_volume(points_[t[0]], points_[t[1]], points_[t[2]], points_[t[3]]);
+            for (auto& f : input_faces_) enclosed += signed_volume(Vec3::Zero(), input_points_[f[0]], input_points_[f[1]], input_points_[f[2]]);
+            std::fprintf(stderr, "tet volume %.6f enclosed %.6f\n", vol, enclosed);
+        }
         if (std::getenv("AF_DEBUG"))
             std::fprintf(stderr, "round %d: tets %zu points %zu open %d iterations %ld\n", round,
                          tets_.size(), points_.size(), front_.alive_count, iterations_);
@@ -743,6 +1049,8 @@ bool FrontMesher::run(std::vector<TetVertices>& tets_out, std::vector<Vec3>& new
     if (std::getenv("AF_DEBUG"))
         std::fprintf(stderr, "rejects: orient %ld sameway %ld fold %ld cross %ld inside %ld nocand %ld\n",
                      g_reject[0], g_reject[1], g_reject[2], g_reject[3], g_reject[4], g_reject[5]);
+    if (std::getenv("AF_DEBUG"))
+        for (int l = 0; l < 8; ++l) std::fprintf(stderr, "level %d: %ld fail %ld ok\n", l, g_attempts[l][0], g_attempts[l][1]);
     if (!closed) return false;
 
     // new points still used by a tet, in creation order
