@@ -160,41 +160,6 @@ bool fill_by_vertex_fan(const std::vector<Vec3>& points, const std::vector<Trian
     return true;
 }
 
-bool fill_small_cavity(const std::vector<Vec3>& points, const std::vector<Triangle>& faces,
-                       const CavityOptions& options, CavityFill& fill)
-{
-    CavityFill best;
-    {
-        CavityFill fan;
-        if (fill_by_vertex_fan(points, faces, fan) && fan.worst_quality >= options.accept_quality)
-        {
-            fill = std::move(fan);
-            return true;
-        }
-        keep_better(best, fan);
-    }
-    {
-        CavityFill kernel;
-        if (fill_by_kernel_fan(points, faces, kernel) &&
-            kernel.worst_quality >= options.accept_quality &&
-            (!best.filled || kernel.worst_quality > best.worst_quality))
-        {
-            fill = std::move(kernel);
-            return true;
-        }
-        keep_better(best, kernel);
-    }
-    if (static_cast<int>(cavity_vertices(faces).size()) < options.max_exhaustive_points)
-    {
-        CavityFill exhaustive;
-        fill_exhaustive(points, faces, options, exhaustive);
-        keep_better(best, exhaustive);
-    }
-    if (!best.filled) return false;
-    fill = std::move(best);
-    return true;
-}
-
 }  // namespace detail
 
 CavityFill fill_cavity(const TetMesh& mesh, const std::vector<Triangle>& faces,
