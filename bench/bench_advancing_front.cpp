@@ -6,6 +6,7 @@
 // grow with the size.
 //
 // usage: bench_advancing_front [-q] [--no-optimize] [--sweep-only] [--levels N]
+//                              [--min-point-distance X]
 // (-q: the tables only)
 
 #include <algorithm>
@@ -103,8 +104,8 @@ Surface from_triangle_surface(const std::string& name, const hdi::TriangleSurfac
 
 Surface icosphere_surface(int levels)
 {
-    Surface s = from_triangle_surface("icosphere L" + std::to_string(levels),
-                                      fixtures::icosphere(levels));
+    Surface s =
+        from_triangle_surface("icosphere L" + std::to_string(levels), fixtures::icosphere(levels));
     s.h = mean_edge(s.points, s.faces);
     return s;
 }
@@ -152,6 +153,8 @@ struct Row
     std::string failure;
 };
 
+AdvancingFrontOptions g_options;
+
 Row run(const Surface& s, bool optimize, bool quiet)
 {
     Row row;
@@ -164,11 +167,11 @@ Row run(const Surface& s, bool optimize, bool quiet)
     const long long base_bytes = g_current_bytes.load();
     g_peak_bytes = base_bytes;
     const double cpu_start = thread_cpu_seconds();
-    row.ok = advance_front(s.points, s.faces, &field, AdvancingFrontOptions{}, tets, new_points,
-                           row.failure, &report);
+    row.ok =
+        advance_front(s.points, s.faces, &field, g_options, tets, new_points, row.failure, &report);
     row.af_seconds = thread_cpu_seconds() - cpu_start;
-    row.bytes_per_tet =
-        static_cast<double>(g_peak_bytes.load() - base_bytes) / std::max<std::size_t>(1, tets.size());
+    row.bytes_per_tet = static_cast<double>(g_peak_bytes.load() - base_bytes) /
+                        std::max<std::size_t>(1, tets.size());
     row.retreats = report.retreat_rounds;
     if (!row.ok)
     {
@@ -202,10 +205,9 @@ Row run(const Surface& s, bool optimize, bool quiet)
 
 void print_header()
 {
-    std::printf(
-        "%-22s %7s %8s %7s %7s %8s %6s | %6s %5s %5s %5s | %6s %5s %5s %5s | %6s %3s %s\n",
-        "input", "faces", "tets", "points", "AF s", "tets/s", "opt s", "minQe", "%0.5", "dih",
-        "%Qt", "minQe", "%0.5", "dih", "%Qt", "B/tet", "rtr", "check");
+    std::printf("%-22s %7s %8s %7s %7s %8s %6s | %6s %5s %5s %5s | %6s %5s %5s %5s | %6s %3s %s\n",
+                "input", "faces", "tets", "points", "AF s", "tets/s", "opt s", "minQe", "%0.5",
+                "dih", "%Qt", "minQe", "%0.5", "dih", "%Qt", "B/tet", "rtr", "check");
     std::printf("%-22s %7s %8s %7s %7s %8s %6s | %-23s | %-23s |\n", "", "", "", "", "", "", "",
                 "   after AF", "   after optimize_mesh");
 }
@@ -236,10 +238,16 @@ int main(int argc, char** argv)
     int sweep_levels = 3;
     for (int i = 1; i < argc; ++i)
     {
-        if (!std::strcmp(argv[i], "--no-optimize")) optimize = false;
-        else if (!std::strcmp(argv[i], "-q")) quiet = true;
-        else if (!std::strcmp(argv[i], "--sweep-only")) sweep_only = true;
-        else if (!std::strcmp(argv[i], "--levels") && i + 1 < argc) sweep_levels = std::atoi(argv[++i]);
+        if (!std::strcmp(argv[i], "--no-optimize"))
+            optimize = false;
+        else if (!std::strcmp(argv[i], "-q"))
+            quiet = true;
+        else if (!std::strcmp(argv[i], "--sweep-only"))
+            sweep_only = true;
+        else if (!std::strcmp(argv[i], "--levels") && i + 1 < argc)
+            sweep_levels = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--min-point-distance") && i + 1 < argc)
+            g_options.min_point_distance = std::atof(argv[++i]);
     }
 
     if (!sweep_only)
@@ -263,8 +271,9 @@ int main(int argc, char** argv)
             s.h = 0.02 * bbox_diagonal(s.points);
             inputs.push_back(s);
         }
-        std::printf("whole volumes (h: sphere480 / icosphere / box: the mean surface edge; OBJs: 2 %% "
-                    "of the bbox diagonal)\n");
+        std::printf(
+            "whole volumes (h: sphere480 / icosphere / box: the mean surface edge; OBJs: 2 %% "
+            "of the bbox diagonal)\n");
         print_header();
         for (const Surface& s : inputs) print_row(run(s, optimize, quiet));
     }

@@ -9,9 +9,6 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
-#include <map>
-#include <cstdio>
-#include <cstdlib>
 
 #include "volume/cavity.h"
 #include "volume/detail/cavity_stages.h"
@@ -19,26 +16,23 @@
 #include "volume/predicates.h"
 #include "volume/tet_tables.h"
 
-
 namespace hdimesh::volume
 {
 namespace
 {
-long g_reject[8];
-long g_attempts[8][2];
 using detail::Front;
 using detail::sorted_triple;
 
 constexpr double kTwoThirdsRoot = 0.816496580927726;  // sqrt(2/3): a regular tet's height / edge
 constexpr double kMinSizeFactor = 0.6;                // d never below this times the face's edge
 constexpr double kMaxSizeFactor = 1.6;                // ... nor above this
-constexpr double kPreferExisting = 0.8;   // an existing vertex wins at this fraction of P*'s Qe
-constexpr double kSearchRadius = 1.0;     // vertex candidates within this times d of P* ...
-constexpr double kRadiusGrowth = 0.5;     // ... plus this times d per failure
-constexpr double kVolumeFloor = 1e-6;     // 6 V >= this times the face's mean edge cubed
-constexpr int kExtraAttempts = 2;         // attempts at the last floor before a face is stuck
-constexpr double kGridCellFactor = 1.0;   // grid cell = this times the typical size
-constexpr int kBruteForceFaces = 256;     // a front this small is searched in one cell
+constexpr double kPreferExisting = 0.8;  // an existing vertex wins at this fraction of P*'s Qe
+constexpr double kSearchRadius = 1.0;    // vertex candidates within this times d of P* ...
+constexpr double kRadiusGrowth = 0.5;    // ... plus this times d per failure
+constexpr double kVolumeFloor = 1e-6;    // 6 V >= this times the face's mean edge cubed
+constexpr int kExtraAttempts = 2;        // attempts at the last floor before a face is stuck
+constexpr double kGridCellFactor = 1.0;  // grid cell = this times the typical size
+constexpr int kBruteForceFaces = 256;    // a front this small is searched in one cell
 
 struct Box
 {
@@ -159,9 +153,9 @@ bool FrontMesher::setup(std::string& failure)
     points_.reserve(num_input_vertices_ * 2 + 16);
     for (int g : local_to_global_) points_.push_back(input_points_[g]);
     auto local_of = [&](int g) {
-        return static_cast<int>(std::lower_bound(local_to_global_.begin(), local_to_global_.end(),
-                                                 g) -
-                                local_to_global_.begin());
+        return static_cast<int>(
+            std::lower_bound(local_to_global_.begin(), local_to_global_.end(), g) -
+            local_to_global_.begin());
     };
 
     // Closed and consistently oriented: every directed edge once, and its reverse once.
@@ -178,7 +172,8 @@ bool FrontMesher::setup(std::string& failure)
         }
         for (int k = 0; k < 3; ++k) local_faces[f][k] = local_of(t[k]);
         for (int k = 0; k < 3; ++k)
-            directed.push_back({local_faces[f][k], local_faces[f][(k + 1) % 3], static_cast<int>(f)});
+            directed.push_back(
+                {local_faces[f][k], local_faces[f][(k + 1) % 3], static_cast<int>(f)});
     }
     std::sort(directed.begin(), directed.end());
     for (std::size_t i = 0; i < directed.size(); ++i)
@@ -363,7 +358,7 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
     const Triangle& base = front_.vertices[face];
     const int a = base[0], b = base[1], c = base[2];
     const Vec3 &A = points_[a], &B = points_[b], &C = points_[c], &P = points_[p];
-    if (orient3d(A, B, C, P) <= 0) { ++g_reject[0]; return false; }
+    if (orient3d(A, B, C, P) <= 0) return false;
 
     // A new face that is already on the front the same way would overlap the tets behind it.
     const std::array<Triangle, 3> sides{{{a, b, p}, {b, c, p}, {c, a, p}}};
@@ -371,7 +366,7 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
         for (const Triangle& s : sides)
         {
             const int g = front_.find(s);
-            if (g >= 0 && detail::same_orientation(s, front_.vertices[g])) { ++g_reject[1]; return false; }
+            if (g >= 0 && detail::same_orientation(s, front_.vertices[g])) return false;
         }
 
     const TetVertices tet{a, b, c, p};
@@ -415,26 +410,15 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
             for (int k = 0; k < 3 && all; ++k)
             {
                 const int v = t[k];
-                const bool on_plane_vertex = (v == tet[tet::kFaceVertices[i][0]] ||
-                                              v == tet[tet::kFaceVertices[i][1]] ||
-                                              v == tet[tet::kFaceVertices[i][2]]);
+                const bool on_plane_vertex =
+                    (v == tet[tet::kFaceVertices[i][0]] || v == tet[tet::kFaceVertices[i][1]] ||
+                     v == tet[tet::kFaceVertices[i][2]]);
                 all = on_plane_vertex || surely_outside(i, v);
             }
             apart = all;
         }
         if (apart) continue;
-        if (tet_triangle_intersect(points_, tet, t))
-        {
-            ++g_reject[3];
-            if (std::getenv("AF_DEBUG3") && front_.generation[face] == 1 && is_new)
-            {
-                std::fprintf(stderr, "new P cross: base gen %d face %d gen %d shared %d\n", front_.generation[face], f, front_.generation[f], shared);
-                for (int k = 0; k < 4; ++k) std::fprintf(stderr, "  T %d: %.4f %.4f %.4f\n", tet[k], points_[tet[k]][0], points_[tet[k]][1], points_[tet[k]][2]);
-                for (int k = 0; k < 3; ++k) std::fprintf(stderr, "  F %d: %.4f %.4f %.4f\n", t[k], points_[t[k]][0], points_[t[k]][1], points_[t[k]][2]);
-                static int cnt = 0; if (++cnt > 3) std::exit(0);
-            }
-            return false;
-        }
+        if (tet_triangle_intersect(points_, tet, t)) return false;
     }
 
     for (int v : local_vertices_)
@@ -447,7 +431,7 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
         bool outside = false;
         for (int i = 0; i < 4 && !outside; ++i) outside = surely_outside(i, v);
         if (outside) continue;
-        if (point_in_tet(points_, v, tet)) { ++g_reject[4]; return false; }
+        if (point_in_tet(points_, v, tet)) return false;
     }
     return true;
 }
@@ -459,7 +443,6 @@ void FrontMesher::add_face(const Triangle& t)
     const int lowest = std::min({layer_[t[0]], layer_[t[1]], layer_[t[2]]});
     for (int v : t) layer_[v] = std::min(layer_[v], lowest + 1);
     const int id = front_.add(t, lowest, face_size(t));
-    if (std::getenv("AF_CHECK") && sorted_triple(t) == Triangle{12, 42, 44}) std::fprintf(stderr, "added 12 42 44 as %d %d %d after tet %zu (%d %d %d %d)\n", t[0], t[1], t[2], tets_.size() - 1, tets_.back()[0], tets_.back()[1], tets_.back()[2], tets_.back()[3]);
     if (face_stamp_.size() < front_.vertices.size()) face_stamp_.resize(front_.vertices.size(), 0);
     for (int v : t)
         if (!in_grid_[v])
@@ -472,192 +455,11 @@ void FrontMesher::add_face(const Triangle& t)
     front_.push(id);
 }
 
-static bool debug_tets_overlap(const std::vector<Vec3>& P, const TetVertices& s, const TetVertices& t)
-{
-    std::vector<Vec3> axes;
-    auto add_faces = [&](const TetVertices& x) {
-        for (int i = 0; i < 4; ++i)
-        {
-            const auto& fv = tet::kFaceVertices[i];
-            axes.push_back((P[x[fv[1]]] - P[x[fv[0]]]).cross(P[x[fv[2]]] - P[x[fv[0]]]));
-        }
-    };
-    add_faces(s);
-    add_faces(t);
-    for (auto& e : tet::kEdgeVertices)
-        for (auto& g : tet::kEdgeVertices)
-            axes.push_back((P[s[e[1]]] - P[s[e[0]]]).cross(P[t[g[1]]] - P[t[g[0]]]));
-    for (const Vec3& axis : axes)
-    {
-        const double n = axis.norm();
-        if (n < 1e-14) continue;
-        const Vec3 u = axis / n;
-        double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
-        for (int v : s) lo1 = std::min(lo1, u.dot(P[v])), hi1 = std::max(hi1, u.dot(P[v]));
-        for (int v : t) lo2 = std::min(lo2, u.dot(P[v])), hi2 = std::max(hi2, u.dot(P[v]));
-        if (std::min(hi1, hi2) - std::max(lo1, lo2) < 1e-9) return false;
-    }
-    return true;
-}
-
-static void debug_check_front(const Front& front, const std::vector<TetVertices>& tets, const char* where)
-{
-    std::map<std::pair<int,int>, int> count;
-    for (int f = 0; f < (int)front.vertices.size(); ++f)
-        if (front.alive[f])
-            for (int k = 0; k < 3; ++k)
-            {
-                int u = front.vertices[f][k], v = front.vertices[f][(k + 1) % 3];
-                count[{u, v}] += 1;
-                count[{v, u}] -= 1;
-            }
-    for (auto& [e, c] : count)
-        if (c != 0)
-        {
-            std::fprintf(stderr, "%s: front not closed at edge %d-%d (%d) after %zu tets\n", where, e.first, e.second, c, tets.size());
-            std::exit(1);
-        }
-}
-
 void FrontMesher::commit(int face, int p)
 {
     const Triangle base = front_.vertices[face];
     const int a = base[0], b = base[1], c = base[2];
     tets_.push_back({a, b, c, p});
-    if (std::getenv("AF_CHECK") && tets_.size() < 3000)
-    {
-        const TetVertices nt{a, b, c, p};
-        for (std::size_t k = 0; k + 1 < tets_.size(); ++k)
-        {
-            int sh = 0, other = -1;
-            for (int v : tets_[k]) { if (v == a || v == b || v == c) ++sh; else other = v; }
-            if (sh == 3)
-                std::fprintf(stderr, "tet %zu base behind: tet %zu other %d orient %d\n", tets_.size() - 1, k, other, orient3d(points_[a], points_[b], points_[c], points_[other]));
-            const auto& o = tets_[k];
-            {
-                int i = 0;
-                if (debug_tets_overlap(points_, nt, o))
-                {
-                    std::fprintf(stderr, "tet %zu overlaps tet %zu (face %d): new %d %d %d %d old %d %d %d %d nv %d\n", tets_.size() - 1, k, i, a, b, c, p, o[0], o[1], o[2], o[3], num_input_vertices_);
-                    for (int v : {a, b, c, p, o[0], o[1], o[2], o[3]}) std::fprintf(stderr, "   %d: %.5f %.5f %.5f val %d\n", v, points_[v][0], points_[v][1], points_[v][2], front_.valence[v]);
-                    for (int f = 0; f < (int)front_.vertices.size(); ++f)
-                    {
-                        if (!front_.alive[f] || f == face) continue;
-                        const Triangle& t = front_.vertices[f];
-                        // a flat tet from the triangle: its centroid pushed off a little
-                        const Vec3 nrm = (points_[t[1]] - points_[t[0]]).cross(points_[t[2]] - points_[t[0]]);
-                        std::vector<Vec3> P2 = points_;
-                        P2.push_back((points_[t[0]] + points_[t[1]] + points_[t[2]]) / 3 + 1e-6 * nrm);
-                        const TetVertices flat{t[0], t[1], t[2], (int)P2.size() - 1};
-                        if (debug_tets_overlap(P2, nt, flat))
-                            std::fprintf(stderr, "  SAT: crosses front face %d: %d %d %d  stub says %d\n", f, t[0], t[1], t[2], (int)tet_triangle_intersect(points_, nt, t));
-                    }
-                    {
-                        std::map<Triangle, int> chain;  // sorted triple -> +1 per orientation as stored key (rotated min first)
-                        auto canon = [](Triangle t) {
-                            while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
-                            return t;
-                        };
-                        auto addf = [&](Triangle t) {
-                            t = canon(t);
-                            const Triangle r = canon({t[0], t[2], t[1]});
-                            if (chain.count(r) && chain[r] > 0) { if (--chain[r] == 0) chain.erase(r); }
-                            else chain[t] += 1;
-                        };
-                        for (auto& f : input_faces_) (void)f;
-                        for (int f = 0; f < num_input_vertices_ * 0; ++f) {}
-                        for (std::size_t ti = 0; ti + 1 < tets_.size(); ++ti)
-                            for (int i = 0; i < 4; ++i)
-                            {
-                                const auto& fv = tet::kFaceVertices[i];
-                                addf({tets_[ti][fv[0]], tets_[ti][fv[1]], tets_[ti][fv[2]]});
-                            }
-                        std::fprintf(stderr, "meshed boundary %zu faces\n", chain.size());
-                        // stored front (unmeshed positive) should equal: outward(M) - outward(D covered)...
-                        int in_front = 0, missing = 0;
-                        for (auto& [t, c] : chain)
-                        {
-                            {
-                                bool is_input = false; int how = 0;
-                                for (auto& f : input_faces_)
-                                {
-                                    Triangle lf;
-                                    for (int k = 0; k < 3; ++k) lf[k] = std::lower_bound(local_to_global_.begin(), local_to_global_.end(), f[k]) - local_to_global_.begin();
-                                    if (sorted_triple(lf) == sorted_triple(t)) { is_input = true; how = detail::same_orientation(lf, t) ? 1 : -1; }
-                                }
-                                if (is_input && how != 1) std::fprintf(stderr, "input face in chain reversed\n");
-                                if (!is_input && front_.find(t) < 0) std::fprintf(stderr, "chain face %d %d %d neither input nor front\n", t[0], t[1], t[2]);
-                            }
-                            if (c != 1) std::fprintf(stderr, "chain count %d for %d %d %d\n", c, t[0], t[1], t[2]);
-                            const int g = front_.find(t);
-                            if (g >= 0 && detail::same_orientation(t, front_.vertices[g])) ++in_front; else if (g >= 0) std::fprintf(stderr, "reversed front face %d\n", g); else ++missing;
-                        }
-                        std::fprintf(stderr, "of which on the front %d, not %d; front has %d\n", in_front, missing, front_.alive_count);
-                        int outside = 0;
-                        for (auto& f : input_faces_)
-                        {
-                            int u = std::lower_bound(local_to_global_.begin(), local_to_global_.end(), f[0]) - local_to_global_.begin();
-                            int v = std::lower_bound(local_to_global_.begin(), local_to_global_.end(), f[1]) - local_to_global_.begin();
-                            int w = std::lower_bound(local_to_global_.begin(), local_to_global_.end(), f[2]) - local_to_global_.begin();
-                            if (orient3d(points_[u], points_[v], points_[w], points_[p]) > 0) ++outside;
-                        }
-                        std::fprintf(stderr, "new point outside %d input planes; in tet0 %d\n", outside, (int)point_in_tet(points_, p, tets_[0]));
-                        for (std::size_t ti = 0; ti + 1 < tets_.size(); ++ti) if (point_in_tet(points_, p, tets_[ti]))
-                        {
-                            const auto& o = tets_[ti];
-                            std::fprintf(stderr, " p in tet %zu: %d %d %d %d\n", ti,
-                                orient3d(points_[p], points_[o[1]], points_[o[2]], points_[o[3]]),
-                                orient3d(points_[o[0]], points_[p], points_[o[2]], points_[o[3]]),
-                                orient3d(points_[o[0]], points_[o[1]], points_[p], points_[o[3]]),
-                                orient3d(points_[o[0]], points_[o[1]], points_[o[2]], points_[p]));
-                        }
-                        {
-                            std::vector<Vec3> P3 = points_;
-                            P3.push_back(Vec3::Zero());
-                            const Vec3 q0 = (points_[a] + points_[b] + points_[c]) / 3;
-                            for (int k = 1; k < 100; ++k)
-                            {
-                                P3.back() = q0 + (points_[p] - q0) * (k / 100.0);
-                                int in = -1;
-                                for (std::size_t ti = 0; ti + 1 < tets_.size(); ++ti) if (point_in_tet(P3, (int)P3.size() - 1, tets_[ti])) in = (int)ti;
-                                std::fprintf(stderr, "%d:%d ", k, in);
-                            }
-                            std::fprintf(stderr, "\n");
-                        }
-                        std::vector<Vec3> P2 = points_;
-                        P2.push_back((points_[a] + points_[b] + points_[c]) / 3);
-                        const int q = (int)P2.size() - 1;
-                        for (int f = 0; f < (int)front_.vertices.size(); ++f)
-                        {
-                            if (!front_.alive[f] || f == face) continue;
-                            const Triangle& t = front_.vertices[f];
-                            const Vec3 &X = P2[t[0]], &Y = P2[t[1]], &Z = P2[t[2]];
-                            int s1 = orient3d(X, Y, Z, P2[q]), s2 = orient3d(X, Y, Z, P2[p]);
-                            if (s1 * s2 > 0) continue;
-                            int o1 = orient3d(P2[q], P2[p], X, Y), o2 = orient3d(P2[q], P2[p], Y, Z), o3 = orient3d(P2[q], P2[p], Z, X);
-                            if ((o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0))
-                                std::fprintf(stderr, "segment crosses front face %d (%d %d %d) s %d %d o %d %d %d; stub tet-tri %d\n", f, t[0], t[1], t[2], s1, s2, o1, o2, o3, (int)tet_triangle_intersect(points_, nt, t));
-                        }
-                    }
-                    std::exit(1);
-                }
-            }
-        }
-        const TetVertices tet{a, b, c, p};
-        for (int f = 0; f < (int)front_.vertices.size(); ++f)
-        {
-            if (!front_.alive[f] || f == face) continue;
-            const Triangle& t = front_.vertices[f];
-            int shared = 0;
-            for (int k = 0; k < 3; ++k) for (int j = 0; j < 4; ++j) shared += t[k] == tet[j];
-            if (shared == 3) continue;
-            if (tet_triangle_intersect(points_, tet, t))
-            {
-                bool local = std::find(local_faces_.begin(), local_faces_.end(), f) != local_faces_.end();
-                std::fprintf(stderr, "tet %zu crosses front face %d (shared %d, local %d)\n", tets_.size() - 1, f, shared, local);
-            }
-        }
-    }
     front_.remove(face);
     const std::array<Triangle, 3> sides{{{a, b, p}, {b, c, p}, {c, a, p}}};
     for (const Triangle& s : sides)
@@ -672,7 +474,6 @@ void FrontMesher::commit(int face, int p)
         else
             add_face(s);
     }
-    if (std::getenv("AF_CHECK")) debug_check_front(front_, tets_, "commit");
 }
 
 bool FrontMesher::attempt(int face)
@@ -687,8 +488,7 @@ bool FrontMesher::attempt(int face)
     normal /= twice_area;
     const double mean_edge = front_.size[face];
     const double wanted = field_ ? field_->size(centroid) : mean_edge;
-    const double d =
-        std::clamp(wanted, kMinSizeFactor * mean_edge, kMaxSizeFactor * mean_edge);
+    const double d = std::clamp(wanted, kMinSizeFactor * mean_edge, kMaxSizeFactor * mean_edge);
     const int fail = front_.fail[face];
     const int num_floors = static_cast<int>(options_.quality_floors.size());
     const double floor =
@@ -757,36 +557,6 @@ bool FrontMesher::attempt(int face)
         return x.slot < y.slot;
     });
 
-    if (candidates_.empty()) ++g_reject[5];
-    static int dbg = std::getenv("AF_DEBUG2") ? 40 : 0;
-    if (dbg > 0 && fail == 0)
-    {
-        --dbg;
-        long before[6];
-        std::copy(g_reject, g_reject + 6, before);
-        std::fprintf(stderr, "face %d gen %d l=%.3f d=%.3f cands %zu locv %zu locf %zu:", face,
-                     front_.generation[face], mean_edge, d, candidates_.size(),
-                     local_vertices_.size(), local_faces_.size());
-        for (const Candidate& cand : candidates_)
-        {
-            std::copy(g_reject, g_reject + 6, before);
-            bool ok;
-            if (cand.vertex >= 0) ok = valid_tet(face, cand.vertex, false);
-            else
-            {
-                points_.push_back(new_positions_[cand.slot]);
-                front_.valence.push_back(0);
-                ok = valid_tet(face, static_cast<int>(points_.size()) - 1, true);
-                points_.pop_back();
-                front_.valence.pop_back();
-            }
-            int why = -1;
-            for (int k = 0; k < 6; ++k)
-                if (g_reject[k] != before[k]) why = k;
-            std::fprintf(stderr, " [%d q%.2f %s]", cand.vertex, cand.quality, ok ? "ok" : std::to_string(why).c_str());
-        }
-        std::fprintf(stderr, "\n");
-    }
     for (const Candidate& cand : candidates_)
     {
         if (cand.vertex >= 0)
@@ -830,10 +600,7 @@ bool FrontMesher::advance()
         if (front_.fail[face] >= stuck) return false;
         if (++iterations_ > iteration_budget_) return false;
         front_.pop();
-        const int level = std::min(front_.fail[face], 7);
-        const bool success = attempt(face);
-        ++g_attempts[level][success];
-        if (!success)
+        if (!attempt(face))
         {
             ++front_.fail[face];
             front_.push(face);
@@ -901,15 +668,23 @@ int FrontMesher::close_leftovers()
         }
         CavityFill fill;
         if (!detail::fill_small_cavity(group_points, outward, cavity_options, fill)) continue;
-        // The group is closed, but another part of the front might lie inside it.
+        // The group is closed, but another part of the front might lie inside it; and a tet
+        // flat in doubles would fail the checker's volume test.
         const int m = static_cast<int>(group_vertices.size());
         std::vector<Vec3> fill_points = group_points;
         fill_points.insert(fill_points.end(), fill.new_points.begin(), fill.new_points.end());
+        double edge_sum = 0;
+        for (int f : group_faces) edge_sum += front_.size[f];
+        const double edge = edge_sum / group_faces.size();
         bool clear = true;
+        for (const TetVertices& t : fill.tets)
+            if (signed_volume6(fill_points[t[0]], fill_points[t[1]], fill_points[t[2]],
+                               fill_points[t[3]]) <= kVolumeFloor * edge * edge * edge)
+                clear = false;
         for (int v = 0; v < n && clear; ++v)
         {
-            if (front_.valence[v] == 0 || std::binary_search(group_vertices.begin(),
-                                                             group_vertices.end(), v))
+            if (front_.valence[v] == 0 ||
+                std::binary_search(group_vertices.begin(), group_vertices.end(), v))
                 continue;
             fill_points.push_back(points_[v]);
             const int probe = static_cast<int>(fill_points.size()) - 1;
@@ -974,7 +749,8 @@ bool FrontMesher::retreat()
             else
             {
                 const Triangle inward{outward[0], outward[2], outward[1]};
-                const int lowest = std::min({layer_[inward[0]], layer_[inward[1]], layer_[inward[2]]});
+                const int lowest =
+                    std::min({layer_[inward[0]], layer_[inward[1]], layer_[inward[2]]});
                 front_.add(inward, lowest, face_size(inward));
             }
         }
@@ -1005,16 +781,6 @@ bool FrontMesher::run(std::vector<TetVertices>& tets_out, std::vector<Vec3>& new
     for (int round = 0;; ++round)
     {
         const bool done = advance();
-        if (std::getenv("AF_DEBUG"))
-        {
-            double vol = 0, enclosed = 0;
-            for (auto& t : tets_) vol += signed_volume(points_[t[0]], points_[t[1]], points_[t[2]], points_[t[3]]);
-            for (auto& f : input_faces_) enclosed += signed_volume(Vec3::Zero(), input_points_[f[0]], input_points_[f[1]], input_points_[f[2]]);
-            std::fprintf(stderr, "tet volume %.6f enclosed %.6f\n", vol, enclosed);
-        }
-        if (std::getenv("AF_DEBUG"))
-            std::fprintf(stderr, "round %d: tets %zu points %zu open %d iterations %ld\n", round,
-                         tets_.size(), points_.size(), front_.alive_count, iterations_);
         if (done)
         {
             closed = true;
@@ -1034,8 +800,8 @@ bool FrontMesher::run(std::vector<TetVertices>& tets_out, std::vector<Vec3>& new
         if (round >= options_.max_retreat_rounds)
         {
             std::ostringstream out;
-            out << "advancing front: " << front_.alive_count << " faces still open after "
-                << round << " retreat rounds";
+            out << "advancing front: " << front_.alive_count << " faces still open after " << round
+                << " retreat rounds";
             failure = out.str();
             break;
         }
@@ -1046,11 +812,6 @@ bool FrontMesher::run(std::vector<TetVertices>& tets_out, std::vector<Vec3>& new
         }
         ++retreat_rounds_;
     }
-    if (std::getenv("AF_DEBUG"))
-        std::fprintf(stderr, "rejects: orient %ld sameway %ld fold %ld cross %ld inside %ld nocand %ld\n",
-                     g_reject[0], g_reject[1], g_reject[2], g_reject[3], g_reject[4], g_reject[5]);
-    if (std::getenv("AF_DEBUG"))
-        for (int l = 0; l < 8; ++l) std::fprintf(stderr, "level %d: %ld fail %ld ok\n", l, g_attempts[l][0], g_attempts[l][1]);
     if (!closed) return false;
 
     // new points still used by a tet, in creation order

@@ -241,8 +241,8 @@ struct Front
     std::size_t memory_bytes() const
     {
         return vertices.capacity() * sizeof(Triangle) +
-               (fail.capacity() + generation.capacity() + serial.capacity() +
-                version.capacity() + free_ids.capacity() + valence.capacity()) *
+               (fail.capacity() + generation.capacity() + serial.capacity() + version.capacity() +
+                free_ids.capacity() + valence.capacity()) *
                    sizeof(int) +
                size.capacity() * sizeof(float) + alive.capacity() + hash.memory_bytes() +
                heap.capacity() * sizeof(HeapEntry);
