@@ -4,6 +4,8 @@
 // opposite orientations), new points strictly inside (on no input face), a clean checker on the
 // assembled mesh, and the same bytes on a rerun.
 
+#include "volume/advancing_front.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -16,7 +18,6 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/advancing_front.h"
 #include "volume/check.h"
 #include "volume/predicates.h"
 #include "volume/size_fields.h"
@@ -76,13 +77,15 @@ void append(Surface& to, const Surface& from)
 {
     const int offset = static_cast<int>(to.points.size());
     to.points.insert(to.points.end(), from.points.begin(), from.points.end());
-    for (const auto& t : from.faces) to.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (const auto& t : from.faces)
+        to.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
 double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& faces)
 {
     double v = 0;
-    for (const auto& t : faces) v += signed_volume(Vec3::Zero(), points[t[0]], points[t[1]], points[t[2]]);
+    for (const auto& t : faces)
+        v += signed_volume(Vec3::Zero(), points[t[0]], points[t[1]], points[t[2]]);
     return v;
 }
 
@@ -132,7 +135,8 @@ Fill fill_and_check(const Surface& s, const SizeField* field)
     // the oriented boundary of the tets is the input
     std::map<Triangle, int> oriented;  // canonical outward face -> count
     for (const auto& t : fill.tets)
-        for (const auto& fv : tet::kFaceVertices) ++oriented[canonical({t[fv[0]], t[fv[1]], t[fv[2]]})];
+        for (const auto& fv : tet::kFaceVertices)
+            ++oriented[canonical({t[fv[0]], t[fv[1]], t[fv[2]]})];
     std::set<Triangle> input;
     for (const auto& f : s.faces) input.insert(canonical(f));
     for (const auto& [face, count] : oriented)
@@ -140,8 +144,10 @@ Fill fill_and_check(const Surface& s, const SizeField* field)
         REQUIRE(count == 1);  // the same face twice the same way: overlapping tets
         const Triangle reverse = canonical({face[0], face[2], face[1]});
         const bool interior = oriented.count(reverse) > 0;
-        if (!interior) REQUIRE(input.count(face) == 1);
-        else REQUIRE(input.count(face) == 0);
+        if (!interior)
+            REQUIRE(input.count(face) == 1);
+        else
+            REQUIRE(input.count(face) == 0);
     }
     for (const auto& f : input) REQUIRE(oriented.count(f) == 1);
 

@@ -27,11 +27,11 @@ constexpr double kTwoThirdsRoot = 0.816496580927726;  // sqrt(2/3): a regular te
 constexpr double kMinSizeFactor = 0.6;                // d never below this times the face's edge
 constexpr double kMaxSizeFactor = 1.6;                // ... nor above this
 constexpr double kPreferExisting = 0.8;  // an existing vertex wins at this fraction of P*'s Qe
-constexpr double kSearchRadius = 1.0;    // vertex candidates within this times d of P* ...
+constexpr double kSearchRadius = 0.7;    // vertex candidates within this times d of P* ...
 constexpr double kRadiusGrowth = 0.5;    // ... plus this times d per failure
 constexpr double kVolumeFloor = 1e-6;    // 6 V >= this times the face's mean edge cubed
 constexpr int kExtraAttempts = 2;        // attempts at the last floor before a face is stuck
-constexpr double kGridCellFactor = 1.0;  // grid cell = this times the typical size
+constexpr double kGridCellFactor = 1.5;  // grid cell = this times the typical size
 constexpr int kBruteForceFaces = 256;    // a front this small is searched in one cell
 
 struct Box
@@ -78,7 +78,8 @@ private:
     void compute_components();
     bool advance();  // true when the front is empty
     bool attempt(int face);
-    void gather(int face, const Box& region);
+    void gather_vertices(const Box& region);
+    void gather_faces(int face, const Box& region);
     bool valid_tet(int face, int p, bool is_new);
     void commit(int face, int p);
     void add_face(const Triangle& t);
@@ -108,8 +109,8 @@ private:
     // scratch of one attempt, reused so the inner loop does not allocate
     std::vector<int> local_vertices_;
     std::vector<int> local_faces_;
-    std::vector<int> face_stamp_;
-    int stamp_ = 0;
+    std::vector<Box> local_face_boxes_;
+    std::vector<Box> face_boxes_;  // per front slot
     struct Candidate
     {
         double quality;
@@ -214,7 +215,6 @@ bool FrontMesher::setup(std::string& failure)
     component_.assign(num_input_vertices_, 0);
     layer_.assign(num_input_vertices_, 0);
     in_grid_.assign(num_input_vertices_, 0);
-    face_stamp_.assign(front_.vertices.size(), 0);
 
     // Budget: enough iterations for every tet the sizes can ask for, many times over.
     Vec3 lo = points_[0], hi = points_[0];
@@ -268,6 +268,7 @@ void FrontMesher::build_grid()
     const long max_cells = use_grid_ ? 8L * front_.alive_count + 4096 : 1;
     grid_.init(lo, hi, kGridCellFactor * typical, max_cells);
     std::fill(in_grid_.begin(), in_grid_.end(), 0);
+    face_boxes_.resize(front_.vertices.size());
     for (int v = 0; v < static_cast<int>(points_.size()); ++v)
         if (front_.valence[v] > 0)
         {
@@ -278,7 +279,7 @@ void FrontMesher::build_grid()
         if (front_.alive[f])
         {
             const Triangle& t = front_.vertices[f];
-            const Box b = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
+            const Box& b = face_boxes_[f] = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
             grid_.add_face(f, front_.serial[f], b.lo, b.hi);
         }
 }
@@ -320,24 +321,13 @@ void FrontMesher::compute_components()
     for (int v = 0; v < n; ++v) component_[v] = negative ? 0 : root(v);
 }
 
-void FrontMesher::gather(int face, const Box& region)
+void FrontMesher::gather_vertices(const Box& region)
 {
     local_vertices_.clear();
-    local_faces_.clear();
-    if (++stamp_ == std::numeric_limits<int>::max())
-    {
-        std::fill(face_stamp_.begin(), face_stamp_.end(), 0);
-        stamp_ = 1;
-    }
-    if (face_stamp_.size() < front_.vertices.size()) face_stamp_.resize(front_.vertices.size(), 0);
-    face_stamp_[face] = stamp_;
     auto vertex_live = [&](int v) {
         if (front_.valence[v] > 0) return true;
         in_grid_[v] = 0;
         return false;
-    };
-    auto face_live = [&](int f, int serial) {
-        return front_.alive[f] && front_.serial[f] == serial;
     };
     auto on_vertex = [&](int v) {
         const Vec3& p = points_[v];
@@ -345,12 +335,22 @@ void FrontMesher::gather(int face, const Box& region)
             p[1] <= region.hi[1] && p[2] >= region.lo[2] && p[2] <= region.hi[2])
             local_vertices_.push_back(v);
     };
-    auto on_face = [&](int f) {
-        if (face_stamp_[f] == stamp_) return;
-        face_stamp_[f] = stamp_;
-        local_faces_.push_back(f);
+    grid_.query_vertices(region.lo, region.hi, vertex_live, on_vertex);
+}
+
+void FrontMesher::gather_faces(int face, const Box& region)
+{
+    local_faces_.clear();
+    local_face_boxes_.clear();
+    auto face_live = [&](int f, int serial) {
+        return front_.alive[f] && front_.serial[f] == serial;
     };
-    grid_.query(region.lo, region.hi, vertex_live, face_live, on_vertex, on_face);
+    auto on_face = [&](int f) {
+        if (f == face || !face_boxes_[f].overlaps(region)) return;
+        local_faces_.push_back(f);
+        local_face_boxes_.push_back(face_boxes_[f]);
+    };
+    grid_.query_faces(region.lo, region.hi, face_live, on_face);
 }
 
 bool FrontMesher::valid_tet(int face, int p, bool is_new)
@@ -387,12 +387,12 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
         return surely_positive(origin[i], normal[i], scale[i], points_[v]);
     };
 
-    for (int f : local_faces_)
+    for (std::size_t i_face = 0; i_face < local_faces_.size(); ++i_face)
     {
+        const int f = local_faces_[i_face];
         if (f == face) continue;
         const Triangle& t = front_.vertices[f];
-        const Vec3 &X = points_[t[0]], &Y = points_[t[1]], &Z = points_[t[2]];
-        if (!tet_box.overlaps(box_of(X, Y, Z))) continue;
+        if (!tet_box.overlaps(local_face_boxes_[i_face])) continue;
         int shared_mask = 0, shared = 0;
         for (int k = 0; k < 3; ++k)
             for (int j = 0; j < 4; ++j)
@@ -443,14 +443,14 @@ void FrontMesher::add_face(const Triangle& t)
     const int lowest = std::min({layer_[t[0]], layer_[t[1]], layer_[t[2]]});
     for (int v : t) layer_[v] = std::min(layer_[v], lowest + 1);
     const int id = front_.add(t, lowest, face_size(t));
-    if (face_stamp_.size() < front_.vertices.size()) face_stamp_.resize(front_.vertices.size(), 0);
     for (int v : t)
         if (!in_grid_[v])
         {
             grid_.add_vertex(v, points_[v]);
             in_grid_[v] = 1;
         }
-    const Box b = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
+    if (face_boxes_.size() < front_.vertices.size()) face_boxes_.resize(front_.vertices.size());
+    const Box& b = face_boxes_[id] = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
     grid_.add_face(id, front_.serial[id], b.lo, b.hi);
     front_.push(id);
 }
@@ -500,7 +500,7 @@ bool FrontMesher::attempt(int face)
 
     Box region{A.cwiseMin(B).cwiseMin(C).cwiseMin(ideal - Vec3::Constant(radius)),
                A.cwiseMax(B).cwiseMax(C).cwiseMax(ideal + Vec3::Constant(radius))};
-    gather(face, region);
+    gather_vertices(region);
 
     candidates_.clear();
     auto quality_of = [&](const Vec3& P) {
@@ -556,6 +556,17 @@ bool FrontMesher::attempt(int face)
         if (x.vertex != y.vertex) return x.vertex < y.vertex;
         return x.slot < y.slot;
     });
+
+    if (candidates_.empty()) return false;
+    // the faces that may meet any candidate tet: those overlapping the union of their boxes
+    Box reach = box_of(A, B, C);
+    for (const Candidate& cand : candidates_)
+    {
+        const Vec3& P = cand.vertex >= 0 ? points_[cand.vertex] : new_positions_[cand.slot];
+        reach.lo = reach.lo.cwiseMin(P);
+        reach.hi = reach.hi.cwiseMax(P);
+    }
+    gather_faces(face, reach);
 
     for (const Candidate& cand : candidates_)
     {

@@ -249,8 +249,8 @@ struct Front
     }
 };
 
-/// A uniform grid over the domain's box: front vertices in the cell of their position, front
-/// faces in every cell their box overlaps. Entries are deleted lazily: a query drops those whose
+/// A uniform grid over the domain's box: front vertices and front faces (by their box's centre)
+/// in the cell they fall in. Entries are deleted lazily: a query drops those whose
 /// vertex left the front or whose face slot died or was reused.
 class BucketGrid
 {
@@ -275,33 +275,32 @@ public:
         const std::size_t n = static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2];
         vertex_cells_.assign(n, {});
         face_cells_.assign(n, {});
+        face_margin_ = 0;
     }
 
     void add_vertex(int v, const Vec3& p) { vertex_cells_[index(cell_of(p))].push_back(v); }
 
+    /// A face is listed once, in the cell of its box's centre; queries widen by the largest
+    /// half extent listed so far.
     void add_face(int f, int serial, const Vec3& lo, const Vec3& hi)
     {
-        const auto a = cell_of(lo), b = cell_of(hi);
-        for (int z = a[2]; z <= b[2]; ++z)
-            for (int y = a[1]; y <= b[1]; ++y)
-                for (int x = a[0]; x <= b[0]; ++x)
-                    face_cells_[index({x, y, z})].push_back({f, serial});
+        const Vec3 half = 0.5 * (hi - lo);
+        face_margin_ = std::max(face_margin_, half.maxCoeff());
+        face_cells_[index(cell_of(0.5 * (lo + hi)))].push_back({f, serial});
     }
 
-    /// Calls on_vertex(v) for the live vertices in the cells overlapping [lo, hi] (each once)
-    /// and on_face(f) for the live faces listed there (possibly several times: the caller
-    /// deduplicates). vertex_live(v) and face_live(f, serial) tell stale entries, removed here.
-    template <class VertexLive, class FaceLive, class OnVertex, class OnFace>
-    void query(const Vec3& lo, const Vec3& hi, VertexLive&& vertex_live, FaceLive&& face_live,
-               OnVertex&& on_vertex, OnFace&& on_face)
+    /// Calls on_vertex(v) for the live vertices in the cells overlapping [lo, hi].
+    /// vertex_live(v) tells stale entries, removed here.
+    template <class VertexLive, class OnVertex>
+    void query_vertices(const Vec3& lo, const Vec3& hi, VertexLive&& vertex_live,
+                        OnVertex&& on_vertex)
     {
         const auto a = cell_of(lo), b = cell_of(hi);
         for (int z = a[2]; z <= b[2]; ++z)
             for (int y = a[1]; y <= b[1]; ++y)
                 for (int x = a[0]; x <= b[0]; ++x)
                 {
-                    const std::size_t i = index({x, y, z});
-                    auto& vs = vertex_cells_[i];
+                    auto& vs = vertex_cells_[index({x, y, z})];
                     for (std::size_t k = 0; k < vs.size();)
                     {
                         if (!vertex_live(vs[k]))
@@ -313,7 +312,21 @@ public:
                         on_vertex(vs[k]);
                         ++k;
                     }
-                    auto& fs = face_cells_[i];
+                }
+    }
+
+    /// Calls on_face(f) once for every live face whose box may overlap [lo, hi].
+    /// face_live(f, serial) tells stale entries, removed here.
+    template <class FaceLive, class OnFace>
+    void query_faces(const Vec3& lo, const Vec3& hi, FaceLive&& face_live, OnFace&& on_face)
+    {
+        const Vec3 margin = Vec3::Constant(face_margin_);
+        const auto a = cell_of(lo - margin), b = cell_of(hi + margin);
+        for (int z = a[2]; z <= b[2]; ++z)
+            for (int y = a[1]; y <= b[1]; ++y)
+                for (int x = a[0]; x <= b[0]; ++x)
+                {
+                    auto& fs = face_cells_[index({x, y, z})];
                     for (std::size_t k = 0; k < fs.size();)
                     {
                         if (!face_live(fs[k].face, fs[k].serial))
@@ -364,6 +377,7 @@ private:
 
     Vec3 origin_ = Vec3::Zero();
     double inverse_cell_ = 1.0;
+    double face_margin_ = 0;
     std::array<int, 3> dims_{1, 1, 1};
     std::vector<std::vector<int>> vertex_cells_;
     std::vector<std::vector<FaceEntry>> face_cells_;
