@@ -263,7 +263,7 @@ int main(int argc, char** argv)
             inputs.push_back(s);
         }
         inputs.push_back(icosphere_surface(4));
-        inputs.push_back(box_with_void(8, 3));
+        inputs.push_back(box_with_void(12, 2));
         for (const char* name : {"fandisk", "spot", "rocker-arm", "cheburashka", "stanford-bunny"})
         {
             const std::string path = std::string(HDIMESH_DATA_DIR) + "/" + name + ".obj";
@@ -281,7 +281,7 @@ int main(int argc, char** argv)
     std::printf("\nsweep: icospheres at h, h/2, h/4 (h = mean surface edge), AF only\n");
     std::printf("%-14s %8s %9s %8s %9s %10s %7s\n", "input", "faces", "tets", "AF s", "tets/s",
                 "us/tet", "B/tet");
-    for (int level = 4; level < 4 + sweep_levels; ++level)
+    for (int level = 3; level < 3 + sweep_levels; ++level)
     {
         const Row r = run(icosphere_surface(level), false, quiet);
         if (!r.ok)

@@ -10,6 +10,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "common/morton.h"
 #include "volume/cavity.h"
 #include "volume/detail/cavity_stages.h"
 #include "volume/detail/front.h"
@@ -86,6 +87,7 @@ private:
     int close_leftovers();
     bool retreat();
     float face_size(const Triangle& t) const;
+    std::uint64_t order_key(const Triangle& t) const;
 
     // input
     const std::vector<Vec3>& input_points_;
@@ -101,6 +103,9 @@ private:
     std::vector<int> layer_;      // per point: 0 on the input, a new point one above its base
     std::vector<std::uint8_t> in_grid_;
     std::vector<TetVertices> tets_;
+    Vec3 order_origin_ = Vec3::Zero();  // the input's box, for the Z-order keys
+    double order_inverse_extent_ = 1.0;
+    double order_scale_ = 1.0;
 
     Front front_;
     detail::BucketGrid grid_;
@@ -130,6 +135,24 @@ float FrontMesher::face_size(const Triangle& t) const
 {
     const Vec3 &a = points_[t[0]], &b = points_[t[1]], &c = points_[t[2]];
     return static_cast<float>(((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0);
+}
+
+/// Size class (a factor 2^(1/4) per class) above a 45-bit Z-order key of the centroid.
+std::uint64_t FrontMesher::order_key(const Triangle& t) const
+{
+    const Vec3 &a = points_[t[0]], &b = points_[t[1]], &c = points_[t[2]];
+    const double size = ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
+    const double size_class = std::floor(4.0 * std::log2(std::max(size, 1e-300) / order_scale_));
+    const std::uint64_t cls =
+        static_cast<std::uint64_t>(std::clamp(size_class + 2048.0, 0.0, 4095.0));
+    const Vec3 u = (((a + b + c) / 3.0 - order_origin_) * order_inverse_extent_)
+                       .cwiseMax(Vec3::Zero())
+                       .cwiseMin(Vec3::Constant(1.0));
+    constexpr double kCells = 32767.0;
+    const std::uint64_t z = morton_key(static_cast<std::uint64_t>(u[0] * kCells),
+                                       static_cast<std::uint64_t>(u[1] * kCells),
+                                       static_cast<std::uint64_t>(u[2] * kCells));
+    return cls << 45 | z;
 }
 
 bool FrontMesher::setup(std::string& failure)
@@ -199,6 +222,13 @@ bool FrontMesher::setup(std::string& failure)
         }
     }
 
+    {
+        Vec3 lo = points_[0], hi = points_[0];
+        for (const Vec3& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+        order_origin_ = lo;
+        order_inverse_extent_ = 1.0 / std::max((hi - lo).maxCoeff(), 1e-300);
+        order_scale_ = std::max((hi - lo).maxCoeff(), 1e-300);
+    }
     front_.valence.assign(num_input_vertices_, 0);
     front_.hash.reserve(input_faces_.size() * 2);
     for (std::size_t f = 0; f < input_faces_.size(); ++f)
@@ -210,7 +240,7 @@ bool FrontMesher::setup(std::string& failure)
             failure = "face " + std::to_string(f) + " is listed twice";
             return false;
         }
-        front_.add(inward, 0, face_size(inward));
+        front_.add(inward, 0, face_size(inward), order_key(inward));
     }
     component_.assign(num_input_vertices_, 0);
     layer_.assign(num_input_vertices_, 0);
@@ -442,7 +472,7 @@ void FrontMesher::add_face(const Triangle& t)
 {
     const int lowest = std::min({layer_[t[0]], layer_[t[1]], layer_[t[2]]});
     for (int v : t) layer_[v] = std::min(layer_[v], lowest + 1);
-    const int id = front_.add(t, lowest, face_size(t));
+    const int id = front_.add(t, lowest, face_size(t), order_key(t));
     for (int v : t)
         if (!in_grid_[v])
         {
@@ -680,17 +710,15 @@ int FrontMesher::close_leftovers()
         CavityFill fill;
         if (!detail::fill_small_cavity(group_points, outward, cavity_options, fill)) continue;
         // The group is closed, but another part of the front might lie inside it; and a tet
-        // flat in doubles would fail the checker's volume test.
+        // flat in doubles would fail the checker's volume test (a sliver is kept: a flat pocket
+        // has no other fill, the optimizer takes it apart).
         const int m = static_cast<int>(group_vertices.size());
         std::vector<Vec3> fill_points = group_points;
         fill_points.insert(fill_points.end(), fill.new_points.begin(), fill.new_points.end());
-        double edge_sum = 0;
-        for (int f : group_faces) edge_sum += front_.size[f];
-        const double edge = edge_sum / group_faces.size();
         bool clear = true;
         for (const TetVertices& t : fill.tets)
-            if (signed_volume6(fill_points[t[0]], fill_points[t[1]], fill_points[t[2]],
-                               fill_points[t[3]]) <= kVolumeFloor * edge * edge * edge)
+            if (!(signed_volume(fill_points[t[0]], fill_points[t[1]], fill_points[t[2]],
+                                fill_points[t[3]]) > 0))
                 clear = false;
         for (int v = 0; v < n && clear; ++v)
         {
@@ -762,7 +790,7 @@ bool FrontMesher::retreat()
                 const Triangle inward{outward[0], outward[2], outward[1]};
                 const int lowest =
                     std::min({layer_[inward[0]], layer_[inward[1]], layer_[inward[2]]});
-                front_.add(inward, lowest, face_size(inward));
+                front_.add(inward, lowest, face_size(inward), order_key(inward));
             }
         }
     // every surviving face starts over: heap, grid and components rebuilt from the front

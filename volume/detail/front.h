@@ -130,12 +130,14 @@ private:
 };
 
 /// The order of base faces: fewest failures first, then the oldest generation, then the
-/// smallest, then the smaller id (determinism). `version` tells a stale entry (lazy deletion).
+/// smallest (by size classes a factor 2^(1/4) wide, in Z-order inside a class, so that
+/// consecutive faces are near each other), then the smaller id (determinism). `version` tells
+/// a stale entry (lazy deletion).
 struct HeapEntry
 {
     int fail;
     int generation;
-    float size;
+    std::uint64_t order;
     int face;
     int version;
 };
@@ -147,7 +149,7 @@ struct TakenLater
     {
         if (x.fail != y.fail) return x.fail > y.fail;
         if (x.generation != y.generation) return x.generation > y.generation;
-        if (x.size != y.size) return x.size > y.size;
+        if (x.order != y.order) return x.order > y.order;
         return x.face > y.face;
     }
 };
@@ -160,8 +162,9 @@ struct Front
     std::vector<int> fail;
     std::vector<int> generation;
     std::vector<float> size;
-    std::vector<int> serial;   ///< bumped when the slot is reused: tells stale grid entries
-    std::vector<int> version;  ///< bumped on each heap push: tells stale heap entries
+    std::vector<std::uint64_t> order;  ///< size class, then Z-order key
+    std::vector<int> serial;           ///< bumped when the slot is reused: tells stale grid entries
+    std::vector<int> version;          ///< bumped on each heap push: tells stale heap entries
     std::vector<std::uint8_t> alive;
     std::vector<int> free_ids;
     int alive_count = 0;
@@ -171,7 +174,7 @@ struct Front
 
     int find(const Triangle& t) const { return hash.find(sorted_triple(t)); }
 
-    int add(const Triangle& t, int gen, float face_size)
+    int add(const Triangle& t, int gen, float face_size, std::uint64_t order_key)
     {
         int id;
         if (!free_ids.empty())
@@ -182,6 +185,7 @@ struct Front
             fail[id] = 0;
             generation[id] = gen;
             size[id] = face_size;
+            order[id] = order_key;
             ++serial[id];
             alive[id] = 1;
         }
@@ -192,6 +196,7 @@ struct Front
             fail.push_back(0);
             generation.push_back(gen);
             size.push_back(face_size);
+            order.push_back(order_key);
             serial.push_back(0);
             version.push_back(0);
             alive.push_back(1);
@@ -215,7 +220,7 @@ struct Front
     void push(int id)
     {
         ++version[id];
-        heap.push_back({fail[id], generation[id], size[id], id, version[id]});
+        heap.push_back({fail[id], generation[id], order[id], id, version[id]});
         std::push_heap(heap.begin(), heap.end(), TakenLater());
     }
 
@@ -244,8 +249,8 @@ struct Front
                (fail.capacity() + generation.capacity() + serial.capacity() + version.capacity() +
                 free_ids.capacity() + valence.capacity()) *
                    sizeof(int) +
-               size.capacity() * sizeof(float) + alive.capacity() + hash.memory_bytes() +
-               heap.capacity() * sizeof(HeapEntry);
+               size.capacity() * sizeof(float) + order.capacity() * sizeof(std::uint64_t) +
+               alive.capacity() + hash.memory_bytes() + heap.capacity() * sizeof(HeapEntry);
     }
 };
 
