@@ -31,6 +31,7 @@ constexpr double kPreferExisting = 0.8;  // an existing vertex wins at this frac
 constexpr double kSearchRadius = 0.7;    // vertex candidates within this times d of P* ...
 constexpr double kRadiusGrowth = 0.5;    // ... plus this times d per failure
 constexpr double kVolumeFloor = 1e-6;    // 6 V >= this times the face's mean edge cubed
+constexpr double kCrowdingRelax = 0.8;   // the new-point distance shrinks so per failure
 constexpr int kExtraAttempts = 2;        // attempts at the last floor before a face is stuck
 constexpr double kGridCellFactor = 1.5;  // grid cell = this times the typical size
 constexpr int kBruteForceFaces = 256;    // a front this small is searched in one cell
@@ -547,8 +548,9 @@ bool FrontMesher::attempt(int face)
         if (q > 0 && q >= floor) candidates_.push_back({q, v, 0});
     }
     // New points: P* and P* pulled back to 0.7 and 0.5 of its height, each dropped when a front
-    // vertex is closer than min_point_distance * d (that vertex is a candidate already).
-    const double too_close = options_.min_point_distance * d;
+    // vertex is closer than min_point_distance * d (that vertex is a candidate already); the
+    // distance relaxes with the failures, as the quality floor does.
+    const double too_close = options_.min_point_distance * d * std::pow(kCrowdingRelax, fail);
     double ideal_quality = 0, best_new = 0;  // P*'s, and the best new point's
     const std::array<double, 3> pull{1.0, 0.7, 0.5};
     for (int k = 0; k < 3; ++k)
