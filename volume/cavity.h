@@ -55,6 +55,9 @@ struct CavityOptions
     int max_exhaustive_points = 32;
     /// Stage 3: search nodes at most (a node = one tet tried on one face).
     long exhaustive_node_budget = 20000;
+    /// Stage 3 when stage 1 or 2 already filled the cavity below accept_quality: the search
+    /// only looks for a better fill, with at most this many nodes.
+    long improve_node_budget = 2000;
     /// Stage 4 (cavities with more faces than stage 3 takes, or when 1-3 failed).
     AdvancingFrontOptions front;
     /// Stage 5 (refill_tets only): layers of interior tets added at most.

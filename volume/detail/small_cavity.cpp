@@ -1,5 +1,7 @@
 // The cascade's stages 1-3 on one small closed group of faces, the best fill kept.
 
+#include <algorithm>
+
 #include "volume/detail/cavity_stages.h"
 #include "volume/detail/kernel.h"
 
@@ -45,9 +47,15 @@ bool fill_small_cavity(const std::vector<Vec3>& points, const std::vector<Triang
     }
     if (!good_enough())
     {
+        // with a fill in hand the search only improves it: a smaller budget, since proving
+        // a many-point polyhedron's optimum would spend the whole budget on most cavities
+        CavityOptions search_options = options;
+        if (best.filled)
+            search_options.exhaustive_node_budget =
+                std::min(options.exhaustive_node_budget, options.improve_node_budget);
         CavityFill exhaustive;
-        if (fill_exhaustive_above(points, faces, options, best.filled ? best.worst_quality : 0.0,
-                                  exhaustive))
+        if (fill_exhaustive_above(points, faces, search_options,
+                                  best.filled ? best.worst_quality : 0.0, exhaustive))
             keep_better(exhaustive);
     }
     if (!best.filled) return false;
