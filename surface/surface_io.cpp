@@ -400,22 +400,25 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
     return mesh;
 }
 
-SurfaceMesh read_surface(const std::string& path, ReadReport* report)
+TriangleSoup read_triangle_soup(const std::string& path)
 {
     const std::string ext = lower_extension(path);
-    TriangleSoup soup;
-    if (ext == "obj")
-        soup = read_obj(path);
-    else if (ext == "off")
-        soup = read_off(path);
-    else if (ext == "mesh")
-        soup = read_medit(path);
-    else if (ext == "stl" || ext == "ply")
-        soup = read_with_openmesh(path);
-    else
-        throw InputError(path + ": unknown surface format '" + ext +
-                         "' (obj, off, stl, ply, mesh)");
-    return build_surface(std::move(soup), path, report);
+    if (ext == "obj") return read_obj(path);
+    if (ext == "off") return read_off(path);
+    if (ext == "mesh") return read_medit(path);
+    if (ext == "stl" || ext == "ply") return read_with_openmesh(path);
+    throw InputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
+}
+
+bool is_surface_path(const std::string& path)
+{
+    const std::string ext = lower_extension(path);
+    return ext == "obj" || ext == "off" || ext == "mesh" || ext == "stl" || ext == "ply";
+}
+
+SurfaceMesh read_surface(const std::string& path, ReadReport* report)
+{
+    return build_surface(read_triangle_soup(path), path, report);
 }
 
 namespace
