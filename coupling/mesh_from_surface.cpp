@@ -331,8 +331,15 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
     {
         const StageTimer timer(report.seconds_check, report.cpu_seconds_check);
         if (!options.keep_surface)
-            volume::require_closed_surface(boundary.points, boundary.triangles,
-                                           source + " (remeshed)", options.check);
+        {
+            const auto defects =
+                volume::check_closed_surface(boundary.points, boundary.triangles, options.check);
+            if (!defects.empty())
+                throw InputError(
+                    volume::format_surface_defects(defects, source + " remeshed") +
+                    "\n(the surface remeshed to this size cannot bound a volume: try a smaller "
+                    "size, or keep the input surface with --keep-surface)");
+        }
         regions = volume::find_surface_regions(boundary.points, boundary.triangles);
     }
 
