@@ -6,6 +6,7 @@
 // round-off. Tolerances are for quality and size only, never here.
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "volume/geometry.h"
@@ -13,13 +14,69 @@
 namespace hdimesh::volume
 {
 
+namespace detail
+{
+/// The exact stages, out of line: called only when the filter below cannot decide.
+int orient3d_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+int orient2d_exact(const Vec3& a, const Vec3& b, const Vec3& c, int drop);
+
+// Shewchuk's static relative error bounds for the rounded determinant (epsilon = 2^-53).
+constexpr double kRoundoff = 1.1102230246251565e-16;
+constexpr double kOrient3dBound = (7.0 + 56.0 * kRoundoff) * kRoundoff;
+constexpr double kOrient2dBound = (3.0 + 16.0 * kRoundoff) * kRoundoff;
+}  // namespace detail
+
 /// Sign of det(b-a, c-a, d-a), exactly: +1 when d lies on the side of plane abc that makes
 /// (a, b, c, d) a positive tet (volume/geometry.h signed_volume6), -1 on the other, 0 coplanar.
-int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+/// Exact for finite coordinates whose products neither overflow nor underflow.
+inline int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+    const double bax = b.x() - a.x(), bay = b.y() - a.y(), baz = b.z() - a.z();
+    const double cax = c.x() - a.x(), cay = c.y() - a.y(), caz = c.z() - a.z();
+    const double dax = d.x() - a.x(), day = d.y() - a.y(), daz = d.z() - a.z();
+    const double cay_daz = cay * daz, caz_day = caz * day;
+    const double caz_dax = caz * dax, cax_daz = cax * daz;
+    const double cax_day = cax * day, cay_dax = cay * dax;
+    const double det =
+        bax * (cay_daz - caz_day) + bay * (caz_dax - cax_daz) + baz * (cax_day - cay_dax);
+    // Semi-static filter: the bound scales with the permanent, so it holds at every scale.
+    const double permanent = (std::abs(cay_daz) + std::abs(caz_day)) * std::abs(bax) +
+                             (std::abs(caz_dax) + std::abs(cax_daz)) * std::abs(bay) +
+                             (std::abs(cax_day) + std::abs(cay_dax)) * std::abs(baz);
+    const double bound = detail::kOrient3dBound * permanent;
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return detail::orient3d_exact(a, b, c, d);
+}
 
 /// Sign of the 2-D orientation of (a, b, c) projected on the coordinate plane that drops axis
-/// `drop` (0, 1 or 2), exactly: +1 counter-clockwise in the (axis+1, axis+2) frame.
-int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int drop);
+/// `drop` (0, 1 or 2), exactly: +1 counter-clockwise in the (axis+1, axis+2) frame, i.e. the
+/// sign of component `drop` of (b-a) x (c-a).
+inline int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int drop)
+{
+    const int u = drop == 2 ? 0 : drop + 1;
+    const int v = drop == 0 ? 2 : drop - 1;
+    const double left = (b[u] - a[u]) * (c[v] - a[v]);
+    const double right = (b[v] - a[v]) * (c[u] - a[u]);
+    const double det = left - right;
+    // Rounding keeps signs, so products of opposite signs (or a zero) already decide.
+    if (left > 0.0)
+    {
+        if (right <= 0.0) return 1;
+    }
+    else if (left < 0.0)
+    {
+        if (right >= 0.0) return -1;
+    }
+    else
+    {
+        return right > 0.0 ? -1 : (right < 0.0 ? 1 : 0);
+    }
+    const double bound = detail::kOrient2dBound * (std::abs(left) + std::abs(right));
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return detail::orient2d_exact(a, b, c, drop);
+}
 
 /// The intersection tests below take vertex ids into `points`, so that shared vertices are
 /// known exactly. Two simplices sharing vertices "intersect" when they have a common point
