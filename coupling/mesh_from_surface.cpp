@@ -3,18 +3,19 @@
 #include "coupling/mesh_from_surface.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <sstream>
 
 #include "common/errors.h"
+#include "common/size_quality.h"
 #include "common/stage_timer.h"
 #include "surface/features.h"
 #include "surface/sizing.h"
 #include "surface/surface_model.h"
 #include "volume/check.h"
-#include "volume/optimize.h"
 #include "volume/size_fields.h"
 #include "volume/surface_regions.h"
 
@@ -49,6 +50,38 @@ public:
 private:
     surface::SurfaceModel model_;
     std::vector<double> sizes_;
+};
+
+/// The field, except that every edge of the boundary is never too long: refinement (which
+/// measures an edge at size_at_midpoint) then splits interior edges only, and the boundary
+/// stays the given triangles. An interior edge never has a boundary edge's midpoint.
+class InteriorOnlySize : public SizeField
+{
+public:
+    InteriorOnlySize(std::shared_ptr<const SizeField> field, const TetMesh& mesh)
+        : field_(std::move(field))
+    {
+        for (const auto& t : mesh.triangles)
+            for (int k = 0; k < 3; ++k)
+                size_at_midpoint(
+                    [&](const Vec3& p) {
+                        midpoints_.push_back({p[0], p[1], p[2]});
+                        return 0.0;
+                    },
+                    mesh.points[t[k]], mesh.points[t[(k + 1) % 3]]);
+        std::sort(midpoints_.begin(), midpoints_.end());
+    }
+    double size(const Vec3& p) const override
+    {
+        if (std::binary_search(midpoints_.begin(), midpoints_.end(),
+                               std::array<double, 3>{p[0], p[1], p[2]}))
+            return std::numeric_limits<double>::max();
+        return field_->size(p);
+    }
+
+private:
+    std::shared_ptr<const SizeField> field_;
+    std::vector<std::array<double, 3>> midpoints_;
 };
 
 /// The validated surface, compact: only the points the triangles use, renumbered in order.
@@ -388,17 +421,18 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
 
     {
         const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-        if (options.keep_surface)
-        {
-            if (options.optimize)
-                volume::optimize_mesh(mesh, *report.field, options.adapt.optimizer);
-        }
-        else if (options.refine || options.optimize)
+        if (options.refine || options.optimize)
         {
             AdaptOptions adapt_options = options.adapt;
             adapt_options.refine = options.refine;
             adapt_options.optimize = options.optimize;
-            report.adapt = adapt(mesh, *report.field, adapt_options);
+            std::shared_ptr<const SizeField> field = report.field;
+            if (options.keep_surface)
+            {
+                adapt_options.project = false;
+                field = std::make_shared<InteriorOnlySize>(field, mesh);
+            }
+            report.adapt = adapt(mesh, *field, adapt_options);
         }
         if (!mesh.has_adjacency()) mesh.build_adjacency();
     }

@@ -9,8 +9,9 @@
 //                                          keep_surface: the given triangles are the boundary,
 //                                          TetGen's -Y), then validated again
 //   fill       volume/cavity.h             one fill_cavity call per region (outer shell + voids)
-//   optimize   keep_surface: optimize_mesh (the boundary never moves); else coupling::adapt:
-//              too-long edges refined, new boundary points projected, optimized
+//   adapt      coupling::adapt: too-long edges refined, new boundary points projected onto the
+//              model, optimized; with keep_surface, interior edges only and no projection (the
+//              boundary never changes)
 //
 // The sizes: uniform (hsiz), curvature-adaptive on the surface (hausd), given at the input
 // points (vertex_sizes, a .sol) or any volume field. A size known only on the surface is
@@ -58,8 +59,8 @@ struct VolumeFromSurfaceOptions
     surface::SurfaceRemeshSettings remesh;
     volume::SurfaceCheckOptions check;
     volume::CavityOptions fill;
-    /// After the fill: split too-long edges and project (coupling::adapt), and optimize.
-    /// keep_surface never refines (it would split boundary edges).
+    /// After the fill: split too-long edges (interior ones only with keep_surface), project
+    /// new boundary points, optimize (coupling::adapt).
     bool refine = true;
     bool optimize = true;
     /// The refinement and optimization settings (its refine / optimize flags are set from
