@@ -446,3 +446,531 @@ TEST_CASE("orient2d is exact on every dropped axis and agrees with orient3d")
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Intersection tests.
+
+namespace
+{
+
+using volume::point_in_tet;
+using volume::segment_triangle_intersect;
+using volume::tet_triangle_intersect;
+using volume::triangles_intersect;
+
+/// An independent exact reference on integer points: closed convex hulls A and B are disjoint
+/// exactly when some axis separates them strictly, and one always can be found among the
+/// differences of their points, the cross products of two such, and the cross products of
+/// such a cross product with a difference (facet normals of A - B, in-plane normals, and
+/// the perpendicular to a line).
+using IVec = std::array<__int128, 3>;
+
+IVec minus(const IVec& a, const IVec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+IVec cross(const IVec& a, const IVec& b)
+{
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+__int128 dot(const IVec& a, const IVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+bool separated_along(const IVec& axis, const std::vector<IVec>& a, const std::vector<IVec>& b)
+{
+    if (axis[0] == 0 && axis[1] == 0 && axis[2] == 0) return false;
+    __int128 min_a = dot(axis, a[0]), max_a = min_a, min_b = dot(axis, b[0]), max_b = min_b;
+    for (const IVec& p : a)
+        min_a = std::min(min_a, dot(axis, p)), max_a = std::max(max_a, dot(axis, p));
+    for (const IVec& p : b)
+        min_b = std::min(min_b, dot(axis, p)), max_b = std::max(max_b, dot(axis, p));
+    return max_a < min_b || max_b < min_a;
+}
+
+bool hulls_meet(const std::vector<IVec>& a, const std::vector<IVec>& b)
+{
+    std::vector<IVec> all = a;
+    all.insert(all.end(), b.begin(), b.end());
+    std::vector<IVec> differences;
+    for (std::size_t i = 0; i < all.size(); ++i)
+        for (std::size_t j = i + 1; j < all.size(); ++j)
+        {
+            const IVec d = minus(all[i], all[j]);
+            if (d[0] != 0 || d[1] != 0 || d[2] != 0) differences.push_back(d);
+        }
+    for (const IVec& d : differences)
+        if (separated_along(d, a, b)) return false;
+    for (std::size_t i = 0; i < differences.size(); ++i)
+        for (std::size_t j = i + 1; j < differences.size(); ++j)
+        {
+            const IVec n = cross(differences[i], differences[j]);
+            if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+            if (separated_along(n, a, b)) return false;
+            for (const IVec& d : differences)
+                if (separated_along(cross(n, d), a, b)) return false;
+        }
+    return true;
+}
+
+bool affinely_independent(const std::vector<Vec3>& points, const std::vector<int>& ids)
+{
+    const Vec3& o = points[ids[0]];
+    if (ids.size() == 2) return !(points[ids[1]] == o);
+    const Vec3 n = (points[ids[1]] - o).cross(points[ids[2]] - o);  // exact on small integers
+    if (ids.size() == 3) return !n.isZero(0.0);
+    return n.dot(points[ids[3]] - o) != 0.0;
+}
+
+/// Simplices s and t (ids into integer points) meet outside the hull K of their shared ids.
+/// With K empty that is hulls_meet. Otherwise the points of s beyond K are those with weight
+/// w > 0 on its other vertices; by convexity they meet t exactly when the slice of s at a
+/// small w does, and w = 2^-20 is below every positive optimum of that linear program on
+/// coordinates in {0..3}. The slice needs s non-flat; the relation is symmetric, so either
+/// simplex may be sliced. Returns -1 when both are flat and share vertices.
+int reference_intersect(const std::vector<Vec3>& points, std::vector<int> s, std::vector<int> t)
+{
+    const __int128 scale = 1 << 20;
+    auto scaled = [&](int id, __int128 factor) {
+        return IVec{static_cast<__int128>(points[id].x()) * factor,
+                    static_cast<__int128>(points[id].y()) * factor,
+                    static_cast<__int128>(points[id].z()) * factor};
+    };
+    std::vector<int> shared;
+    for (int id : s)
+        if (std::find(t.begin(), t.end(), id) != t.end()) shared.push_back(id);
+    if (shared.empty())
+    {
+        std::vector<IVec> a, b;
+        for (int id : s) a.push_back(scaled(id, 1));
+        for (int id : t) b.push_back(scaled(id, 1));
+        return hulls_meet(a, b);
+    }
+    if (!affinely_independent(points, s)) std::swap(s, t);
+    if (!affinely_independent(points, s)) return -1;
+    std::vector<IVec> slice, other;
+    for (int k : shared)
+        for (int v : s)
+            if (std::find(shared.begin(), shared.end(), v) == shared.end())
+            {
+                const IVec kk = scaled(k, scale - 1), vv = scaled(v, 1);
+                slice.push_back({kk[0] + vv[0], kk[1] + vv[1], kk[2] + vv[2]});
+            }
+    if (slice.empty()) return 0;  // s is the shared simplex itself
+    for (int id : t) other.push_back(scaled(id, scale));
+    return hulls_meet(slice, other);
+}
+
+std::vector<Vec3> points_of(std::initializer_list<Vec3> list) { return std::vector<Vec3>(list); }
+
+}  // namespace
+
+TEST_CASE("segment_triangle_intersect: every configuration")
+{
+    // Triangle 0 1 2 in the plane z = 0; segment ends are added per case.
+    //
+    //   y
+    //   2
+    //   |\          .
+    //   | \         .
+    //   0--1  x
+    std::vector<Vec3> p = points_of({{0, 0, 0}, {4, 0, 0}, {0, 4, 0}});
+    auto with = [&p](Vec3 a, Vec3 b) {
+        p.resize(3);
+        p.push_back(a);
+        p.push_back(b);
+        return std::array<int, 2>{3, 4};
+    };
+    const std::array<int, 3> tri = {0, 1, 2};
+    SUBCASE("disjoint: above the plane")
+    {
+        CHECK_FALSE(segment_triangle_intersect(p, with({1, 1, 1}, {2, 1, 3}), tri));
+    }
+    SUBCASE("disjoint: crosses the plane outside the triangle")
+    {
+        CHECK_FALSE(segment_triangle_intersect(p, with({3, 3, -1}, {3, 3, 1}), tri));
+    }
+    SUBCASE("crossing the interior")
+    {
+        CHECK(segment_triangle_intersect(p, with({1, 1, -1}, {1, 1, 1}), tri));
+    }
+    SUBCASE("touching: an end on the interior, on an edge, at a vertex")
+    {
+        CHECK(segment_triangle_intersect(p, with({1, 1, 0}, {1, 1, 2}), tri));
+        CHECK(segment_triangle_intersect(p, with({2, 0, 0}, {2, 1, 2}), tri));
+        CHECK(segment_triangle_intersect(p, with({-1, 0, -1}, {1, 0, 1}), tri));  // through 0
+        CHECK(segment_triangle_intersect(p, with({4, 0, 0}, {5, 5, 5}), tri));    // at vertex 1
+    }
+    SUBCASE("touching: crossing an edge's line just at the edge")
+    {
+        CHECK(segment_triangle_intersect(p, with({2, 2, -1}, {2, 2, 1}), tri));  // on edge 12
+        CHECK_FALSE(segment_triangle_intersect(
+            p, with({2, 2.0000000000000004, -1}, {2, 2.0000000000000004, 1}),
+            tri));  // one ulp outside
+    }
+    SUBCASE("coplanar: crossing, inside, touching a vertex, apart")
+    {
+        CHECK(segment_triangle_intersect(p, with({-1, 1, 0}, {5, 1, 0}), tri));
+        CHECK(segment_triangle_intersect(p, with({1, 1, 0}, {1, 2, 0}), tri));
+        CHECK(segment_triangle_intersect(p, with({4, 0, 0}, {6, 1, 0}), tri));
+        CHECK(segment_triangle_intersect(p, with({-2, 2, 0}, {2, -2, 0}), tri));  // through 0
+        CHECK_FALSE(segment_triangle_intersect(p, with({3, 3, 0}, {5, 1, 0}), tri));
+        CHECK_FALSE(segment_triangle_intersect(p, with({-1, -1, 0}, {-1, 5, 0}), tri));
+    }
+    SUBCASE("coplanar and collinear with an edge: overlapping, touching, apart")
+    {
+        CHECK(segment_triangle_intersect(p, with({-1, 0, 0}, {1, 0, 0}), tri));
+        CHECK(segment_triangle_intersect(p, with({4, 0, 0}, {6, 0, 0}), tri));
+        CHECK_FALSE(segment_triangle_intersect(p, with({5, 0, 0}, {6, 0, 0}), tri));
+    }
+    SUBCASE("a zero-length segment is a point")
+    {
+        CHECK(segment_triangle_intersect(p, with({1, 1, 0}, {1, 1, 0}), tri));
+        CHECK_FALSE(segment_triangle_intersect(p, with({1, 1, 1}, {1, 1, 1}), tri));
+        CHECK_FALSE(segment_triangle_intersect(p, with({3, 3, 0}, {3, 3, 0}), tri));
+    }
+    SUBCASE("an edge of the triangle itself does not intersect it")
+    {
+        CHECK_FALSE(segment_triangle_intersect(p, {0, 1}, tri));
+        CHECK_FALSE(segment_triangle_intersect(p, {2, 1}, tri));
+    }
+    SUBCASE("shared vertex 0: only a direction into the triangle's wedge intersects")
+    {
+        //   2
+        //   |\   3 = (1,1,0) in the wedge; (1,1,1) off the plane; (-1,1,0) outside it;
+        //   0--1     (2,0,0) along edge 01; (-1,0,0) along it backwards
+        auto from0 = [&p](Vec3 x) {
+            p.resize(3);
+            p.push_back(x);
+            return std::array<int, 2>{0, 3};
+        };
+        CHECK(segment_triangle_intersect(p, from0({1, 1, 0}), tri));
+        CHECK(segment_triangle_intersect(p, from0({9, 9, 0}), tri));  // leaves it, still meets
+        CHECK(segment_triangle_intersect(p, from0({2, 0, 0}), tri));
+        CHECK(segment_triangle_intersect(p, from0({0, 7, 0}), tri));
+        CHECK_FALSE(segment_triangle_intersect(p, from0({1, 1, 1}), tri));
+        CHECK_FALSE(segment_triangle_intersect(p, from0({-1, 1, 0}), tri));
+        CHECK_FALSE(segment_triangle_intersect(p, from0({-1, 0, 0}), tri));
+        CHECK_FALSE(segment_triangle_intersect(p, from0({0, 0, 0}), tri));  // zero length at 0
+        const std::array<int, 2> forward = from0({1, 2, 0}), backward = {3, 0};
+        CHECK(segment_triangle_intersect(p, backward, tri));
+        CHECK(segment_triangle_intersect(p, forward, {2, 0, 1}));
+    }
+    SUBCASE("a flat triangle is its longest edge")
+    {
+        //   0----3----1   triangle (0, 1, 3) collinear, crossed at (3,0,0) or missed
+        p = points_of({{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {2, 0, 0}, {3, -1, 0}, {3, 1, 0}});
+        CHECK(segment_triangle_intersect(p, {4, 5}, {0, 1, 3}));
+        CHECK(segment_triangle_intersect(p, {4, 5}, {0, 3, 1}));
+        p[4] = {5, -1, 0};
+        p[5] = {5, 1, 0};
+        CHECK_FALSE(segment_triangle_intersect(p, {4, 5}, {0, 1, 3}));
+        p[4] = {3, 0, -1};
+        p[5] = {3, 0, 1};
+        CHECK(segment_triangle_intersect(p, {4, 5}, {0, 1, 3}));
+        // Sharing the middle vertex 3: a segment from 3 along the line overlaps the flat
+        // triangle beyond 3 whichever way it goes; off the line it only touches at 3.
+        CHECK_FALSE(segment_triangle_intersect(p, {3, 1}, {0, 1, 3}));  // an edge (2 shared)
+        p[4] = {9, 0, 0};
+        p[5] = {-9, 0, 0};
+        CHECK(segment_triangle_intersect(p, {3, 4}, {0, 1, 3}));
+        CHECK(segment_triangle_intersect(p, {3, 5}, {0, 1, 3}));
+        p[5] = {3, 0, 1};
+        CHECK_FALSE(segment_triangle_intersect(p, {3, 5}, {0, 1, 3}));
+    }
+}
+
+TEST_CASE("triangles_intersect: every configuration")
+{
+    // Base triangle A = 0 1 2 in z = 0; B's vertices are 3 4 5 unless it shares some.
+    //   2
+    //   |\        .
+    //   0--1
+    std::vector<Vec3> p;
+    auto setup = [&p](std::initializer_list<Vec3> extra) {
+        p = points_of({{0, 0, 0}, {4, 0, 0}, {0, 4, 0}});
+        p.insert(p.end(), extra.begin(), extra.end());
+    };
+    const std::array<int, 3> a = {0, 1, 2}, b = {3, 4, 5};
+    auto both_ways = [&p](const std::array<int, 3>& s, const std::array<int, 3>& t) {
+        const bool result = triangles_intersect(p, s, t);
+        CHECK(triangles_intersect(p, t, s) == result);
+        CHECK(triangles_intersect(p, {s[1], s[2], s[0]}, {t[2], t[1], t[0]}) == result);
+        return result;
+    };
+    SUBCASE("disjoint: parallel planes, or crossing the plane outside")
+    {
+        setup({{0, 0, 1}, {4, 0, 1}, {0, 4, 1}});
+        CHECK_FALSE(both_ways(a, b));
+        setup({{3, 3, -1}, {5, 3, 1}, {3, 5, 1}});
+        CHECK_FALSE(both_ways(a, b));
+    }
+    SUBCASE("crossing: B pierces A's interior")
+    {
+        setup({{1, 1, -1}, {1, 1, 1}, {3, 3, 0.5}});
+        CHECK(both_ways(a, b));
+    }
+    SUBCASE("touching: a vertex of B on A's interior, on an edge; an edge of B across A's edge")
+    {
+        setup({{1, 1, 0}, {1, 1, 2}, {2, 1, 2}});
+        CHECK(both_ways(a, b));
+        setup({{2, 0, 0}, {2, 1, 2}, {3, 1, 2}});
+        CHECK(both_ways(a, b));
+        setup({{2, -1, 0}, {2, 1, 0}, {2, 0, 3}});  // B's edge crosses edge 01 in the plane
+        CHECK(both_ways(a, b));
+        setup({{2, -1, 0.5}, {2, 1, -0.5}, {2, -1, 3}});  // B's edge passes through (2,0,0)
+        CHECK(both_ways(a, b));
+    }
+    SUBCASE("coplanar: overlapping, one inside the other, apart, touching at a vertex")
+    {
+        setup({{1, 1, 0}, {5, 1, 0}, {1, 5, 0}});
+        CHECK(both_ways(a, b));
+        setup({{0.5, 0.5, 0}, {1, 0.5, 0}, {0.5, 1, 0}});
+        CHECK(both_ways(a, b));
+        setup({{3, 3, 0}, {5, 3, 0}, {3, 5, 0}});
+        CHECK_FALSE(both_ways(a, b));
+        setup({{4, 0, 0}, {6, 0, 0}, {6, 2, 0}});  // distinct ids at the same point
+        CHECK(both_ways(a, b));
+    }
+    SUBCASE("shared edge 01: folded, unfolded, coplanar on one side")
+    {
+        //   folded: 3 above the plane     unfolded: 3 = (2,-3,0)    same side: 3 = (1,1,0)
+        //
+        //     2                              2                         2
+        //     |\      3                      |\                        |\       .
+        //     0--1   (up)                    0--1                      0-3-1
+        //                                     \/                         overlap
+        //                                     3
+        setup({{2, 1, 3}});
+        CHECK_FALSE(both_ways(a, {0, 1, 3}));
+        setup({{2, -3, 0}});
+        CHECK_FALSE(both_ways(a, {0, 1, 3}));
+        setup({{1, 1, 0}});
+        CHECK(both_ways(a, {0, 1, 3}));
+        CHECK(both_ways(a, {1, 0, 3}));
+        setup({{9, 9, 0}});  // same side and larger than A
+        CHECK(both_ways(a, {0, 1, 3}));
+    }
+    SUBCASE("shared vertex 0: apart, the opposite edge piercing, coplanar wedges")
+    {
+        //   B = (0, 3, 4)
+        setup({{0, 0, 4}, {-4, 0, 4}});  // B stands on 0 outside A
+        CHECK_FALSE(both_ways(a, {0, 3, 4}));
+        setup({{1, 1, -3}, {1, 1, 3}});  // B's edge 34 pierces A
+        CHECK(both_ways(a, {0, 3, 4}));
+        setup({{4, 4, -3}, {4, 4, 3}});  // B contains the ray (1,1,0), which runs through A
+        CHECK(both_ways(a, {0, 3, 4}));
+        setup({{-1, 1, 0}, {-1, -1, 0}});  // coplanar, wedges apart
+        CHECK_FALSE(both_ways(a, {0, 3, 4}));
+        setup({{1, 3, 0}, {-4, 1, 0}});  // coplanar, wedges overlap
+        CHECK(both_ways(a, {0, 3, 4}));
+        setup({{0, 9, 0}, {-4, 1, 0}});  // coplanar, B's edge 03 along A's edge 02
+        CHECK(both_ways(a, {0, 3, 4}));
+        setup({{0, -9, 0}, {-4, 1, 0}});  // coplanar, wedges meet only at 0
+        CHECK_FALSE(both_ways(a, {0, 3, 4}));
+        setup({{0, 0, 3}, {0, 0, -3}});  // flat B through 0, perpendicular to A
+        CHECK_FALSE(both_ways(a, {0, 3, 4}));
+        setup({{1, 1, 0}, {-1, -1, 0}});  // flat B through 0, along A's interior
+        CHECK(both_ways(a, {0, 3, 4}));
+    }
+    SUBCASE("the same triangle, and a flat triangle on the shared edge")
+    {
+        setup({});
+        CHECK_FALSE(both_ways(a, {2, 1, 0}));
+        //   0--3--1 with 3 = (2,0,0): the flat (0,1,3) lies on A's edge 01
+        setup({{2, 0, 0}, {6, 0, 0}});
+        CHECK_FALSE(both_ways(a, {0, 1, 3}));
+        CHECK(both_ways(a, {0, 1, 4}) == false);  // flat, beyond 1 along the line: outside A
+        CHECK(both_ways({0, 1, 4}, {1, 0, 3}) == false);
+        p.push_back({8, 0, 0});
+        CHECK(both_ways({0, 1, 4}, {0, 1, 5}));  // two flat ones overlapping beyond 1
+    }
+    SUBCASE("a flat triangle crossing, touching or missing a triangle")
+    {
+        setup({{1, 1, -1}, {1, 1, 1}, {1, 1, 3}});
+        CHECK(both_ways(a, b));
+        setup({{1, 1, 1}, {1, 1, 2}, {1, 1, 3}});
+        CHECK_FALSE(both_ways(a, b));
+        setup({{1, 1, 0}, {1, 1, 2}, {1, 1, 3}});
+        CHECK(both_ways(a, b));
+        setup({{5, 5, 5}, {5, 5, 5}, {5, 5, 5}});  // a triangle collapsed to a point
+        CHECK_FALSE(both_ways(a, b));
+    }
+}
+
+TEST_CASE("point_in_tet: inside, outside, on a face, an edge, a vertex")
+{
+    //   3
+    //   |\     tet 0 1 2 3, positive; p = point 4
+    //   0-2
+    //    \|
+    //     1
+    std::vector<Vec3> p = points_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}});
+    const std::array<int, 4> tet = {0, 1, 2, 3}, negative = {0, 2, 1, 3};
+    auto at = [&p, &tet](Vec3 x) {
+        p[4] = x;
+        return point_in_tet(p, 4, tet);
+    };
+    CHECK(at({0.1, 0.1, 0.1}));
+    CHECK_FALSE(at({1, 1, 1}));
+    CHECK_FALSE(at({-0.1, 0.1, 0.1}));
+    CHECK(at({0.25, 0.25, 0.5}));  // on the far face
+    CHECK(at({0.5, 0, 0.5}));      // on an edge
+    CHECK(at({0, 0, 1}));          // at a vertex, as another id
+    CHECK_FALSE(at({0.5, 0.5, 0.0000000000000001}));
+    CHECK(point_in_tet(p, 4, negative) == point_in_tet(p, 4, tet));
+    CHECK_FALSE(point_in_tet(p, 3, tet));  // a vertex of the tet shares, it does not meet
+}
+
+TEST_CASE("tet_triangle_intersect: every configuration")
+{
+    //   3
+    //   |\     tet T = 0 1 2 3 (the unit corner), triangle vertices 4 5 6 unless shared
+    //   0-2
+    //    \|
+    //     1
+    std::vector<Vec3> p;
+    auto setup = [&p](std::initializer_list<Vec3> extra) {
+        p = points_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+        p.insert(p.end(), extra.begin(), extra.end());
+    };
+    const std::array<int, 4> tet = {0, 1, 2, 3};
+    auto meets = [&p, &tet](const std::array<int, 3>& t) {
+        const bool result = tet_triangle_intersect(p, tet, t);
+        CHECK(tet_triangle_intersect(p, {1, 0, 3, 2}, {t[1], t[2], t[0]}) == result);
+        CHECK(tet_triangle_intersect(p, {0, 2, 1, 3}, t) == result);  // given negative
+        return result;
+    };
+    const std::array<int, 3> free = {4, 5, 6};
+    SUBCASE("no shared vertex: apart, inside, piercing, slicing a corner, touching")
+    {
+        setup({{2, 2, 2}, {3, 2, 2}, {2, 3, 2}});
+        CHECK_FALSE(meets(free));
+        setup({{0.1, 0.1, 0.1}, {0.2, 0.1, 0.1}, {0.1, 0.2, 0.1}});  // inside
+        CHECK(meets(free));
+        setup({{0.2, 0.2, -1}, {0.2, 0.2, 2}, {5, 5, 0.2}});  // an edge pierces two faces
+        CHECK(meets(free));
+        setup({{-1, -1, 0.5}, {3, -1, 0.5}, {-1, 3, 0.5}});  // cuts every tet edge up to 3
+        CHECK(meets(free));
+        setup({{-1, -1, 0}, {3, -1, 0}, {-1, 3, 0}});  // contains the face 0 1 2
+        CHECK(meets(free));
+        setup({{-1, -1, -1}, {3, -1, -1}, {-1, 3, -1}});  // parallel below
+        CHECK_FALSE(meets(free));
+        setup({{0.5, 0.5, 0}, {2, 2, -1}, {2, 0, -1}});  // a vertex on the edge 12
+        CHECK(meets(free));
+        setup({{0.6, 0.6, 0}, {2, 2, -1}, {2, 0, -1}});  // just past it
+        CHECK_FALSE(meets(free));
+        setup({{0.5, 0.5, 0.5}, {2, 2, 2}, {2, 0, 2}});  // a vertex beyond the far face
+        CHECK_FALSE(meets(free));
+        setup({{1, 1, 1}, {-1, -1, -1}, {1, -1, 0}});  // through vertex 0 with other ids
+        CHECK(meets(free));
+    }
+    SUBCASE("a face of the tet does not intersect it; a triangle sharing an edge")
+    {
+        //   sharing edge 12 (the front's neighbour face): outside, folded into the tet,
+        //   coplanar with face 1 2 3 outside / overlapping it, coplanar with 0 1 2 outside
+        setup({});
+        CHECK_FALSE(meets({1, 2, 3}));
+        CHECK_FALSE(meets({3, 0, 2}));
+        setup({{1, 1, 1}});
+        CHECK_FALSE(meets({1, 2, 4}));
+        setup({{0.1, 0.1, 0.1}});
+        CHECK(meets({1, 2, 4}));
+        setup({{1, 1, -1}});  // on plane 1 2 3, beyond the edge
+        CHECK_FALSE(meets({1, 2, 4}));
+        setup({{0.2, 0.2, 0.6}});  // on plane 1 2 3, over the face
+        CHECK(meets({1, 2, 4}));
+        setup({{1, 1, 0}});  // on plane 0 1 2, beyond the edge
+        CHECK_FALSE(meets({1, 2, 4}));
+        setup({{0.2, 0.2, 0}});  // on face 0 1 2 (the triangle 1 2 4 is inside the face)
+        CHECK(meets({1, 2, 4}));
+        setup({{2, -1, 0}});  // flat: on the line of edge 12, beyond 1
+        CHECK_FALSE(meets({1, 2, 4}));
+    }
+    SUBCASE("sharing vertex 0: outside, the opposite edge through the tet, on a face plane")
+    {
+        setup({{-1, 0, 0}, {0, -1, 0}});
+        CHECK_FALSE(meets({0, 4, 5}));
+        setup({{0.2, 0.2, -1}, {0.2, 0.2, 2}});  // edge 45 pierces the tet
+        CHECK(meets({0, 4, 5}));
+        setup({{5, 5, -1}, {5, 5, 5}});  // big: edge 45 passes outside, face 1 2 3 cuts it
+        CHECK(meets({0, 4, 5}));
+        setup({{1, -1, 0}, {2, -1, 0}});  // in plane z = 0, outside the face
+        CHECK_FALSE(meets({0, 4, 5}));
+        setup({{1, 0.5, 0}, {-1, 2, 0}});  // in plane z = 0, over face 0 1 2
+        CHECK(meets({0, 4, 5}));
+        setup({{2, 0, 0}, {-1, -1, 0}});  // along edge 01 and outside: overlap on the edge
+        CHECK(meets({0, 4, 5}));
+        setup({{0.1, 0.1, 0.1}, {-1, -1, -1}});  // flat through 0, into the tet
+        CHECK(meets({0, 4, 5}));
+        setup({{-0.1, 0.1, 0.1}, {-1, 1, 1}});  // flat from 0, outside
+        CHECK_FALSE(meets({0, 4, 5}));
+    }
+}
+
+TEST_CASE("the intersection tests agree with an exact separating-axis reference")
+{
+    // Points on {0,1,2}^3 plus three repeated points under new ids: random simplices hit
+    // every coplanar, collinear, touching and shared-vertex case many times.
+    std::vector<Vec3> p;
+    for (int x = 0; x < 3; ++x)
+        for (int y = 0; y < 3; ++y)
+            for (int z = 0; z < 3; ++z) p.emplace_back(x, y, z);
+    p.push_back(p[13]);
+    p.push_back(p[0]);
+    p.push_back(p[5]);
+    const int n = static_cast<int>(p.size());
+    Random random{21};
+    auto distinct = [&](int count) {
+        std::vector<int> ids;
+        while (static_cast<int>(ids.size()) < count)
+        {
+            const int id = random.integer(n);
+            if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+        }
+        return ids;
+    };
+    // Draw the second simplex mostly from the first one's vertices, so sharing is common.
+    auto near = [&](const std::vector<int>& base, int count) {
+        std::vector<int> ids;
+        while (static_cast<int>(ids.size()) < count)
+        {
+            const int id = random.integer(3) == 0
+                               ? random.integer(n)
+                               : base[random.integer(static_cast<int>(base.size()))];
+            if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+        }
+        return ids;
+    };
+    std::array<int, 2> seen_true{}, seen_false{};
+    auto record = [&](int kind, bool value) { (value ? seen_true : seen_false)[kind]++; };
+    for (int trial = 0; trial < 4000; ++trial)
+    {
+        const std::vector<int> t = distinct(3);
+        const std::vector<int> s = near(t, 2), u = near(t, 3);
+        const int expected_s = reference_intersect(p, s, t);
+        if (expected_s >= 0)
+            REQUIRE(segment_triangle_intersect(p, {s[0], s[1]}, {t[0], t[1], t[2]}) ==
+                    (expected_s == 1));
+        const int expected_u = reference_intersect(p, u, t);
+        if (expected_u >= 0)
+        {
+            INFO("t1 ", u[0], " ", u[1], " ", u[2], " t2 ", t[0], " ", t[1], " ", t[2]);
+            REQUIRE(triangles_intersect(p, {u[0], u[1], u[2]}, {t[0], t[1], t[2]}) ==
+                    (expected_u == 1));
+            record(0, expected_u == 1);
+        }
+        std::vector<int> tet = near(t, 4);
+        if (!affinely_independent(p, tet)) continue;
+        const int expected_tet = reference_intersect(p, tet, t);
+        INFO("tet ", tet[0], " ", tet[1], " ", tet[2], " ", tet[3], " t ", t[0], " ", t[1], " ",
+             t[2]);
+        REQUIRE(expected_tet >= 0);
+        REQUIRE(tet_triangle_intersect(p, {tet[0], tet[1], tet[2], tet[3]}, {t[0], t[1], t[2]}) ==
+                (expected_tet == 1));
+        record(1, expected_tet == 1);
+        const int q = random.integer(n);
+        if (std::find(tet.begin(), tet.end(), q) == tet.end())
+            REQUIRE(point_in_tet(p, q, {tet[0], tet[1], tet[2], tet[3]}) ==
+                    (reference_intersect(p, {q}, tet) == 1));
+    }
+    CHECK(seen_true[0] > 100);
+    CHECK(seen_false[0] > 100);
+    CHECK(seen_true[1] > 100);
+    CHECK(seen_false[1] > 100);
+}

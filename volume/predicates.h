@@ -43,9 +43,8 @@ inline int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
     const double permanent = (std::abs(cay_daz) + std::abs(caz_day)) * std::abs(bax) +
                              (std::abs(caz_dax) + std::abs(cax_daz)) * std::abs(bay) +
                              (std::abs(cax_day) + std::abs(cay_dax)) * std::abs(baz);
-    const double bound = detail::kOrient3dBound * permanent;
-    if (det > bound) return 1;
-    if (-det > bound) return -1;
+    // One well-predicted branch; the sign itself without branching.
+    if (std::abs(det) > detail::kOrient3dBound * permanent) return (det > 0.0) - (det < 0.0);
     return detail::orient3d_exact(a, b, c, d);
 }
 
@@ -72,9 +71,8 @@ inline int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int drop)
     {
         return right > 0.0 ? -1 : (right < 0.0 ? 1 : 0);
     }
-    const double bound = detail::kOrient2dBound * (std::abs(left) + std::abs(right));
-    if (det > bound) return 1;
-    if (-det > bound) return -1;
+    if (std::abs(det) > detail::kOrient2dBound * (std::abs(left) + std::abs(right)))
+        return (det > 0.0) - (det < 0.0);
     return detail::orient2d_exact(a, b, c, drop);
 }
 
@@ -83,22 +81,46 @@ inline int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int drop)
 /// outside the simplex spanned by their shared vertices: two triangles sharing an edge and
 /// otherwise apart do not intersect; two triangles sharing a vertex intersect only if they
 /// also meet elsewhere. Closed simplices: touching counts. Degenerate input simplices (a flat
-/// triangle, a zero segment) are allowed and handled exactly.
+/// triangle, a zero segment) are allowed and handled exactly: a simplex is the convex hull of
+/// its points. Distinct ids at the same coordinates are distinct vertices, so such a point is
+/// a common point outside the shared simplex. Every answer is exact (orient3d / orient2d
+/// signs and coordinate comparisons only).
 
 /// Closed segment s and closed triangle t meet outside their shared vertices.
+/// - no shared id: any common point, an end on the triangle's boundary included;
+/// - s is an edge of t: false;
+/// - one shared vertex k: true exactly when s leaves k into t, i.e. s's direction lies in the
+///   closed angle of t at k (in t's plane; along one of t's edges counts).
 bool segment_triangle_intersect(const std::vector<Vec3>& points, const std::array<int, 2>& s,
                                 const std::array<int, 3>& t);
 
 /// Closed triangles t1 and t2 meet outside the simplex of their shared vertices (coplanar
 /// overlaps included).
+/// - no shared id: any common point (a vertex on the other, edges crossing, coplanar overlap);
+/// - the same three ids: false;
+/// - shared edge ab: true only when coplanar with the third vertices on the same side of ab
+///   (overlap); folded or unfolded (opposite sides) is false;
+/// - shared vertex a: true when they meet at any other point: the edge opposite a in one meets
+///   the other triangle (this covers coplanar overlapping angles at a, and angles sharing a
+///   ray).
 bool triangles_intersect(const std::vector<Vec3>& points, const std::array<int, 3>& t1,
                          const std::array<int, 3>& t2);
 
-/// Point p (an id, not a vertex of tet) lies in the closed tet (a, b, c, d), given positive.
+/// Point p lies in the closed tet (a, b, c, d): its faces, edges and vertices count (a
+/// different id at a vertex's coordinates is inside). p being one of the tet's ids gives false
+/// (a shared vertex is no common point).
 bool point_in_tet(const std::vector<Vec3>& points, int p, const std::array<int, 4>& tet);
 
-/// Closed positive tet and closed triangle t meet outside the simplex of their shared vertices
-/// (a triangle on a face of the tet, or sharing an edge and lying outside, does not).
+/// Closed tet and closed triangle t meet outside the simplex of their shared vertices (a
+/// triangle on a face of the tet, or sharing an edge and lying outside, does not).
+/// - no shared id: any common point (a vertex of t on the tet's boundary counts);
+/// - t is a face of the tet: false;
+/// - shared edge k1k2: true exactly when t's third vertex lies in the closed dihedral wedge
+///   of the tet at k1k2, so t lying in the plane of an adjacent face over that face counts,
+///   and beyond the edge in that plane does not;
+/// - shared vertex k: true when t meets the tet at any other point (t along a tet edge or
+///   over a face counts).
+/// The tet must not be flat; it is used positive (negative input is reordered).
 bool tet_triangle_intersect(const std::vector<Vec3>& points, const std::array<int, 4>& tet,
                             const std::array<int, 3>& t);
 
