@@ -300,3 +300,23 @@ TEST_CASE("coincident points are merged, so a per-face soup closes")
     for (const auto& t : soup.triangles)
         for (int v : t) CHECK(v < 6);
 }
+
+TEST_CASE("the shared surfaces: four bound a volume as they are, the bunny is open with 5 holes")
+{
+    for (const char* name : {"spot.obj", "fandisk.obj", "rocker-arm.obj", "cheburashka.obj"})
+    {
+        CAPTURE(name);
+        const hdi::TriangleSurface s = hdi::read_obj(fixtures::data_path(name));
+        std::vector<Triangle> triangles(s.triangles.begin(), s.triangles.end());
+        merge_coincident_points(s.points, triangles);
+        const auto defects = check_closed_surface(s.points, triangles);
+        INFO(format_surface_defects(defects, name));
+        CHECK(defects.empty());
+    }
+    const hdi::TriangleSurface bunny = hdi::read_obj(fixtures::data_path("stanford-bunny.obj"));
+    std::vector<Triangle> triangles(bunny.triangles.begin(), bunny.triangles.end());
+    const auto defects = check_closed_surface(bunny.points, triangles);
+    REQUIRE(kinds(defects) == std::vector<SurfaceDefectKind>{SurfaceDefectKind::OpenBoundary});
+    CHECK(defects.size() == 5);
+    for (const auto& loop : defects) CHECK(loop.vertices.size() == loop.faces.size());
+}
