@@ -11,10 +11,16 @@ diagonal). Tools, one thread each:
   TetGen   tetgen -pYq1.414a(H^3/(6 sqrt 2))                          (when `tetgen` is installed)
   Gmsh 1   Merge the STL, Surface Loop, Volume, MeshSizeMax = H, Delaunay, Optimize = 1
   Gmsh 10  the same with HXT                                           (when `gmsh` is installed)
+  Netgen   build/bench/netgen_volume IN.off OUT.mesh H: nglib, outward triangles, maxh = H, the
+           default 3 optimization steps                   (when libnglib-dev was found by CMake)
 Every output is scored here by one computation: Qe = 2 sqrt 6 rho / longest edge, dihedral
 angles, and Qt of every edge against H; the figures are given over all tets and over the tets
 with no boundary face whose smallest angle is under 10 degrees (a raw input triangle can force
-a bad tet). Time is the child process's CPU time (user + system), read with getrusage.
+a bad tet). Time is the child process's CPU time (user + system), read with getrusage; for
+Netgen the note also gives the driver's own thread CPU time around Ng_GenerateVolumeMesh alone.
+Netgen's output changes with the order of the input points and with small changes of H, so it
+gets the points in the order every other tool gets (Gmsh's for the spheres, the OBJ's otherwise)
+and the same unrounded H.
 """
 import argparse, os, resource, shutil, subprocess, sys, tempfile
 
@@ -171,10 +177,12 @@ def child_cpu():
     return r.ru_utime + r.ru_stime
 
 
-def timed(cmd, cwd=None):
+def timed(cmd, cwd=None, want_stdout=False):
     start = child_cpu()
-    subprocess.run(cmd, check=True, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    return child_cpu() - start
+    done = subprocess.run(cmd, check=True, cwd=cwd, stderr=subprocess.PIPE,
+                          stdout=subprocess.PIPE if want_stdout else subprocess.DEVNULL)
+    seconds = child_cpu() - start
+    return (seconds, done.stdout.decode(errors='replace')) if want_stdout else seconds
 
 
 def run_ours(build, work, name, v, f, h, keep):
@@ -212,6 +220,16 @@ def run_gmsh(work, name, v, f, h, algorithm):
     return out, timed(['gmsh', geo, '-3', '-format', 'mesh', '-o', out, '-v', '0', '-nt', '1'])
 
 
+def run_netgen(binary, work, name, v, f, h):
+    off = os.path.join(work, name + '_ng.off')
+    write_off(off, v, f)
+    out = os.path.join(work, name + '_ng.mesh')
+    seconds, stdout = timed([binary, off, out, repr(h)], cwd=work, want_stdout=True)
+    meshing = [line.split()[1] for line in stdout.splitlines() if line.startswith('seconds ')]
+    note = f'Ng_GenerateVolumeMesh {float(meshing[-1]):.2f} s' if meshing else ''
+    return out, seconds, note
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--build', default=os.path.join(ROOT, 'build'))
@@ -220,6 +238,7 @@ def main():
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix='hdimesh_volpeers_')
     have_gmsh = shutil.which('gmsh') is not None
+    netgen = os.path.join(args.build, 'bench', 'netgen_volume')
     print(f"{'input':<12}{'tool':<10}{'tets':>9}{'cpu s':>8}{'tets/s':>9}{'min Qe':>8}{'Qe>=.5':>8}"
           f"{'dihedral':>13}{'Qt>=.66':>8}   {'without bad-triangle tets':<26}")
     for name in args.inputs.split(','):
@@ -238,9 +257,11 @@ def main():
         if have_gmsh:
             runners.append(('Gmsh-1', lambda: run_gmsh(work, name, v, f, h, 1)))
             runners.append(('Gmsh-10', lambda: run_gmsh(work, name, v, f, h, 10)))
+        if os.access(netgen, os.X_OK):
+            runners.append(('Netgen', lambda: run_netgen(netgen, work, name, v, f, h)))
         for tool, run in runners:
             try:
-                path, seconds = run()
+                path, seconds, *extra = run()
             except subprocess.CalledProcessError as e:
                 message = (e.stderr or b'').decode(errors='replace').strip().splitlines()
                 print(f'{name:<12}{tool:<10} failed: {message[-1] if message else e}', flush=True)
@@ -259,7 +280,8 @@ def main():
                     bad_out.add(tuple(sorted(ids)))
             all_, clean, qt, negative = score(points, tets, h, bad_out)
             rate = all_['tets'] / seconds if seconds > 0 else float('inf')
-            note = f"  ({negative} non-positive)" if negative else ''
+            notes = ([f'{negative} non-positive'] if negative else []) + [x for x in extra if x]
+            note = f"  ({'; '.join(notes)})" if notes else ''
             print(f"{name:<12}{tool:<10}{all_['tets']:>9}{seconds:>8.2f}{rate:>9.0f}"
                   f"{all_['min_qe']:>8.3f}{all_['qe05']:>7.1f}%"
                   f"{all_['min_dih']:>6.1f}-{all_['max_dih']:<6.1f}{qt:>7.1f}%   "

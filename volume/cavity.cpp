@@ -64,7 +64,8 @@ std::string closedness_defect(const std::vector<Triangle>& faces)
             return out.str();
         }
     for (const auto& e : directed)
-        if (!std::binary_search(directed.begin(), directed.end(), std::make_pair(e.second, e.first)))
+        if (!std::binary_search(directed.begin(), directed.end(),
+                                std::make_pair(e.second, e.first)))
         {
             std::ostringstream out;
             out << "edge " << e.first << "-" << e.second << " has no opposite face (open)";
@@ -137,7 +138,8 @@ bool fill_by_vertex_fan(const std::vector<Vec3>& points, const std::vector<Trian
         for (const auto& f : faces)
         {
             if (f[0] == v || f[1] == v || f[2] == v) continue;
-            worst = std::min(worst, tet_quality(points[f[0]], points[f[2]], points[f[1]], points[v]));
+            worst =
+                std::min(worst, tet_quality(points[f[0]], points[f[2]], points[f[1]], points[v]));
             if (worst <= best_worst) break;  // cannot beat the apex found
         }
         if (worst > best_worst)
@@ -155,41 +157,6 @@ bool fill_by_vertex_fan(const std::vector<Vec3>& points, const std::vector<Trian
     fill.worst_quality = best_worst;
     fill.stage = FillStage::VertexFan;
     fill.filled = true;
-    return true;
-}
-
-bool fill_small_cavity(const std::vector<Vec3>& points, const std::vector<Triangle>& faces,
-                       const CavityOptions& options, CavityFill& fill)
-{
-    CavityFill best;
-    {
-        CavityFill fan;
-        if (fill_by_vertex_fan(points, faces, fan) && fan.worst_quality >= options.accept_quality)
-        {
-            fill = std::move(fan);
-            return true;
-        }
-        keep_better(best, fan);
-    }
-    {
-        CavityFill kernel;
-        if (fill_by_kernel_fan(points, faces, kernel) &&
-            kernel.worst_quality >= options.accept_quality &&
-            (!best.filled || kernel.worst_quality > best.worst_quality))
-        {
-            fill = std::move(kernel);
-            return true;
-        }
-        keep_better(best, kernel);
-    }
-    if (static_cast<int>(cavity_vertices(faces).size()) < options.max_exhaustive_points)
-    {
-        CavityFill exhaustive;
-        fill_exhaustive(points, faces, options, exhaustive);
-        keep_better(best, exhaustive);
-    }
-    if (!best.filled) return false;
-    fill = std::move(best);
     return true;
 }
 
@@ -264,8 +231,7 @@ struct CavityHull
 };
 
 CavityHull cavity_hull(const TetMesh& mesh, const std::vector<int>& tets,
-                       const std::vector<char>& in_set, const MeshConstraints& constraints,
-                       int ref)
+                       const std::vector<char>& in_set, const MeshConstraints& constraints, int ref)
 {
     CavityHull hull;
     for (int t : tets)
@@ -385,9 +351,9 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
                 for (int g = 0; g < 4; ++g)
                     if (mesh.neighbors[n][g] == t) back = g;
                 const auto& lf = tet::kFaceVertices[f];
-                hull.push_back({sorted_key({mesh.tets[t][lf[0]], mesh.tets[t][lf[1]],
-                                            mesh.tets[t][lf[2]]}),
-                                n, back});
+                hull.push_back(
+                    {sorted_key({mesh.tets[t][lf[0]], mesh.tets[t][lf[1]], mesh.tets[t][lf[2]]}), n,
+                     back});
             }
     std::sort(hull.begin(), hull.end());
 
@@ -422,7 +388,8 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
         int tet, face;
         bool operator<(const FaceRecord& o) const
         {
-            return key < o.key || (key == o.key && (tet < o.tet || (tet == o.tet && face < o.face)));
+            return key < o.key ||
+                   (key == o.key && (tet < o.tet || (tet == o.tet && face < o.face)));
         }
     };
     std::vector<FaceRecord> records;
