@@ -212,6 +212,41 @@ TEST_CASE("disjoint shells are separate regions with refs 1 and 2")
     }
 }
 
+TEST_CASE("sizes known on the surface only (hausd, sizes at the input points) reach the volume")
+{
+    const Spheres input = Spheres().add(Vec3::Zero(), 1.0, 2);
+    {
+        // on the unit sphere (curvature 1) hausd 0.02 asks for edges near sqrt(3 * 0.02) = 0.245
+        VolumeFromSurfaceOptions options = uniform(0, false);
+        options.sizing.hausd = 0.02;
+        VolumeFromSurfaceReport report;
+        const TetMesh mesh = mesh_volume_from_surface(input.soup, options, &report);
+        require_valid(mesh);
+        REQUIRE(report.field);
+        for (const Vec3& p : {Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0, 0, 0.99)})
+        {
+            CAPTURE(p);
+            CHECK(report.field->size(p) > 0.1);
+            CHECK(report.field->size(p) < 0.5);
+        }
+    }
+    {
+        // 0.4 at the input points with z > 0, 0.2 below: the lower half gets the finer tets
+        VolumeFromSurfaceOptions options = uniform(0, false);
+        for (const auto& p : input.soup.points)
+            options.sizing.vertex_sizes.push_back(p[2] > 0 ? 0.4 : 0.2);
+        VolumeFromSurfaceReport report;
+        const TetMesh mesh = mesh_volume_from_surface(input.soup, options, &report);
+        require_valid(mesh);
+        CHECK(report.field->size(Vec3(0, 0, 0.9)) == doctest::Approx(0.4));
+        CHECK(report.field->size(Vec3(0, 0, -0.9)) == doctest::Approx(0.2));
+        int upper = 0, lower = 0;
+        for (int t = 0; t < mesh.num_tet_slots(); ++t)
+            (centroid(mesh, t)[2] > 0 ? upper : lower) += 1;
+        CHECK(lower > 2 * upper);
+    }
+}
+
 TEST_CASE("the same input gives the same mesh")
 {
     const Spheres input = Spheres().add(Vec3::Zero(), 1.0, 2);
