@@ -253,8 +253,8 @@ TEST_CASE("read_triangle_soup: the file's facets as listed, STL ASCII and binary
         binary.append(2, '\0');
     }
     ascii += "endsolid tet\n";
-    for (const auto& [name, text] : {std::pair<std::string, std::string>{"a.stl", ascii},
-                                     {"b.stl", binary}})
+    for (const auto& [name, text] :
+         {std::pair<std::string, std::string>{"a.stl", ascii}, {"b.stl", binary}})
     {
         CAPTURE(name);
         const std::string path = write_text(name, text);
