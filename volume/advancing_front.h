@@ -30,7 +30,7 @@ struct AdvancingFrontOptions
     /// Leftover groups with at most this many points go to stages 1-3.
     int max_leftover_points = 32;
     /// No new point closer than this fraction of the local size to a front vertex.
-    double min_point_distance = 0.5;
+    double min_point_distance = 0.65;
 };
 
 struct FrontReport

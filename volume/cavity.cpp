@@ -249,6 +249,48 @@ CavityHull cavity_hull(const TetMesh& mesh, const std::vector<int>& tets,
     return hull;
 }
 
+/// Rounds of taking the tets at pinched hull edges, at most.
+constexpr int kMaxPinchRepairs = 8;
+
+/// The crossable tets outside the hull faces that hold a non-manifold hull edge (an edge used
+/// more than once in the same direction), sorted.
+std::vector<int> tets_across_pinched_edges(const CavityHull& hull)
+{
+    struct DirectedEdge
+    {
+        int from, to, face;
+        bool operator<(const DirectedEdge& o) const
+        {
+            return from < o.from ||
+                   (from == o.from && (to < o.to || (to == o.to && face < o.face)));
+        }
+    };
+    std::vector<DirectedEdge> edges;
+    edges.reserve(3 * hull.faces.size());
+    for (int f = 0; f < static_cast<int>(hull.faces.size()); ++f)
+        for (int k = 0; k < 3; ++k)
+        {
+            const int a = hull.faces[f][k], b = hull.faces[f][(k + 1) % 3];
+            edges.push_back({std::min(a, b), std::max(a, b), f});
+        }
+    std::sort(edges.begin(), edges.end());
+    std::vector<int> tets;
+    for (std::size_t i = 0; i < edges.size();)
+    {
+        std::size_t j = i;
+        while (j < edges.size() && edges[j].from == edges[i].from && edges[j].to == edges[i].to)
+            ++j;
+        if (j - i > 2)
+            for (std::size_t k = i; k < j; ++k)
+                if (hull.outside_tets[edges[k].face] >= 0)
+                    tets.push_back(hull.outside_tets[edges[k].face]);
+        i = j;
+    }
+    std::sort(tets.begin(), tets.end());
+    tets.erase(std::unique(tets.begin(), tets.end()), tets.end());
+    return tets;
+}
+
 }  // namespace
 
 CavityFill refill_tets(const TetMesh& mesh, const std::vector<int>& tets, const SizeField* field,
@@ -298,6 +340,23 @@ CavityFill refill_tets(const TetMesh& mesh, const std::vector<int>& tets, const 
     for (int layer = 0;; ++layer)
     {
         CavityHull hull = cavity_hull(mesh, set, in_set, *constraints, ref);
+        // a random union of tets may pinch at an edge (four hull faces on it): take the tets
+        // across those faces until every hull edge is manifold, or nothing more may be taken
+        for (int repair = 0; repair < kMaxPinchRepairs; ++repair)
+        {
+            const std::vector<int> pinch = tets_across_pinched_edges(hull);
+            std::vector<int> taken;
+            for (int n : pinch)
+                if (!in_set[n])
+                {
+                    in_set[n] = 1;
+                    taken.push_back(n);
+                }
+            if (taken.empty()) break;
+            set.insert(set.end(), taken.begin(), taken.end());
+            std::sort(set.begin(), set.end());
+            hull = cavity_hull(mesh, set, in_set, *constraints, ref);
+        }
         CavityFill fill = fill_cavity(mesh, hull.faces, field, options);
         if (fill.filled)
         {
