@@ -1,17 +1,43 @@
-// adapt: adapts a tet mesh and its boundary to a size field (parse -> read -> adapt -> write).
+// adapt: adapts a tet mesh and its boundary to a size field, or meshes the volume a closed
+// surface bounds (parse -> read -> adapt or mesh_volume_from_surface -> write).
 #include "coupling/adapt.h"
 
 #include <cstdio>
 #include <iostream>
 
+#include "common/buffer_io.h"
 #include "common/errors.h"
+#include "common/sol_io.h"
+#include "coupling/mesh_from_surface.h"
 #include "size_flags.h"
+#include "surface/surface_io.h"
 #include "volume/check.h"
 #include "volume/quality_report.h"
+#include "volume/size_fields.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;
+
+namespace
+{
+
+/// A surface format by extension, or a mesh file with triangles and no tets.
+bool read_input(const std::string& path, TetMesh& mesh, surface::TriangleSoup& soup)
+{
+    const std::string ext = io::lower_extension(path);
+    if (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply")
+    {
+        soup = surface::read_triangle_soup(path);
+        return true;
+    }
+    mesh = read_mesh(path);
+    if (mesh.num_live_tets() > 0 || mesh.triangles.empty()) return false;
+    soup = coupling::triangle_soup(mesh);
+    return true;
+}
+
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -20,15 +46,24 @@ int main(int argc, char** argv)
         cli::SizeFlags size;
         bool check = false, no_optimize = false, no_projection = false, optim_only = false;
         bool noswap = false, nomove = false, noinsert = false;
+        bool keep_surface = false, has_hausd = false;
+        double hausd = 0;
         int verbosity = 1;
         coupling::AdaptOptions options;
 
         cli::CommandLine cl("adapt",
                             "Adapts a tetrahedral mesh and its boundary to a size field; the\n"
-                            "boundary follows a meshfree (HDI) model of the input surface.");
-        cl.positional("IN", &input, "input tet mesh (.mesh .meshb .msh)");
+                            "boundary follows a meshfree (HDI) model of the input surface.\n"
+                            "Given a closed surface instead, checks it, remeshes it to the size\n"
+                            "and fills the volume it bounds with tets (nested shells make voids,\n"
+                            "disjoint ones separate regions with refs 1, 2, ...).");
+        cl.positional("IN", &input,
+                      "input tet mesh (.mesh .meshb .msh) or closed surface (.obj .off .stl .ply, "
+                      "or a mesh file with triangles and no tets)");
         cl.option("-o", &output, "output mesh (.mesh .meshb .msh .vtu)");
         size.add_to(cl, true);
+        cl.option("--hausd", &hausd,
+                  "surface input: curvature-adaptive size keeping this distance to it", &has_hausd);
         cl.option("--stats", &stats_path, "write the final quality report as JSON");
         cl.flags({
             {"--check", &check, "print the mesh checker's verdict on the input and output"},
@@ -38,36 +73,85 @@ int main(int argc, char** argv)
             {"--nomove", &nomove, "no vertex smoothing during optimization"},
             {"--noinsert", &noinsert, "no refinement (no vertex insertion)"},
             {"--optim", &optim_only, "optimize only: keep the sizes of the input mesh"},
+            {"--keep-surface", &keep_surface,
+             "surface input: its triangles are the boundary, exactly (no remeshing)"},
         });
         cl.option("-v", &verbosity, "0 silent, 1 summary (default), 2 a table per pass");
         cl.option("--max-passes", &options.max_passes, "refinement passes at most (default 40)");
         cl.parse(argc, argv);
         if (output.empty()) throw InputError("missing -o OUT (see --help)");
 
-        TetMesh mesh = read_mesh(input);
-        if (const auto violations = check_mesh(mesh); !violations.empty())
-            throw InputError(input + ": the input mesh is not valid:\n" +
-                             format_violations(violations));
-        if (check && verbosity >= 1) std::cout << "check input: clean\n";
-
-        if (!size.any() && !optim_only)
-            throw InputError("no size field: give --hsiz, --sol or --bench-field (or --optim)");
-        const std::shared_ptr<const SizeField> field = size.make(mesh);
-        options.refine = !noinsert && !optim_only;
-        options.optimize = !no_optimize;
-        options.project = !no_projection;
         options.optimizer.swap = !noswap;
         options.optimizer.move = !nomove;
         options.optimizer.collapse = !optim_only;
+        options.project = !no_projection;
         options.verbosity = verbosity;
         options.optimizer.verbosity = verbosity;
 
-        if (verbosity >= 1)
+        TetMesh mesh;
+        surface::TriangleSoup soup;
+        std::shared_ptr<const SizeField> field;
+        if (read_input(input, mesh, soup))
         {
-            std::cout << "input " << input << "\n"
-                      << format_quality_table(compute_quality_report(mesh, field.get()));
+            if (optim_only) throw cli::UsageError("--optim needs a tet mesh, not a surface");
+            if (!size.any() && !has_hausd && !keep_surface)
+                throw InputError(
+                    "no size field: give --hsiz, --sol, --hausd or --bench-field (or "
+                    "--keep-surface)");
+            coupling::VolumeFromSurfaceOptions from_surface;
+            coupling::SurfaceSizing& sizing = from_surface.sizing;
+            sizing.hsiz = size.hsiz_set ? size.hsiz : 0.0;
+            if (size.hsiz_set && !(size.hsiz > 0)) throw cli::UsageError("--hsiz must be positive");
+            sizing.hausd = has_hausd ? hausd : 0.0;
+            if (has_hausd && !(hausd > 0)) throw cli::UsageError("--hausd must be positive");
+            if (size.sol_set)
+                sizing.vertex_sizes =
+                    read_sol_sizes(size.sol, static_cast<int>(soup.points.size()));
+            if (!size.bench_field.empty())
+            {
+                if (size.bench_field.size() > 1)
+                    throw cli::UsageError("--bench-field expects one letter A-E");
+                sizing.field = std::make_shared<BenchmarkSize>(benchmark_case(size.bench_field[0]));
+            }
+            sizing.hmin = size.hmin;
+            sizing.hmax = size.hmax;
+            sizing.hgrad = size.hgrad;
+            from_surface.keep_surface = keep_surface;
+            from_surface.refine = !noinsert;
+            from_surface.optimize = !no_optimize;
+            from_surface.adapt = options;
+            from_surface.source = input;
+            coupling::VolumeFromSurfaceReport report;
+            mesh = coupling::mesh_volume_from_surface(soup, from_surface, &report);
+            field = report.field;
+            if (verbosity >= 1)
+                std::cout << "input " << input << " (a surface)\n"
+                          << coupling::format_volume_from_surface_report(report);
         }
-        const coupling::AdaptReport report = coupling::adapt(mesh, *field, options);
+        else
+        {
+            if (has_hausd || keep_surface)
+                throw cli::UsageError("--hausd and --keep-surface apply to a surface input");
+            if (const auto violations = check_mesh(mesh); !violations.empty())
+                throw InputError(input + ": the input mesh is not valid:\n" +
+                                 format_violations(violations));
+            if (check && verbosity >= 1) std::cout << "check input: clean\n";
+
+            if (!size.any() && !optim_only)
+                throw InputError("no size field: give --hsiz, --sol or --bench-field (or --optim)");
+            field = size.make(mesh);
+            options.refine = !noinsert && !optim_only;
+            options.optimize = !no_optimize;
+
+            if (verbosity >= 1)
+            {
+                std::cout << "input " << input << "\n"
+                          << format_quality_table(compute_quality_report(mesh, field.get()));
+            }
+            const coupling::AdaptReport report = coupling::adapt(mesh, *field, options);
+            // -v 1 is a summary; at -v 2 the pass rows were printed as they ran
+            if (verbosity >= 1) std::cout << coupling::format_adapt_report(report, false);
+        }
 
         const auto violations = check_mesh(mesh);
         if (check && verbosity >= 1)
@@ -79,11 +163,7 @@ int main(int argc, char** argv)
 
         const QualityReport quality = compute_quality_report(mesh, field.get());
         if (verbosity >= 1)
-        {
-            // -v 1 is a summary; at -v 2 the pass rows were printed as they ran
-            std::cout << coupling::format_adapt_report(report, false);
             std::cout << "output " << output << "\n" << format_quality_table(quality);
-        }
         write_mesh(mesh, output);
         if (!stats_path.empty()) write_quality_json(quality, stats_path);
         return 0;

@@ -5,7 +5,10 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <algorithm>
 #include <climits>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -195,6 +198,80 @@ TriangleSoup read_medit(const std::string& path)
                 return false;
             return true;
         });
+    return soup;
+}
+
+// STL as listed: three points per facet, nothing merged (ASCII, or binary when the size
+// matches the facet count of its header).
+TriangleSoup read_stl_facets(const std::string& path)
+{
+    const std::string data = io::load_file(path);
+    TriangleSoup soup;
+    auto add_facet = [&](const std::array<Vec3d, 3>& corners) {
+        const int base = static_cast<int>(soup.points.size());
+        for (const auto& p : corners) soup.points.push_back(p);
+        soup.triangles.push_back({base, base + 1, base + 2});
+        soup.refs.push_back(0);
+    };
+    if (data.size() >= 84)
+    {
+        std::uint32_t count = 0;
+        std::memcpy(&count, data.data() + 80, 4);
+        if (data.size() == 84 + 50 * static_cast<std::size_t>(count))
+        {
+            for (std::size_t f = 0; f < count; ++f)
+            {
+                const char* facet = data.data() + 84 + 50 * f + 12;  // after the normal
+                std::array<Vec3d, 3> corners;
+                for (int k = 0; k < 3; ++k)
+                    for (int c = 0; c < 3; ++c)
+                    {
+                        float x;
+                        std::memcpy(&x, facet + 12 * k + 4 * c, 4);
+                        if (!std::isfinite(x))
+                            throw InputError(path + ": facet " + std::to_string(f + 1) +
+                                             ": a coordinate is not finite");
+                        corners[k][c] = x;
+                    }
+                add_facet(corners);
+            }
+            return soup;
+        }
+    }
+    io::TextReader in(path, data, 0);
+    auto expect = [&](const char* word) {
+        if (in.token(word) != word) in.fail(std::string("expected '") + word + "'");
+    };
+    expect("solid");
+    in.skip_line();
+    while (!in.at_end())
+    {
+        const std::string_view word = in.token("facet or endsolid");
+        if (word == "endsolid")
+        {
+            in.skip_line();
+            if (!in.at_end())
+            {
+                expect("solid");
+                in.skip_line();
+            }
+            continue;
+        }
+        if (word != "facet") in.fail("expected 'facet' or 'endsolid'");
+        expect("normal");
+        for (int c = 0; c < 3; ++c) in.real("normal coordinate");
+        expect("outer");
+        expect("loop");
+        std::array<Vec3d, 3> corners;
+        for (auto& p : corners)
+        {
+            expect("vertex");
+            for (int c = 0; c < 3; ++c) p[c] = in.real("vertex coordinate");
+        }
+        expect("endloop");
+        expect("endfacet");
+        add_facet(corners);
+    }
     return soup;
 }
 
@@ -400,22 +477,30 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
     return mesh;
 }
 
-SurfaceMesh read_surface(const std::string& path, ReadReport* report)
+TriangleSoup read_triangle_soup(const std::string& path)
 {
     const std::string ext = lower_extension(path);
-    TriangleSoup soup;
-    if (ext == "obj")
-        soup = read_obj(path);
-    else if (ext == "off")
-        soup = read_off(path);
-    else if (ext == "mesh")
-        soup = read_medit(path);
-    else if (ext == "stl" || ext == "ply")
-        soup = read_with_openmesh(path);
-    else
-        throw InputError(path + ": unknown surface format '" + ext +
-                         "' (obj, off, stl, ply, mesh)");
-    return build_surface(std::move(soup), path, report);
+    if (ext == "obj") return read_obj(path);
+    if (ext == "off") return read_off(path);
+    if (ext == "mesh") return read_medit(path);
+    if (ext == "stl") return read_stl_facets(path);
+    if (ext == "ply") return read_with_openmesh(path);
+    throw InputError(path + ": unknown surface format '" + ext + "' (obj, off, stl, ply, mesh)");
+}
+
+bool is_surface_path(const std::string& path)
+{
+    const std::string ext = lower_extension(path);
+    return ext == "obj" || ext == "off" || ext == "mesh" || ext == "stl" || ext == "ply";
+}
+
+SurfaceMesh read_surface(const std::string& path, ReadReport* report)
+{
+    // STL through OpenMesh here, as before the raw reader existed: its point order is the one
+    // surfremesh's outputs were made with
+    if (lower_extension(path) == "stl")
+        return build_surface(read_with_openmesh(path), path, report);
+    return build_surface(read_triangle_soup(path), path, report);
 }
 
 namespace

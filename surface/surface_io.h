@@ -45,6 +45,15 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source,
 /// (cannot open) or InputError (malformed, unrepairable, empty).
 SurfaceMesh read_surface(const std::string& path, ReadReport* report = nullptr);
 
+/// The file's triangles as listed, nothing repaired (polygons split into fans), for a caller
+/// that validates them itself: same formats and errors as read_surface. STL (ASCII or binary)
+/// gives three points per facet, none merged; PLY goes through OpenMesh, which merges repeated
+/// points and drops faces it cannot add to a manifold.
+TriangleSoup read_triangle_soup(const std::string& path);
+
+/// Whether read_surface reads this path's extension.
+bool is_surface_path(const std::string& path);
+
 /// Writes by extension, atomically. Throws IoError.
 void write_surface(const SurfaceMesh& mesh, const std::string& path);
 

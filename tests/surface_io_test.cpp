@@ -225,3 +225,52 @@ TEST_CASE("a multi-component input keeps its components; an open input keeps its
     const QualityReport q = measure_quality(sheet, 0.2);
     CHECK(q.min_angle_deg > 20.0);
 }
+
+TEST_CASE("read_triangle_soup: the file's facets as listed, STL ASCII and binary, nothing merged")
+{
+    // the tet's four facets in ASCII STL, and a fifth one repeating the first
+    const double p[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const int f[5][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {0, 2, 1}};
+    std::string ascii = "solid tet\n";
+    std::string binary(80, ' ');
+    const std::uint32_t count = 5;
+    binary.append(reinterpret_cast<const char*>(&count), 4);
+    for (const auto& t : f)
+    {
+        ascii += " facet normal 0 0 0\n  outer loop\n";
+        binary.append(12, '\0');
+        for (int v : t)
+        {
+            ascii += "   vertex " + std::to_string(p[v][0]) + " " + std::to_string(p[v][1]) + " " +
+                     std::to_string(p[v][2]) + "\n";
+            for (double x : p[v])
+            {
+                const float xf = static_cast<float>(x);
+                binary.append(reinterpret_cast<const char*>(&xf), 4);
+            }
+        }
+        ascii += "  endloop\n endfacet\n";
+        binary.append(2, '\0');
+    }
+    ascii += "endsolid tet\n";
+    for (const auto& [name, text] :
+         {std::pair<std::string, std::string>{"a.stl", ascii}, {"b.stl", binary}})
+    {
+        CAPTURE(name);
+        const std::string path = write_text(name, text);
+        const TriangleSoup soup = read_triangle_soup(path);
+        REQUIRE(soup.triangles.size() == 5);
+        CHECK(soup.points.size() == 15);
+        for (std::size_t k = 0; k < 5; ++k)
+            for (int c = 0; c < 3; ++c)
+                CHECK(soup.points[soup.triangles[k][c]][0] == doctest::Approx(p[f[k][c]][0]));
+        // the repaired mesh drops the repeated facet and merges the points
+        const SurfaceMesh mesh = read_surface(path);
+        CHECK(mesh.n_faces() == 4);
+        CHECK(mesh.n_vertices() == 4);
+        std::remove(path.c_str());
+    }
+    const std::string bad = write_text("bad.stl", "solid x\n facet normal 0 0 0\n  outer lop\n");
+    CHECK_THROWS_AS(read_triangle_soup(bad), InputError);
+    std::remove(bad.c_str());
+}

@@ -1,0 +1,506 @@
+// A tet mesh from a closed surface: validate, find the regions, remesh, fill each region,
+// optimize. See the header for the stages.
+#include "coupling/mesh_from_surface.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "common/errors.h"
+#include "common/size_quality.h"
+#include "common/stage_timer.h"
+#include "surface/features.h"
+#include "surface/sizing.h"
+#include "surface/surface_model.h"
+#include "volume/check.h"
+#include "volume/size_fields.h"
+#include "volume/surface_regions.h"
+
+namespace hdimesh::coupling
+{
+
+using surface::SurfaceMesh;
+using surface::TriangleSoup;
+using surface::Vec3d;
+using volume::SizeField;
+using volume::TetMesh;
+using volume::Triangle;
+using volume::Vec3;
+
+namespace
+{
+
+/// A size known on a surface carried into the volume: the size at the closest surface point,
+/// interpolated on its triangle.
+class ClosestSurfaceSize : public SizeField
+{
+public:
+    ClosestSurfaceSize(const SurfaceMesh& surface, std::vector<double> vertex_sizes)
+        : model_(surface), sizes_(std::move(vertex_sizes))
+    {
+    }
+    double size(const Vec3& p) const override
+    {
+        return model_.interpolate(Vec3d(p[0], p[1], p[2]), sizes_);
+    }
+
+private:
+    surface::SurfaceModel model_;
+    std::vector<double> sizes_;
+};
+
+/// The field, except that every edge of the boundary is never too long: refinement (which
+/// measures an edge at size_at_midpoint) then splits interior edges only, and the boundary
+/// stays the given triangles. An interior edge never has a boundary edge's midpoint.
+class InteriorOnlySize : public SizeField
+{
+public:
+    InteriorOnlySize(std::shared_ptr<const SizeField> field, const TetMesh& mesh)
+        : field_(std::move(field))
+    {
+        for (const auto& t : mesh.triangles)
+            for (int k = 0; k < 3; ++k)
+                size_at_midpoint(
+                    [&](const Vec3& p) {
+                        midpoints_.push_back({p[0], p[1], p[2]});
+                        return 0.0;
+                    },
+                    mesh.points[t[k]], mesh.points[t[(k + 1) % 3]]);
+        std::sort(midpoints_.begin(), midpoints_.end());
+    }
+    double size(const Vec3& p) const override
+    {
+        if (std::binary_search(midpoints_.begin(), midpoints_.end(),
+                               std::array<double, 3>{p[0], p[1], p[2]}))
+            return std::numeric_limits<double>::max();
+        return field_->size(p);
+    }
+
+private:
+    std::shared_ptr<const SizeField> field_;
+    std::vector<std::array<double, 3>> midpoints_;
+};
+
+/// The validated surface, compact: only the points the triangles use, renumbered in order.
+struct Boundary
+{
+    std::vector<Vec3> points;
+    std::vector<int> new2old_point;  ///< into the caller's points
+    std::vector<Triangle> triangles;
+    std::vector<int> refs;
+    std::vector<volume::Edge> ridges;  ///< feature edges of the remeshed surface
+    std::vector<int> corners;
+};
+
+Boundary compact_boundary(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                          const std::vector<int>& refs)
+{
+    Boundary b;
+    std::vector<int> old2new(points.size(), -1);
+    b.triangles = triangles;
+    for (auto& t : b.triangles)
+        for (int& v : t)
+        {
+            if (old2new[v] < 0)
+            {
+                old2new[v] = static_cast<int>(b.points.size());
+                b.points.push_back(points[v]);
+                b.new2old_point.push_back(v);
+            }
+            v = old2new[v];
+        }
+    b.refs = refs;
+    return b;
+}
+
+/// An OpenMesh surface over the boundary (valid: the checks passed), every vertex smooth.
+SurfaceMesh to_surface_mesh(const Boundary& b)
+{
+    SurfaceMesh mesh;
+    surface::SurfaceProperties props(mesh);
+    std::vector<surface::VertexHandle> handles;
+    handles.reserve(b.points.size());
+    for (const auto& p : b.points) handles.push_back(mesh.add_vertex(Vec3d(p[0], p[1], p[2])));
+    for (std::size_t f = 0; f < b.triangles.size(); ++f)
+    {
+        const auto& t = b.triangles[f];
+        const auto face = mesh.add_face(handles[t[0]], handles[t[1]], handles[t[2]]);
+        if (!face.is_valid())
+            throw TopologyError("triangle " + std::to_string(f + 1) +
+                                " cannot be added to the surface mesh");
+        mesh.property(props.face_ref, face) = b.refs[f];
+    }
+    for (auto v : mesh.vertices())
+    {
+        mesh.property(props.vertex_class, v) = surface::VertexClass::Smooth;
+        mesh.property(props.vertex_curve, v) = surface::kNoCurve;
+        mesh.property(props.vertex_size, v) = 0.0;
+    }
+    for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = surface::kNoCurve;
+    return mesh;
+}
+
+/// The remeshed surface back into arrays, with its ridges and corners.
+Boundary from_surface_mesh(SurfaceMesh& mesh)
+{
+    Boundary b;
+    const surface::SurfaceProperties props(mesh);
+    std::vector<int> old2new(mesh.n_vertices(), -1);
+    for (auto v : mesh.vertices())
+    {
+        if (mesh.status(v).deleted()) continue;
+        old2new[v.idx()] = static_cast<int>(b.points.size());
+        const Vec3d& p = mesh.point(v);
+        b.points.emplace_back(p[0], p[1], p[2]);
+        b.new2old_point.push_back(v.idx());
+        if (mesh.property(props.vertex_class, v) == surface::VertexClass::Corner)
+            b.corners.push_back(old2new[v.idx()]);
+    }
+    for (auto f : mesh.faces())
+    {
+        if (mesh.status(f).deleted()) continue;
+        Triangle t;
+        int k = 0;
+        for (auto v : mesh.fv_range(f)) t[k++] = old2new[v.idx()];
+        b.triangles.push_back(t);
+        b.refs.push_back(mesh.property(props.face_ref, f));
+    }
+    for (auto e : mesh.edges())
+    {
+        if (mesh.status(e).deleted() || mesh.property(props.edge_curve, e) == surface::kNoCurve)
+            continue;
+        const auto h = mesh.halfedge_handle(e, 0);
+        b.ridges.push_back(
+            {old2new[mesh.from_vertex_handle(h).idx()], old2new[mesh.to_vertex_handle(h).idx()]});
+    }
+    return b;
+}
+
+void check_sizing(const SurfaceSizing& s, std::size_t num_points, const std::string& source)
+{
+    const int given = int(s.hsiz != 0) + int(s.hausd != 0) + int(!s.vertex_sizes.empty()) +
+                      int(s.field != nullptr);
+    if (given > 1)
+        throw InputError(
+            "give at most one of a uniform size, hausd, sizes at the "
+            "vertices and a size field");
+    auto positive_or_unset = [](double x) { return x == 0 || (std::isfinite(x) && x > 0); };
+    if (!positive_or_unset(s.hsiz)) throw InputError("the uniform size must be positive");
+    if (!positive_or_unset(s.hausd)) throw InputError("hausd must be positive");
+    if (!positive_or_unset(s.hmin) || !positive_or_unset(s.hmax))
+        throw InputError("hmin and hmax must be positive");
+    if (s.hmin > 0 && s.hmax > 0 && s.hmin > s.hmax) throw InputError("hmin is larger than hmax");
+    if (!s.vertex_sizes.empty())
+    {
+        if (s.vertex_sizes.size() != num_points)
+            throw InputError(source + ": " + std::to_string(s.vertex_sizes.size()) + " sizes for " +
+                             std::to_string(num_points) + " points");
+        for (std::size_t v = 0; v < num_points; ++v)
+            if (!(std::isfinite(s.vertex_sizes[v]) && s.vertex_sizes[v] > 0))
+                throw InputError(source + ": the size at vertex " + std::to_string(v + 1) +
+                                 " is not positive");
+    }
+}
+
+surface::SizingOptions surface_sizing(const SurfaceSizing& s)
+{
+    surface::SizingOptions o;
+    o.hsiz = s.hsiz;
+    o.hausd = s.hausd;
+    o.hmin = s.hmin;
+    o.hmax = s.hmax;
+    o.hgrad = s.hgrad != 0 ? s.hgrad : 1.3;
+    return o;
+}
+
+/// Mean length of the surface edges at each vertex.
+std::vector<double> mean_incident_edge_length(const SurfaceMesh& mesh)
+{
+    std::vector<double> sizes(mesh.n_vertices(), 0.0);
+    for (auto v : mesh.vertices())
+    {
+        double sum = 0;
+        int n = 0;
+        for (auto w : mesh.vv_range(v))
+        {
+            sum += (mesh.point(w) - mesh.point(v)).norm();
+            ++n;
+        }
+        sizes[v.idx()] = n ? sum / n : 0.0;
+    }
+    return sizes;
+}
+
+std::shared_ptr<const SizeField> clamped(std::shared_ptr<const SizeField> field,
+                                         const SurfaceSizing& s)
+{
+    if (!(s.hmin > 0) && !(s.hmax > 0)) return field;
+    return std::make_shared<volume::ClampedSize>(
+        std::move(field), s.hmin, s.hmax > 0 ? s.hmax : std::numeric_limits<double>::infinity());
+}
+
+/// The surface to fill and its sizes: the input kept, or remeshed to the sizing.
+Boundary prepare_boundary(const Boundary& input, const VolumeFromSurfaceOptions& options,
+                          VolumeFromSurfaceReport& report)
+{
+    const SurfaceSizing& sizing = options.sizing;
+    SurfaceMesh mesh = to_surface_mesh(input);
+    std::vector<double> input_sizes;  // per input point of `mesh`
+    if (!sizing.vertex_sizes.empty())
+        for (int old : input.new2old_point) input_sizes.push_back(sizing.vertex_sizes[old]);
+    else if (sizing.field)
+        for (const auto& p : input.points) input_sizes.push_back(sizing.field->size(p));
+
+    if (options.keep_surface)
+    {
+        if (sizing.hsiz > 0)
+            report.field = std::make_shared<volume::ConstantSize>(sizing.hsiz);
+        else if (sizing.field)
+            report.field = sizing.field;
+        else
+        {
+            const surface::SizingOptions o = surface_sizing(sizing);
+            std::vector<double> sizes;
+            if (!input_sizes.empty())
+            {
+                sizes = input_sizes;
+                surface::bound_and_grade(mesh, sizes, o);
+            }
+            else if (sizing.hausd > 0)
+            {
+                surface::detect_features(mesh, options.remesh.features);
+                const surface::SurfaceModel model(mesh);
+                sizes = surface::curvature_sizes(mesh, model, o);
+            }
+            else
+            {
+                sizes = mean_incident_edge_length(mesh);
+                surface::bound_and_grade(mesh, sizes, o);
+            }
+            report.field = std::make_shared<ClosestSurfaceSize>(mesh, std::move(sizes));
+        }
+        report.field = clamped(report.field, sizing);
+        return input;
+    }
+
+    surface::SurfaceRemeshSettings settings = options.remesh;
+    settings.sizing = surface_sizing(sizing);
+    settings.input_sizes.clear();
+    if (!input_sizes.empty())
+    {
+        // a field the same at every input point is a uniform size (the remesher's uniform path)
+        const auto [lo, hi] = std::minmax_element(input_sizes.begin(), input_sizes.end());
+        if (sizing.field && *lo == *hi)
+            settings.sizing.hsiz = *lo;
+        else
+            settings.input_sizes = input_sizes;
+    }
+    if (!(settings.sizing.hsiz > 0) && settings.input_sizes.empty() && !(sizing.hausd > 0) &&
+        !(sizing.hmax > 0))
+        settings.sizing.hmax = 2.0 * surface::mean_edge_length(mesh);
+    report.remesh = surface::remesh_surface(mesh, settings);
+    Boundary remeshed = from_surface_mesh(mesh);
+
+    if (sizing.hsiz > 0)
+        report.field = std::make_shared<volume::ConstantSize>(sizing.hsiz);
+    else if (sizing.field)
+        report.field = sizing.field;
+    else
+    {
+        const surface::SurfaceProperties props(mesh);
+        std::vector<double> sizes(mesh.n_vertices(), 0.0);
+        for (auto v : mesh.vertices()) sizes[v.idx()] = mesh.property(props.vertex_size, v);
+        report.field = std::make_shared<ClosestSurfaceSize>(mesh, std::move(sizes));
+    }
+    report.field = clamped(report.field, sizing);
+    return remeshed;
+}
+
+double worst_quality(const TetMesh& mesh)
+{
+    double worst = std::numeric_limits<double>::infinity();
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        if (!mesh.is_dead(t)) worst = std::min(worst, mesh.quality(t));
+    return mesh.num_live_tets() ? worst : 0.0;
+}
+
+}  // namespace
+
+TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfaceOptions& options,
+                                 VolumeFromSurfaceReport* report_out)
+{
+    VolumeFromSurfaceReport report;
+    const Stopwatch total;
+    const std::string source = options.source.empty() ? "the surface" : options.source;
+    report.input_points = static_cast<int>(soup.points.size());
+    report.input_triangles = static_cast<int>(soup.triangles.size());
+    if (soup.triangles.empty()) throw InputError(source + ": no triangles");
+    check_sizing(options.sizing, soup.points.size(), source);
+
+    Boundary boundary;
+    {
+        const StageTimer timer(report.seconds_check, report.cpu_seconds_check);
+        std::vector<Vec3> points;
+        points.reserve(soup.points.size());
+        for (const auto& p : soup.points) points.emplace_back(p[0], p[1], p[2]);
+        std::vector<Triangle> triangles(soup.triangles.begin(), soup.triangles.end());
+        report.merged_points = volume::merge_coincident_points(points, triangles);
+        volume::require_closed_surface(points, triangles, source, options.check);
+        const volume::SurfaceRegions regions = volume::find_surface_regions(points, triangles);
+        report.turned_shells = regions.turned_shells;
+        std::vector<int> refs = soup.refs;
+        refs.resize(triangles.size(), 0);
+        boundary = compact_boundary(points, regions.triangles, refs);
+    }
+    {
+        const StageTimer timer(report.seconds_remesh, report.cpu_seconds_remesh);
+        boundary = prepare_boundary(boundary, options, report);
+    }
+
+    volume::SurfaceRegions regions;
+    {
+        const StageTimer timer(report.seconds_check, report.cpu_seconds_check);
+        if (!options.keep_surface)
+        {
+            const auto defects =
+                volume::check_closed_surface(boundary.points, boundary.triangles, options.check);
+            if (!defects.empty())
+                throw InputError(
+                    volume::format_surface_defects(defects, source + " remeshed") +
+                    "\n(the surface remeshed to this size cannot bound a volume: try a smaller "
+                    "size, or keep the input surface with --keep-surface)");
+        }
+        regions = volume::find_surface_regions(boundary.points, boundary.triangles);
+    }
+
+    TetMesh mesh;
+    {
+        const StageTimer timer(report.seconds_fill, report.cpu_seconds_fill);
+        report.shells = static_cast<int>(regions.shells.size());
+        report.regions = static_cast<int>(regions.regions.size());
+        report.voids = report.shells - report.regions;
+        report.surface_points = static_cast<int>(boundary.points.size());
+        report.surface_triangles = static_cast<int>(boundary.triangles.size());
+
+        for (const auto& p : boundary.points) mesh.add_vertex(p, 0, volume::VertexClass::Surface);
+        for (std::size_t r = 0; r < regions.regions.size(); ++r)
+        {
+            const int ref = regions.regions[r].ref;
+            const std::vector<Triangle> faces = regions.region_faces(static_cast<int>(r));
+            volume::CavityFill fill =
+                volume::fill_cavity(mesh, faces, report.field.get(), options.fill);
+            if (!fill.filled)
+                throw TopologyError(source + ": region " + std::to_string(ref) + " (" +
+                                    std::to_string(faces.size()) +
+                                    " triangles): the tet filler gave up: " + fill.failure);
+            fill.ref = ref;
+            report.fills.add(fill);
+            report.fill_points += static_cast<int>(fill.new_points.size());
+            volume::commit_cavity(mesh, fill);
+        }
+        for (std::size_t f = 0; f < regions.triangles.size(); ++f)
+            mesh.add_triangle(regions.triangles[f], boundary.refs[f]);
+        for (const auto& e : boundary.ridges)
+        {
+            mesh.ridges.push_back(static_cast<int>(mesh.edges.size()));
+            mesh.edges.push_back(e);
+            mesh.edge_refs.push_back(0);
+        }
+        mesh.corners = boundary.corners;
+        mesh.build_adjacency();
+        mesh.classify_vertices();
+        report.fill_tets = mesh.num_live_tets();
+        report.fill_min_quality = worst_quality(mesh);
+        if (const auto violations = volume::check_mesh(mesh); !violations.empty())
+            throw Error(source + ": the fill made an invalid mesh:\n" +
+                        volume::format_violations(violations));
+    }
+
+    {
+        const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
+        if (options.refine || options.optimize)
+        {
+            AdaptOptions adapt_options = options.adapt;
+            adapt_options.refine = options.refine;
+            adapt_options.optimize = options.optimize;
+            std::shared_ptr<const SizeField> field = report.field;
+            if (options.keep_surface)
+            {
+                adapt_options.project = false;
+                field = std::make_shared<InteriorOnlySize>(field, mesh);
+            }
+            report.adapt = adapt(mesh, *field, adapt_options);
+        }
+        if (!mesh.has_adjacency()) mesh.build_adjacency();
+    }
+    report.tets = mesh.num_live_tets();
+    report.vertices = mesh.num_vertices();
+    report.min_quality = worst_quality(mesh);
+    report.seconds_total = total.wall_seconds();
+    report.cpu_seconds_total = total.cpu_seconds();
+    if (report_out) *report_out = std::move(report);
+    return mesh;
+}
+
+TetMesh mesh_volume_from_surface(const SurfaceMesh& surface,
+                                 const VolumeFromSurfaceOptions& options,
+                                 VolumeFromSurfaceReport* report)
+{
+    TriangleSoup soup;
+    OpenMesh::FPropHandleT<int> face_ref;
+    const bool has_refs = surface.get_property_handle(face_ref, surface::property_names::face_ref);
+    for (auto v : surface.vertices()) soup.points.push_back(surface.point(v));
+    for (auto f : surface.faces())
+    {
+        std::array<int, 3> t;
+        int k = 0;
+        for (auto v : surface.fv_range(f)) t[k++] = v.idx();
+        soup.triangles.push_back(t);
+        soup.refs.push_back(has_refs ? surface.property(face_ref, f) : 0);
+    }
+    return mesh_volume_from_surface(soup, options, report);
+}
+
+TriangleSoup triangle_soup(const TetMesh& mesh)
+{
+    TriangleSoup soup;
+    for (const auto& p : mesh.points) soup.points.emplace_back(p[0], p[1], p[2]);
+    soup.triangles.assign(mesh.triangles.begin(), mesh.triangles.end());
+    soup.refs = mesh.triangle_refs;
+    soup.refs.resize(soup.triangles.size(), 0);
+    return soup;
+}
+
+std::string format_volume_from_surface_report(const VolumeFromSurfaceReport& r)
+{
+    std::ostringstream out;
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "surface: %d points, %d triangles (%d repeated points merged); %d shell%s, %d "
+                  "region%s, %d void%s (%d shell%s turned)\n",
+                  r.input_points, r.input_triangles, r.merged_points, r.shells,
+                  r.shells == 1 ? "" : "s", r.regions, r.regions == 1 ? "" : "s", r.voids,
+                  r.voids == 1 ? "" : "s", r.turned_shells, r.turned_shells == 1 ? "" : "s");
+    out << line;
+    std::snprintf(line, sizeof line, "boundary: %d points, %d triangles\n", r.surface_points,
+                  r.surface_triangles);
+    out << line;
+    std::snprintf(line, sizeof line, "fill: %d tets, %d interior points, min Qe %.4f (%s)\n",
+                  r.fill_tets, r.fill_points, r.fill_min_quality, r.fills.format().c_str());
+    out << line;
+    std::snprintf(line, sizeof line, "result: %d tets, %d vertices, min Qe %.4f\n", r.tets,
+                  r.vertices, r.min_quality);
+    out << line;
+    std::snprintf(line, sizeof line,
+                  "time (cpu s): check %.3f, remesh %.3f, fill %.3f, optimize %.3f, total %.3f "
+                  "(wall %.3f)\n",
+                  r.cpu_seconds_check, r.cpu_seconds_remesh, r.cpu_seconds_fill,
+                  r.cpu_seconds_optimize, r.cpu_seconds_total, r.seconds_total);
+    out << line;
+    return out.str();
+}
+
+}  // namespace hdimesh::coupling

@@ -1,0 +1,308 @@
+// A tet mesh from a closed surface alone: small surfaces built in code, meshed with and without
+// remeshing. Every produced mesh passes check_mesh (positive tets, the tets' boundary equal to
+// mesh.triangles, the volume equal to the enclosed one); the boundary is kept exactly with
+// keep_surface; nested shells leave a void, disjoint shells get refs 1 and 2; bad input is
+// refused before anything is made.
+
+#include "coupling/mesh_from_surface.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "common/errors.h"
+#include "fixtures.h"
+#include "volume/check.h"
+#include "volume/quality_report.h"
+#include "volume/size_fields.h"
+
+using namespace hdimesh;
+using namespace hdimesh::volume;
+using coupling::mesh_volume_from_surface;
+using coupling::VolumeFromSurfaceOptions;
+using coupling::VolumeFromSurfaceReport;
+
+namespace
+{
+
+/// A soup of icospheres, each outward unless `inward`.
+struct Spheres
+{
+    surface::TriangleSoup soup;
+
+    Spheres& add(const Vec3& centre, double radius, int levels = 2, bool inward = false)
+    {
+        const hdi::TriangleSurface s = fixtures::icosphere(levels);
+        const int base = static_cast<int>(soup.points.size());
+        for (const auto& p : s.points)
+        {
+            const Vec3 q = centre + radius * p;
+            soup.points.emplace_back(q[0], q[1], q[2]);
+        }
+        for (auto t : s.triangles)
+        {
+            if (inward) std::swap(t[1], t[2]);
+            soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+            soup.refs.push_back(7);
+        }
+        return *this;
+    }
+};
+
+void require_valid(const TetMesh& mesh)
+{
+    const auto violations = check_mesh(mesh);
+    INFO(format_violations(violations));
+    REQUIRE(violations.empty());
+}
+
+/// Boundary triangles as coordinate triples starting at their smallest corner (orientation
+/// kept), sorted: equal exactly when two boundaries are the same oriented triangles.
+using CoordinateTriangle = std::array<std::array<double, 3>, 3>;
+std::vector<CoordinateTriangle> oriented_triangles(const std::vector<std::array<double, 3>>& pts,
+                                                   const std::vector<std::array<int, 3>>& tris)
+{
+    std::vector<CoordinateTriangle> out;
+    for (const auto& t : tris)
+    {
+        CoordinateTriangle c = {pts[t[0]], pts[t[1]], pts[t[2]]};
+        std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+        out.push_back(c);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::vector<CoordinateTriangle> oriented_triangles(const TetMesh& mesh)
+{
+    std::vector<std::array<double, 3>> pts;
+    for (const auto& p : mesh.points) pts.push_back({p[0], p[1], p[2]});
+    return oriented_triangles(pts, {mesh.triangles.begin(), mesh.triangles.end()});
+}
+
+std::vector<CoordinateTriangle> oriented_triangles(const surface::TriangleSoup& soup)
+{
+    std::vector<std::array<double, 3>> pts;
+    for (const auto& p : soup.points) pts.push_back({p[0], p[1], p[2]});
+    return oriented_triangles(pts, soup.triangles);
+}
+
+Vec3 centroid(const TetMesh& mesh, int t)
+{
+    Vec3 c = Vec3::Zero();
+    for (int v : mesh.tets[t]) c += mesh.points[v];
+    return c / 4;
+}
+
+VolumeFromSurfaceOptions uniform(double h, bool keep_surface)
+{
+    VolumeFromSurfaceOptions options;
+    options.sizing.hsiz = h;
+    options.keep_surface = keep_surface;
+    options.adapt.verbosity = 0;
+    options.source = "test";
+    return options;
+}
+
+}  // namespace
+
+TEST_CASE("a sphere's surface becomes a valid tet mesh at the size asked")
+{
+    // the unit icosphere (320 triangles, edges about 0.3) remeshed to 0.25 and filled
+    const Spheres input = Spheres().add(Vec3::Zero(), 1.0, 2);
+    const double h = 0.25;
+    VolumeFromSurfaceReport report;
+    const TetMesh mesh = mesh_volume_from_surface(input.soup, uniform(h, false), &report);
+    require_valid(mesh);
+    CHECK(report.regions == 1);
+    CHECK(report.voids == 0);
+    CHECK(report.fills.by_stage[static_cast<int>(FillStage::Failed)] == 0);
+    for (int t = 0; t < mesh.num_tet_slots(); ++t) CHECK(mesh.tet_refs[t] == 1);
+    // the boundary is on the input polyhedron, which is within 1.3 % of the unit sphere
+    CHECK(fixtures::max_unit_sphere_deviation(mesh) < 0.02);
+    const ConstantSize field(h);
+    const QualityReport quality = compute_quality_report(mesh, &field);
+    CHECK(quality.min_qe > 0.1);
+    CHECK(quality.percent_too_long < 5.0);
+    CHECK(quality.volume == doctest::Approx(quality.enclosed_volume).epsilon(1e-9));
+    CHECK(quality.volume == doctest::Approx(4.0 / 3.0 * 3.14159265).epsilon(0.05));
+}
+
+TEST_CASE("keep_surface: the given triangles are the boundary, exactly and in orientation")
+{
+    const Spheres input = Spheres().add(Vec3(0.5, -1, 2), 1.0, 2);
+    VolumeFromSurfaceReport report;
+    const TetMesh mesh = mesh_volume_from_surface(input.soup, uniform(0.3, true), &report);
+    require_valid(mesh);
+    CHECK(report.surface_triangles == static_cast<int>(input.soup.triangles.size()));
+    CHECK(oriented_triangles(mesh) == oriented_triangles(input.soup));
+    CHECK(std::all_of(mesh.triangle_refs.begin(), mesh.triangle_refs.end(),
+                      [](int r) { return r == 7; }));
+    // Steiner points only inside: every other vertex is one of the input's
+    int surface_vertices = 0;
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+        surface_vertices += mesh.vertex_classes[v] != VertexClass::Interior;
+    CHECK(surface_vertices == static_cast<int>(input.soup.points.size()));
+}
+
+TEST_CASE("keep_surface on an inward shell: turned, filled, the same triangles reversed")
+{
+    const Spheres input = Spheres().add(Vec3::Zero(), 1.0, 1, true);
+    VolumeFromSurfaceReport report;
+    const TetMesh mesh = mesh_volume_from_surface(input.soup, uniform(0.5, true), &report);
+    require_valid(mesh);
+    CHECK(report.turned_shells == 1);
+    surface::TriangleSoup reversed = input.soup;
+    for (auto& t : reversed.triangles) std::swap(t[1], t[2]);
+    CHECK(oriented_triangles(mesh) == oriented_triangles(reversed));
+}
+
+TEST_CASE("nested shells make a void: no tet inside the inner shell")
+{
+    //   +-----------------+
+    //   |  r = 2 (ref 1)   |   both spheres given outward, as solids
+    //   |    ( r = 1 )     |
+    //   +-----------------+
+    const Spheres input = Spheres().add(Vec3::Zero(), 1.0, 2).add(Vec3::Zero(), 2.0, 2);
+    for (const bool keep : {true, false})
+    {
+        CAPTURE(keep);
+        VolumeFromSurfaceReport report;
+        const TetMesh mesh = mesh_volume_from_surface(input.soup, uniform(0.4, keep), &report);
+        require_valid(mesh);
+        CHECK(report.regions == 1);
+        CHECK(report.voids == 1);
+        double volume = 0;
+        for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        {
+            CHECK(mesh.tet_refs[t] == 1);
+            // the inner polyhedron holds the ball of its inradius (> 0.9)
+            CHECK(centroid(mesh, t).norm() > 0.9);
+            volume += mesh.volume(t);
+        }
+        const double shell = 4.0 / 3.0 * 3.14159265 * (8 - 1);
+        CHECK(volume == doctest::Approx(shell).epsilon(0.05));
+    }
+}
+
+TEST_CASE("disjoint shells are separate regions with refs 1 and 2")
+{
+    // listed right one first: refs follow the geometric order (lowest point first)
+    const Spheres input = Spheres().add(Vec3(4, 0, 0), 1.0, 1).add(Vec3::Zero(), 1.0, 1);
+    for (const bool keep : {true, false})
+    {
+        CAPTURE(keep);
+        VolumeFromSurfaceReport report;
+        const TetMesh mesh = mesh_volume_from_surface(input.soup, uniform(0.4, keep), &report);
+        require_valid(mesh);
+        CHECK(report.regions == 2);
+        std::array<int, 3> per_ref{};
+        for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        {
+            const int ref = mesh.tet_refs[t];
+            REQUIRE((ref == 1 || ref == 2));
+            ++per_ref[ref];
+            CHECK((centroid(mesh, t)[0] < 2) == (ref == 1));
+        }
+        CHECK(per_ref[1] > 0);
+        CHECK(per_ref[2] > 0);
+    }
+}
+
+TEST_CASE("sizes known on the surface only (hausd, sizes at the input points) reach the volume")
+{
+    const Spheres input = Spheres().add(Vec3::Zero(), 1.0, 2);
+    {
+        // on the unit sphere (curvature 1) hausd 0.02 asks for edges near sqrt(3 * 0.02) = 0.245
+        VolumeFromSurfaceOptions options = uniform(0, false);
+        options.sizing.hausd = 0.02;
+        VolumeFromSurfaceReport report;
+        const TetMesh mesh = mesh_volume_from_surface(input.soup, options, &report);
+        require_valid(mesh);
+        REQUIRE(report.field);
+        for (const Vec3& p : {Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0, 0, 0.99)})
+        {
+            CAPTURE(p);
+            CHECK(report.field->size(p) > 0.1);
+            CHECK(report.field->size(p) < 0.5);
+        }
+    }
+    {
+        // 0.4 at the input points with z > 0, 0.2 below: the lower half gets the finer tets
+        VolumeFromSurfaceOptions options = uniform(0, false);
+        for (const auto& p : input.soup.points)
+            options.sizing.vertex_sizes.push_back(p[2] > 0 ? 0.4 : 0.2);
+        VolumeFromSurfaceReport report;
+        const TetMesh mesh = mesh_volume_from_surface(input.soup, options, &report);
+        require_valid(mesh);
+        CHECK(report.field->size(Vec3(0, 0, 0.9)) == doctest::Approx(0.4));
+        CHECK(report.field->size(Vec3(0, 0, -0.9)) == doctest::Approx(0.2));
+        int upper = 0, lower = 0;
+        for (int t = 0; t < mesh.num_tet_slots(); ++t)
+            (centroid(mesh, t)[2] > 0 ? upper : lower) += 1;
+        CHECK(lower > 2 * upper);
+    }
+}
+
+TEST_CASE("the same input gives the same mesh")
+{
+    const Spheres input = Spheres().add(Vec3::Zero(), 1.0, 2);
+    const TetMesh a = mesh_volume_from_surface(input.soup, uniform(0.3, false));
+    const TetMesh b = mesh_volume_from_surface(input.soup, uniform(0.3, false));
+    CHECK(a.points == b.points);
+    CHECK(a.tets == b.tets);
+    CHECK(a.triangles == b.triangles);
+}
+
+TEST_CASE("bad surfaces and sizes are refused before anything is made")
+{
+    auto refusal = [](const surface::TriangleSoup& soup, const VolumeFromSurfaceOptions& o) {
+        try
+        {
+            mesh_volume_from_surface(soup, o);
+        }
+        catch (const InputError& e)
+        {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    Spheres open = Spheres().add(Vec3::Zero(), 1.0, 1);
+    open.soup.triangles.pop_back();
+    open.soup.refs.pop_back();
+    CHECK(refusal(open.soup, uniform(0.3, false))
+              .find("test: the surface is open: 1 boundary loop") == 0);
+
+    Spheres overlapping = Spheres().add(Vec3::Zero(), 1.0, 1).add(Vec3(0.5, 0, 0), 1.0, 1);
+    CHECK(refusal(overlapping.soup, uniform(0.3, true)).find("intersects itself") !=
+          std::string::npos);
+
+    const Spheres fine = Spheres().add(Vec3::Zero(), 1.0, 1);
+    VolumeFromSurfaceOptions two_sizes = uniform(0.3, false);
+    two_sizes.sizing.hausd = 0.01;
+    CHECK(refusal(fine.soup, two_sizes).find("at most one") != std::string::npos);
+    VolumeFromSurfaceOptions sol = uniform(0, false);
+    sol.sizing.hsiz = 0;
+    sol.sizing.vertex_sizes.assign(5, 0.1);
+    CHECK(refusal(fine.soup, sol).find("5 sizes for 42 points") != std::string::npos);
+    CHECK(refusal(surface::TriangleSoup{}, uniform(0.3, false)) == "test: no triangles");
+}
+
+TEST_CASE("a mesh file's triangles without tets are read as a soup, refs kept")
+{
+    TetMesh mesh;
+    for (const auto& p : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)})
+        mesh.add_vertex(p);
+    mesh.add_triangle({1, 2, 3}, 4);
+    mesh.add_triangle({0, 3, 2}, 4);
+    mesh.add_triangle({0, 1, 3}, 5);
+    mesh.add_triangle({0, 2, 1}, 5);
+    const surface::TriangleSoup soup = coupling::triangle_soup(mesh);
+    CHECK(soup.points.size() == 4);
+    CHECK(soup.triangles.size() == 4);
+    CHECK(soup.refs == std::vector<int>{4, 4, 5, 5});
+    CHECK(soup.triangles[1] == std::array<int, 3>{0, 3, 2});
+}
