@@ -34,7 +34,10 @@ constexpr double kVolumeFloor = 1e-6;    // 6 V >= this times the face's mean ed
 constexpr double kCrowdingRelax = 0.8;   // the new-point distance shrinks so per failure
 constexpr int kExtraAttempts = 2;        // attempts at the last floor before a face is stuck
 constexpr double kGridCellFactor = 1.5;  // grid cell = this times the typical size
-constexpr int kBruteForceFaces = 256;    // a front this small is searched in one cell
+constexpr int kBruteForceFaces = 256;
+constexpr double kRetreatPreferFactor = 0.6;  // existing vertices win more easily per retreat
+constexpr double kFoldSine = 1e-7;  // a new face this flat against a front face folds    // a front
+                                    // this small is searched in one cell
 
 struct Box
 {
@@ -62,6 +65,57 @@ bool surely_positive(const Vec3& a, const Vec3& n, double n_scale, const Vec3& p
     return value > bound;
 }
 
+/// The sizes a cavity's own faces ask for, when no field is given: each input vertex's mean
+/// incident edge length, blended by inverse distance, so that sizes cannot drift down as the
+/// front's faces shrink (the front would then never close).
+class InputSizeField final : public SizeField
+{
+public:
+    void build(const std::vector<Vec3>& points, const std::vector<Triangle>& faces)
+    {
+        const int n = static_cast<int>(points.size());
+        std::vector<double> sum(n, 0.0);
+        std::vector<int> count(n, 0);
+        for (const Triangle& t : faces)
+            for (int k = 0; k < 3; ++k)
+            {
+                const double length = (points[t[k]] - points[t[(k + 1) % 3]]).norm();
+                sum[t[k]] += length;
+                sum[t[(k + 1) % 3]] += length;
+                count[t[k]] += 1;
+                count[t[(k + 1) % 3]] += 1;
+            }
+        // a large input is sampled evenly: the blend is smooth and the query stays cheap
+        const int step = std::max(1, n / kMaxSamples);
+        samples_.clear();
+        sizes_.clear();
+        for (int v = 0; v < n; v += step)
+            if (count[v] > 0)
+            {
+                samples_.push_back(points[v]);
+                sizes_.push_back(sum[v] / count[v]);
+            }
+    }
+
+    double size(const Vec3& p) const override
+    {
+        double weighted = 0, total = 0;
+        for (std::size_t k = 0; k < samples_.size(); ++k)
+        {
+            const double d2 = (samples_[k] - p).squaredNorm();
+            const double w = 1.0 / (d2 * d2 + 1e-300);
+            weighted += w * sizes_[k];
+            total += w;
+        }
+        return weighted / total;
+    }
+
+private:
+    static constexpr int kMaxSamples = 1024;
+    std::vector<Vec3> samples_;
+    std::vector<double> sizes_;
+};
+
 class FrontMesher
 {
 public:
@@ -83,6 +137,7 @@ private:
     void gather_vertices(const Box& region);
     void gather_faces(int face, const Box& region);
     bool valid_tet(int face, int p, bool is_new);
+    bool folds_onto(const TetVertices& tet, int shared_mask, const Triangle& t) const;
     void commit(int face, int p);
     void add_face(const Triangle& t);
     int close_leftovers();
@@ -95,6 +150,7 @@ private:
     const std::vector<Triangle>& input_faces_;
     const SizeField* field_;
     const AdvancingFrontOptions& options_;
+    InputSizeField input_sizes_;  // the field when none is given
 
     // local numbering: input vertices first (global id in local_to_global_), then new points
     std::vector<int> local_to_global_;
@@ -229,6 +285,11 @@ bool FrontMesher::setup(std::string& failure)
         order_origin_ = lo;
         order_inverse_extent_ = 1.0 / std::max((hi - lo).maxCoeff(), 1e-300);
         order_scale_ = std::max((hi - lo).maxCoeff(), 1e-300);
+    }
+    if (!field_)
+    {
+        input_sizes_.build(points_, local_faces);
+        field_ = &input_sizes_;
     }
     front_.valence.assign(num_input_vertices_, 0);
     front_.hash.reserve(input_faces_.size() * 2);
@@ -384,6 +445,39 @@ void FrontMesher::gather_faces(int face, const Box& region)
     grid_.query_faces(region.lo, region.hi, face_live, on_face);
 }
 
+/// True when front face t, sharing an edge with a new side face of `tet`, lies flat against it
+/// on the same side of the edge: the pocket between them would need a tet flat in doubles.
+bool FrontMesher::folds_onto(const TetVertices& tet, int shared_mask, const Triangle& t) const
+{
+    int edge[2], n = 0, w = -1;
+    for (int j = 0; j < 4; ++j)
+        if (shared_mask & (1 << j)) edge[n++] = tet[j];
+    for (int v : t)
+        if (v != edge[0] && v != edge[1]) w = v;
+    const Vec3 &X = points_[edge[0]], &Y = points_[edge[1]], &W = points_[w];
+    const Vec3 e = Y - X;
+    const double e2 = e.squaredNorm();
+    if (!(e2 > 0)) return false;
+    const Vec3 uw = (W - X) - e * ((W - X).dot(e) / e2);
+    // the tet's faces through the edge other than the base (which leaves the front)
+    for (int j = 0; j < 4; ++j)
+    {
+        const int q = tet[j];
+        if (q == edge[0] || q == edge[1]) continue;
+        int other = -1;
+        for (int k = 0; k < 4; ++k)
+            if (tet[k] != edge[0] && tet[k] != edge[1] && tet[k] != q) other = tet[k];
+        // the face (edge, q) is the base when the fourth vertex is the apex
+        if (other == tet[3]) continue;
+        const Vec3& Q = points_[q];
+        const Vec3 uq = (Q - X) - e * ((Q - X).dot(e) / e2);
+        if (!(uq.dot(uw) > 0)) continue;
+        const double sine = uq.cross(uw).norm() / (uq.norm() * uw.norm());
+        if (sine < kFoldSine && front_.find({edge[0], edge[1], q}) < 0) return true;
+    }
+    return false;
+}
+
 bool FrontMesher::valid_tet(int face, int p, bool is_new)
 {
     const Triangle& base = front_.vertices[face];
@@ -433,6 +527,7 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
                     ++shared;
                 }
         if (shared == 3) continue;  // the face the new tet closes against
+        if (shared == 2 && folds_onto(tet, shared_mask, t)) return false;
         // quick reject: every vertex of t strictly outside one face plane or on it as a vertex
         bool apart = false;
         for (int i = 0; i < 4 && !apart; ++i)
@@ -576,7 +671,9 @@ bool FrontMesher::attempt(int face)
     if (ideal_quality == 0) ideal_quality = best_new;
     // Existing vertices scoring >= 0.8 of the best new point first, then new points, then the
     // other vertices; by quality inside each class, ties by vertex id.
-    const double prefer = kPreferExisting * ideal_quality;
+    // each retreat round leans further towards existing vertices, so a rerun takes another path
+    const double prefer =
+        kPreferExisting * std::pow(kRetreatPreferFactor, retreat_rounds_) * ideal_quality;
     auto rank = [&](const Candidate& x) {
         if (x.vertex >= 0) return x.quality >= prefer ? 0 : 2;
         return 1;
@@ -764,6 +861,15 @@ bool FrontMesher::retreat()
     const int n = static_cast<int>(points_.size());
     std::vector<std::uint8_t> on_front(n, 0);
     for (int v = 0; v < n; ++v) on_front[v] = front_.valence[v] > 0;
+    // later rounds clear a wider region around the open faces: one tet layer more per round
+    for (int ring = 0; ring < retreat_rounds_; ++ring)
+    {
+        std::vector<std::uint8_t> grown = on_front;
+        for (const TetVertices& t : tets_)
+            if (on_front[t[0]] || on_front[t[1]] || on_front[t[2]] || on_front[t[3]])
+                for (int v : t) grown[v] = 1;
+        on_front.swap(grown);
+    }
     std::vector<TetVertices> kept;
     kept.reserve(tets_.size());
     std::vector<TetVertices> removed;
