@@ -2,6 +2,8 @@
 // it, and the mesh must be as valid as before, hold the same volume, keep the cavity's outer
 // faces and put Steiner points strictly inside; the same seed gives the same bytes.
 
+#include "volume/cavity.h"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/cavity.h"
 #include "volume/check.h"
 #include "volume/predicates.h"
 #include "volume/refine.h"
