@@ -132,6 +132,9 @@ private:
     bool setup(std::string& failure);
     void build_grid();
     void compute_components();
+    /// Per vertex, the smallest vertex id of its group: the live front faces joined through
+    /// shared vertices (a vertex on no live face is its own group).
+    std::vector<int> front_vertex_groups() const;
     bool advance();  // true when the front is empty
     bool attempt(int face);
     void gather_vertices(const Box& region);
@@ -378,7 +381,7 @@ void FrontMesher::build_grid()
 
 /// Components of the front through shared vertices. When one encloses a negative volume (a
 /// void's shell) it is part of a component around it: then all share one label (as Netgen).
-void FrontMesher::compute_components()
+std::vector<int> FrontMesher::front_vertex_groups() const
 {
     const int n = static_cast<int>(points_.size());
     std::vector<int> parent(n);
@@ -397,6 +400,15 @@ void FrontMesher::compute_components()
                 if (a != b) parent[std::max(a, b)] = std::min(a, b);
             }
         }
+    for (int v = 0; v < n; ++v) parent[v] = root(v);
+    return parent;
+}
+
+void FrontMesher::compute_components()
+{
+    const int n = static_cast<int>(points_.size());
+    const std::vector<int> group = front_vertex_groups();
+    auto root = [&group](int v) { return group[v]; };
     std::vector<double> volume(n, 0.0);
     for (int f = 0; f < static_cast<int>(front_.vertices.size()); ++f)
         if (front_.alive[f])
@@ -408,7 +420,7 @@ void FrontMesher::compute_components()
         }
     bool negative = false;
     for (int v = 0; v < n; ++v)
-        if (parent[v] == v && front_.valence[v] > 0 && volume[v] < 0) negative = true;
+        if (group[v] == v && front_.valence[v] > 0 && volume[v] < 0) negative = true;
     component_.resize(n);
     for (int v = 0; v < n; ++v) component_[v] = negative ? 0 : root(v);
 }
@@ -752,24 +764,11 @@ bool FrontMesher::advance()
 int FrontMesher::close_leftovers()
 {
     const int n = static_cast<int>(points_.size());
-    std::vector<int> parent(n);
-    std::iota(parent.begin(), parent.end(), 0);
-    auto root = [&](int v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
+    const std::vector<int> group = front_vertex_groups();
+    auto root = [&group](int v) { return group[v]; };
     std::vector<int> open;
     for (int f = 0; f < static_cast<int>(front_.vertices.size()); ++f)
-        if (front_.alive[f])
-        {
-            open.push_back(f);
-            const Triangle& t = front_.vertices[f];
-            for (int k = 1; k < 3; ++k)
-            {
-                const int x = root(t[0]), y = root(t[k]);
-                if (x != y) parent[std::max(x, y)] = std::min(x, y);
-            }
-        }
+        if (front_.alive[f]) open.push_back(f);
     // groups in the order of their smallest face id
     std::vector<std::pair<int, int>> by_group;  // (root, face)
     for (int f : open) by_group.push_back({root(front_.vertices[f][0]), f});
