@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "volume/detail/cavity_stages.h"
+#include "volume/detail/kernel.h"
 #include "volume/predicates.h"
 #include "volume/tet_tables.h"
 
@@ -37,9 +38,6 @@ Key sorted_key(const Triangle& t)
     std::sort(k.begin(), k.end());
     return k;
 }
-
-/// The positive tet on outward face abc with apex p (p on the inner side).
-TetVertices tet_on_face(const Triangle& f, int p) { return {f[0], f[2], f[1], p}; }
 
 /// Empty when the faces are a closed, consistently oriented surface (every directed edge once,
 /// its reverse once); else why not.
@@ -153,7 +151,7 @@ bool fill_by_vertex_fan(const std::vector<Vec3>& points, const std::vector<Trian
     fill.new_points.clear();
     for (const auto& f : faces)
         if (f[0] != best_apex && f[1] != best_apex && f[2] != best_apex)
-            fill.tets.push_back(tet_on_face(f, best_apex));
+            fill.tets.push_back(detail::cone_tet(f, best_apex));
     fill.worst_quality = best_worst;
     fill.stage = FillStage::VertexFan;
     fill.filled = true;
