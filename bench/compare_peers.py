@@ -50,7 +50,8 @@ def read_medit_sections(path):
     while i < len(tokens):
         key = tokens[i]
         width = {'Vertices': 4, 'Triangles': 4, 'Tetrahedra': 5, 'Edges': 3, 'Corners': 1,
-                 'Ridges': 1, 'RequiredVertices': 1}.get(key)
+                 'Ridges': 1, 'RequiredVertices': 1, 'RequiredEdges': 1,
+                 'RequiredTriangles': 1}.get(key)
         if width:
             n = int(tokens[i + 1])
             out[key] = np.array(tokens[i + 2:i + 2 + n * width], dtype=float).reshape(n, width)

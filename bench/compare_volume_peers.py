@@ -26,6 +26,8 @@ import argparse, os, resource, shutil, subprocess, sys, tempfile
 
 import numpy as np
 
+from compare_peers import read_medit_sections
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SPHERES = {'sphere3k': 0.1, 'sphere12k': 0.05, 'sphere48k': 0.025}
 OBJS = ['fandisk', 'spot', 'rocker-arm', 'cheburashka']
@@ -33,21 +35,8 @@ OBJS = ['fandisk', 'spot', 'rocker-arm', 'cheburashka']
 
 def read_medit(path):
     """Vertices (n,3), tets (m,4) 0-based, of a Medit ASCII mesh."""
-    text = '\n'.join(line.split('#', 1)[0] for line in open(path))
-    tokens = text.split()
-    out, i = {}, 0
-    widths = {'Vertices': 4, 'Triangles': 4, 'Tetrahedra': 5, 'Edges': 3, 'Corners': 1,
-              'Ridges': 1, 'RequiredVertices': 1, 'RequiredEdges': 1, 'RequiredTriangles': 1}
-    while i < len(tokens):
-        key = tokens[i]
-        width = widths.get(key)
-        if width:
-            n = int(tokens[i + 1])
-            out[key] = np.array(tokens[i + 2:i + 2 + n * width], dtype=float).reshape(n, width)
-            i += 2 + n * width
-        else:
-            i += 1
-    return out['Vertices'][:, :3], out['Tetrahedra'][:, :4].astype(np.int64) - 1
+    sections = read_medit_sections(path)
+    return sections['Vertices'][:, :3], sections['Tetrahedra'][:, :4].astype(np.int64) - 1
 
 
 def read_obj(path):
