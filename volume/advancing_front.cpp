@@ -143,6 +143,7 @@ private:
     bool folds_onto(const TetVertices& tet, int shared_mask, const Triangle& t) const;
     void commit(int face, int p);
     void add_face(const Triangle& t);
+    void remove_face(int id);
     int close_leftovers();
     bool retreat();
     float face_size(const Triangle& t) const;
@@ -173,8 +174,7 @@ private:
 
     // scratch of one attempt, reused so the inner loop does not allocate
     std::vector<int> local_vertices_;
-    std::vector<int> local_faces_;
-    std::vector<Box> local_face_boxes_;
+    std::vector<detail::BucketGrid::FaceEntry> local_faces_;
     std::vector<Box> face_boxes_;  // per front slot
     struct Candidate
     {
@@ -375,7 +375,7 @@ void FrontMesher::build_grid()
         {
             const Triangle& t = front_.vertices[f];
             const Box& b = face_boxes_[f] = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
-            grid_.add_face(f, front_.serial[f], b.lo, b.hi);
+            grid_.add_face(f, t, b.lo, b.hi);
         }
 }
 
@@ -428,33 +428,15 @@ void FrontMesher::compute_components()
 void FrontMesher::gather_vertices(const Box& region)
 {
     local_vertices_.clear();
-    auto vertex_live = [&](int v) {
-        if (front_.valence[v] > 0) return true;
-        in_grid_[v] = 0;
-        return false;
-    };
-    auto on_vertex = [&](int v) {
-        const Vec3& p = points_[v];
-        if (p[0] >= region.lo[0] && p[0] <= region.hi[0] && p[1] >= region.lo[1] &&
-            p[1] <= region.hi[1] && p[2] >= region.lo[2] && p[2] <= region.hi[2])
-            local_vertices_.push_back(v);
-    };
-    grid_.query_vertices(region.lo, region.hi, vertex_live, on_vertex);
+    grid_.query_vertices(region.lo, region.hi, [&](int v) { local_vertices_.push_back(v); });
 }
 
 void FrontMesher::gather_faces(int face, const Box& region)
 {
     local_faces_.clear();
-    local_face_boxes_.clear();
-    auto face_live = [&](int f, int serial) {
-        return front_.alive[f] && front_.serial[f] == serial;
-    };
-    auto on_face = [&](int f) {
-        if (f == face || !face_boxes_[f].overlaps(region)) return;
-        local_faces_.push_back(f);
-        local_face_boxes_.push_back(face_boxes_[f]);
-    };
-    grid_.query_faces(region.lo, region.hi, face_live, on_face);
+    grid_.query_faces(region.lo, region.hi, [&](const detail::BucketGrid::FaceEntry& e) {
+        if (e.face != face) local_faces_.push_back(e);
+    });
 }
 
 /// True when front face t, sharing an edge with a new side face of `tet`, lies flat against it
@@ -524,12 +506,12 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
         return surely_positive(origin[i], normal[i], scale[i], points_[v]);
     };
 
-    for (std::size_t i_face = 0; i_face < local_faces_.size(); ++i_face)
+    for (const detail::BucketGrid::FaceEntry& entry : local_faces_)
     {
-        const int f = local_faces_[i_face];
-        if (f == face) continue;
-        const Triangle& t = front_.vertices[f];
-        if (!tet_box.overlaps(local_face_boxes_[i_face])) continue;
+        const Triangle& t = entry.vertices;
+        if (!tet_box.overlaps({Vec3(entry.lo[0], entry.lo[1], entry.lo[2]),
+                               Vec3(entry.hi[0], entry.hi[1], entry.hi[2])}))
+            continue;
         int shared_mask = 0, shared = 0;
         for (int k = 0; k < 3; ++k)
             for (int j = 0; j < 4; ++j)
@@ -589,8 +571,21 @@ void FrontMesher::add_face(const Triangle& t)
         }
     if (face_boxes_.size() < front_.vertices.size()) face_boxes_.resize(front_.vertices.size());
     const Box& b = face_boxes_[id] = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
-    grid_.add_face(id, front_.serial[id], b.lo, b.hi);
+    grid_.add_face(id, t, b.lo, b.hi);
     front_.push(id);
+}
+
+void FrontMesher::remove_face(int id)
+{
+    const Box& b = face_boxes_[id];
+    grid_.remove_face(id, b.lo, b.hi);
+    front_.remove(id);
+    for (int v : front_.vertices[id])
+        if (front_.valence[v] == 0 && in_grid_[v])
+        {
+            grid_.remove_vertex(v, points_[v]);
+            in_grid_[v] = 0;
+        }
 }
 
 void FrontMesher::commit(int face, int p)
@@ -598,7 +593,7 @@ void FrontMesher::commit(int face, int p)
     const Triangle base = front_.vertices[face];
     const int a = base[0], b = base[1], c = base[2];
     tets_.push_back({a, b, c, p});
-    front_.remove(face);
+    remove_face(face);
     const std::array<Triangle, 3> sides{{{a, b, p}, {b, c, p}, {c, a, p}}};
     for (const Triangle& s : sides)
     {
@@ -607,7 +602,7 @@ void FrontMesher::commit(int face, int p)
         {
             // closing: the face on the front must run the other way (a same-way one is a bug)
             assert(!detail::same_orientation(s, front_.vertices[g]));
-            front_.remove(g);
+            remove_face(g);
         }
         else
             add_face(s);
@@ -847,7 +842,7 @@ int FrontMesher::close_leftovers()
         }
         for (const TetVertices& t : fill.tets)
             tets_.push_back({global[t[0]], global[t[1]], global[t[2]], global[t[3]]});
-        for (int f : group_faces) front_.remove(f);
+        for (int f : group_faces) remove_face(f);
         ++closed;
     }
     return closed;
