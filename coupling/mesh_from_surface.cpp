@@ -12,6 +12,7 @@
 #include "common/errors.h"
 #include "common/size_quality.h"
 #include "common/stage_timer.h"
+#include "hdi/knn.h"
 #include "surface/features.h"
 #include "surface/sizing.h"
 #include "surface/surface_model.h"
@@ -179,6 +180,49 @@ Boundary from_surface_mesh(SurfaceMesh& mesh)
     return b;
 }
 
+constexpr int kFoldRounds = 4;       // remeshes after the first, each halving at the folds
+constexpr double kFoldRadius = 3.0;  // ... the sizes within this many local sizes of a crossing
+
+/// The centroids of the remeshed triangles that cross another (none when the check finds no
+/// crossing).
+std::vector<Vec3> fold_centres(const Boundary& b, const volume::SurfaceCheckOptions& check)
+{
+    std::vector<Vec3> centres;
+    if (!check.check_self_intersections) return centres;
+    for (const auto& defect : volume::check_closed_surface(b.points, b.triangles, check))
+        if (defect.kind == volume::SurfaceDefectKind::SelfIntersection)
+            for (int f : defect.faces)
+            {
+                const Triangle& t = b.triangles[f];
+                centres.push_back((b.points[t[0]] + b.points[t[1]] + b.points[t[2]]) / 3.0);
+            }
+    return centres;
+}
+
+/// Per input vertex, the size the remesher aimed at there (its target on the remeshed
+/// surface, interpolated), halved within kFoldRadius sizes of a fold centre.
+std::vector<double> sizes_halved_near(const SurfaceMesh& input, SurfaceMesh& remeshed,
+                                      const std::vector<Vec3>& folds)
+{
+    const surface::SurfaceProperties props(remeshed);
+    std::vector<double> targets(remeshed.n_vertices(), 0.0);
+    for (auto v : remeshed.vertices()) targets[v.idx()] = remeshed.property(props.vertex_size, v);
+    const surface::SurfaceModel model(remeshed);
+    const hdi::KnnIndex index(folds);
+    std::vector<double> sizes(input.n_vertices(), 0.0);
+    for (auto v : input.vertices())
+    {
+        const Vec3d& p = input.point(v);
+        double size = model.interpolate(p, targets);
+        int nearest = -1;
+        double squared = 0;
+        index.nearest(Vec3(p[0], p[1], p[2]), 1, &nearest, &squared);
+        if (nearest >= 0 && squared < kFoldRadius * kFoldRadius * size * size) size *= 0.5;
+        sizes[v.idx()] = size;
+    }
+    return sizes;
+}
+
 void check_sizing(const SurfaceSizing& s, std::size_t num_points, const std::string& source)
 {
     const int given = int(s.hsiz != 0) + int(s.hausd != 0) + int(!s.vertex_sizes.empty()) +
@@ -301,8 +345,21 @@ Boundary prepare_boundary(const Boundary& input, const VolumeFromSurfaceOptions&
     if (!(settings.sizing.hsiz > 0) && settings.input_sizes.empty() && !(sizing.hausd > 0) &&
         !(sizing.hmax > 0))
         settings.sizing.hmax = 2.0 * surface::mean_edge_length(mesh);
+    const SurfaceMesh input_mesh = mesh;  // remesh_surface works in place
     report.remesh = surface::remesh_surface(mesh, settings);
     Boundary remeshed = from_surface_mesh(mesh);
+    // A part thinner than the size (a finger, a tip) can fold the remeshed surface onto itself:
+    // remesh again from the input with the sizes halved around each crossing, a few rounds.
+    for (int round = 0; round < kFoldRounds; ++round)
+    {
+        const std::vector<Vec3> folds = fold_centres(remeshed, options.check);
+        if (folds.empty()) break;
+        settings.input_sizes = sizes_halved_near(input_mesh, mesh, folds);
+        mesh = input_mesh;
+        report.remesh = surface::remesh_surface(mesh, settings);
+        remeshed = from_surface_mesh(mesh);
+        ++report.fold_rounds;
+    }
 
     if (sizing.hsiz > 0)
         report.field = std::make_shared<volume::ConstantSize>(sizing.hsiz);
@@ -485,8 +542,12 @@ std::string format_volume_from_surface_report(const VolumeFromSurfaceReport& r)
                   r.shells == 1 ? "" : "s", r.regions, r.regions == 1 ? "" : "s", r.voids,
                   r.voids == 1 ? "" : "s", r.turned_shells, r.turned_shells == 1 ? "" : "s");
     out << line;
-    std::snprintf(line, sizeof line, "boundary: %d points, %d triangles\n", r.surface_points,
-                  r.surface_triangles);
+    const std::string refolded = r.fold_rounds == 0
+                                     ? ""
+                                     : " (remeshed " + std::to_string(r.fold_rounds) +
+                                           " more time(s), finer where it crossed itself)";
+    std::snprintf(line, sizeof line, "boundary: %d points, %d triangles%s\n", r.surface_points,
+                  r.surface_triangles, refolded.c_str());
     out << line;
     std::snprintf(line, sizeof line, "fill: %d tets, %d interior points, min Qe %.4f (%s)\n",
                   r.fill_tets, r.fill_points, r.fill_min_quality, r.fills.format().c_str());

@@ -77,8 +77,9 @@ struct VolumeFromSurfaceReport
     int turned_shells = 0;  ///< shells reversed to face out of their region (input's)
     int surface_points = 0, surface_triangles = 0;  ///< the boundary filled (after remeshing)
     surface::SurfaceRemeshResult remesh;            ///< when remeshed
-    volume::FillStatistics fills;                   ///< one fill per region
-    int fill_tets = 0, fill_points = 0;             ///< the fill's tets and Steiner points
+    int fold_rounds = 0;  ///< remeshes redone finer where the remeshed surface crossed itself
+    volume::FillStatistics fills;        ///< one fill per region
+    int fill_tets = 0, fill_points = 0;  ///< the fill's tets and Steiner points
     double fill_min_quality = 0;
     AdaptReport adapt;  ///< after the fill
     int tets = 0, vertices = 0;
