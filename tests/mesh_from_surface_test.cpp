@@ -18,6 +18,7 @@
 #include "volume/check.h"
 #include "volume/quality_report.h"
 #include "volume/size_fields.h"
+#include "volume/tet_io.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;
@@ -305,4 +306,41 @@ TEST_CASE("a mesh file's triangles without tets are read as a soup, refs kept")
     CHECK(soup.triangles.size() == 4);
     CHECK(soup.refs == std::vector<int>{4, 4, 5, 5});
     CHECK(soup.triangles[1] == std::array<int, 3>{0, 3, 2});
+}
+
+TEST_CASE("sphere480's boundary, kept, filled and optimized: the same triangles, a valid volume")
+{
+    // the 256 boundary triangles of data/sphere480.mesh, the tets dropped
+    const TetMesh source = read_mesh(fixtures::data_path("sphere480.mesh"));
+    const surface::TriangleSoup soup = coupling::triangle_soup(source);
+    VolumeFromSurfaceReport report;
+    const TetMesh mesh = mesh_volume_from_surface(soup, uniform(0.3, true), &report);
+    require_valid(mesh);
+    CHECK(report.fills.by_stage[static_cast<int>(FillStage::Failed)] == 0);
+    auto sorted_triangles = [](const std::vector<Triangle>& triangles,
+                               const std::vector<Vec3>& points) {
+        std::vector<std::array<double, 9>> out;
+        for (const Triangle& t : triangles)
+        {
+            std::array<int, 3> r{0, 1, 2};  // rotate to the smallest point first
+            auto less = [&](int a, int b) {
+                return std::lexicographical_compare(points[t[a]].data(), points[t[a]].data() + 3,
+                                                    points[t[b]].data(), points[t[b]].data() + 3);
+            };
+            const int first = less(0, 1) ? (less(0, 2) ? 0 : 2) : (less(1, 2) ? 1 : 2);
+            for (int k = 0; k < 3; ++k) r[k] = (first + k) % 3;
+            std::array<double, 9> key{};
+            for (int k = 0; k < 3; ++k)
+                for (int c = 0; c < 3; ++c) key[3 * k + c] = points[t[r[k]]][c];
+            out.push_back(key);
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    // the boundary is the input's triangles, in position and orientation
+    CHECK(sorted_triangles(mesh.triangles, mesh.points) ==
+          sorted_triangles(source.triangles, source.points));
+    const QualityReport quality = compute_quality_report(mesh, nullptr);
+    CHECK(quality.volume == doctest::Approx(source.total_volume()).epsilon(1e-9));
+    CHECK(quality.min_qe > 0.3);
 }

@@ -6,12 +6,20 @@
 if(NOT CMAKE_SCRIPT_MODE_FILE)
     if(TARGET adapt AND TARGET meshstat)
         set(_vfs_work ${CMAKE_CURRENT_BINARY_DIR}/volume_from_surface_work)
+        set(_vfs_whole)
+        foreach(_model fandisk spot rocker-arm cheburashka)
+            list(APPEND _vfs_whole whole_${_model}_raw whole_${_model}_remeshed)
+        endforeach()
         foreach(_case sphere sphere_keep_surface spot bunny_refused overlap_refused
-                      surface_flags_on_a_tet_mesh)
+                      surface_flags_on_a_tet_mesh ${_vfs_whole})
             add_test(NAME adapt_surface_${_case}
                      COMMAND ${CMAKE_COMMAND} -DCASE=${_case} -DADAPT=$<TARGET_FILE:adapt>
                              -DMESHSTAT=$<TARGET_FILE:meshstat> -DDATA=${PROJECT_SOURCE_DIR}/data
                              -DWORK=${_vfs_work}/${_case} -P ${CMAKE_CURRENT_LIST_FILE})
+        endforeach()
+        # whole real models: minutes under the sanitizers, so Release builds only
+        foreach(_case ${_vfs_whole})
+            set_tests_properties(adapt_surface_${_case} PROPERTIES LABELS no-sanitizer)
         endforeach()
     endif()
     return()
@@ -87,6 +95,41 @@ elseif(CASE STREQUAL "sphere_keep_surface")
 elseif(CASE STREQUAL "spot")
     # the README's example: a new user's command line (2 % of the bounding-box diagonal)
     mesh_and_check(table ${DATA}/spot.obj --hsiz 0.05)
+
+elseif(CASE MATCHES "^whole_(.+)_(raw|remeshed)$")
+    # The shared models whole: raw (their triangles kept, the interior at 2 % of the bounding-box
+    # diagonal) and remeshed at 1 % of it (fandisk 7.6156, spot 2.5881, rocker-arm 1.1650,
+    # cheburashka 1.2739).
+    set(model ${CMAKE_MATCH_1})
+    set(mode ${CMAKE_MATCH_2})
+    set(size_fandisk_raw 0.152312)
+    set(size_fandisk_remeshed 0.076156)
+    set(size_spot_raw 0.051762)
+    set(size_spot_remeshed 0.025881)
+    set(size_rocker-arm_raw 0.0233)
+    set(size_rocker-arm_remeshed 0.01165)
+    set(size_cheburashka_raw 0.025478)
+    set(size_cheburashka_remeshed 0.012739)
+    set(h ${size_${model}_${mode}})
+    if(mode STREQUAL "raw")
+        mesh_and_check(table ${DATA}/${model}.obj --hsiz ${h} --keep-surface)
+        file(STRINGS ${DATA}/${model}.obj faces REGEX "^f ")
+        list(LENGTH faces num_faces)
+        expect_match("${table}"
+                     "\nboundary triangles +${num_faces}  \\(stored triangles ${num_faces}\\)\n")
+    else()
+        mesh_and_check(table ${DATA}/${model}.obj --hsiz ${h})
+        # shape and size: the floors every remeshed model reaches (the bench has the figures)
+        run(table rc ${MESHSTAT} ${WORK}/out.mesh --hsiz ${h})
+        string(REGEX MATCH "\nQe >= 0.5 +([0-9.]+) %" _ "${table}")
+        if(NOT CMAKE_MATCH_1 OR CMAKE_MATCH_1 LESS 99)
+            message(FATAL_ERROR "Qe >= 0.5 on ${CMAKE_MATCH_1} % of the tets (at least 99):\n${table}")
+        endif()
+        string(REGEX MATCH "\nQt >= 0.66 +([0-9.]+) %" _ "${table}")
+        if(NOT CMAKE_MATCH_1 OR CMAKE_MATCH_1 LESS 99)
+            message(FATAL_ERROR "Qt >= 0.66 on ${CMAKE_MATCH_1} % of the edges (at least 99):\n${table}")
+        endif()
+    endif()
 
 elseif(CASE STREQUAL "bunny_refused")
     # the Stanford bunny has five holes in its base: named, and nothing written
