@@ -29,6 +29,8 @@ int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int 
 namespace
 {
 
+constexpr int kMaxDeferRounds = 16;  // simulations of a pass, each deferring the stuck tets' edges
+
 /// The tets' edges, each once, filed under its lower vertex (compressed rows); a slot number
 /// indexes per-edge data. Only edges whose higher vertex is >= first_vertex are kept (refine()
 /// skips edges that a previous pass already found short enough).
@@ -369,7 +371,7 @@ private:
     int child_slot(int t, int i) const { return i == 0 ? t : extra_start_[ordinal_[t]] + i - 1; }
 
     int mark_edges(const EdgeTable& edges);
-    void choose_patterns(const EdgeTable& edges);
+    std::vector<std::array<int, 6>> choose_patterns(const EdgeTable& edges);
     void add_midpoints(const EdgeTable& edges);
     void rebuild_tets();
     void link_children();
@@ -423,13 +425,18 @@ int RefinePass::mark_edges(const EdgeTable& edges)
 }
 
 /// Pass 1, a simulation: the pattern of every tet and a positive way to build it. Nothing is
-/// changed; throws InputError when some tet cannot be rebuilt positively.
-void RefinePass::choose_patterns(const EdgeTable& edges)
+/// changed; returns the edge slots of the tets that cannot be rebuilt positively.
+std::vector<std::array<int, 6>> RefinePass::choose_patterns(const EdgeTable& edges)
 {
     const int nt = mesh_.num_tet_slots();
     const PatternBuilds& builds = pattern_builds();
     unsplit_ = encode(find_refine_pattern(0, 0), Build::Table);
     choice_.assign(nt, unsplit_);
+    refined_.clear();
+    refined_slots_.clear();
+    num_new_points_ = 0;
+    num_fallbacks_ = 0;
+    std::vector<std::array<int, 6>> stuck;
     std::array<Vec3, kPatternNumLocalPoints> p;
     p.fill(Vec3::Zero());
     num_children_ = nt;
@@ -452,9 +459,10 @@ void RefinePass::choose_patterns(const EdgeTable& edges)
             else if (children_positive(builds.cone[index], p))
                 build = Build::ConePointAverage;
             else
-                throw InputError("refine: tet " + std::to_string(t) +
-                                 " cannot be split without a non-positive child (signed volume " +
-                                 std::to_string(mesh_.volume(t)) + "); the mesh is unchanged");
+            {
+                stuck.push_back(s.slot);
+                continue;
+            }
         }
         choice_[t] = encode(index, build);
         refined_.push_back(t);
@@ -463,6 +471,7 @@ void RefinePass::choose_patterns(const EdgeTable& edges)
         num_children_ += static_cast<long long>(b.tets.size()) - 1;
         num_new_points_ += b.new_point;
     }
+    return stuck;
 }
 
 void RefinePass::add_midpoints(const EdgeTable& edges)
@@ -791,9 +800,27 @@ RefinePassResult RefinePass::run()
     {
         const EdgeTable edges(mesh_, first_candidate_);
         report.edges_split = mark_edges(edges);
+        // A tet flat in doubles may have no positive children: its split edges wait for a later
+        // pass (the optimizer in between takes it apart); its neighbours are simulated again.
+        for (int round = 0; report.edges_split > 0; ++round)
+        {
+            const std::vector<std::array<int, 6>> stuck = choose_patterns(edges);
+            if (stuck.empty()) break;
+            if (round == kMaxDeferRounds)
+                throw InputError("refine: " + std::to_string(stuck.size()) +
+                                 " tets cannot be split without a non-positive child; the mesh "
+                                 "is unchanged");
+            for (const auto& slots : stuck)
+                for (int slot : slots)
+                    if (slot >= 0 && midpoint_[slot] >= 0)
+                    {
+                        midpoint_[slot] = -1;
+                        --report.edges_split;
+                        ++report.deferred_edges;
+                    }
+        }
         if (report.edges_split > 0)
         {
-            choose_patterns(edges);  // may throw: nothing changed yet
             add_midpoints(edges);
             rebuild_tets();
             link_children();

@@ -39,6 +39,9 @@ struct RefinePassReport
     /// moved midpoint, round-off on a nearly flat parent) and were instead coned from an
     /// interior point that sees every boundary triangle of the sub-polyhedron.
     int fallback_tets = 0;
+    /// Marked edges left for a later pass: a tet through them, flat in doubles, had no positive
+    /// split (nor a coned one).
+    int deferred_edges = 0;
 };
 
 struct RefinePassResult
@@ -64,8 +67,9 @@ struct RefinePassResult
 /// Every child's volume is checked before anything is committed; a pattern with a non-positive
 /// child falls back to a cone from the parent's centroid, then from the average of the
 /// sub-polyhedron's points (one new interior vertex, reported as a Steiner point). If no
-/// fallback is positive (the parent itself is flat or inverted) the mesh is left unchanged and
-/// hdimesh::InputError names the tet.
+/// fallback is positive (the parent is flat in doubles) its split edges wait for a later pass
+/// (deferred_edges) and the pass is simulated again; after 16 such rounds the mesh is left
+/// unchanged and hdimesh::InputError is thrown.
 ///
 /// The pass starts from a freshly built adjacency (callers need not maintain it) and links the
 /// children from the pattern table and the parents' adjacency (no global rebuild): child 0 of a
