@@ -183,6 +183,9 @@ private:
         int slot;
     };
     std::vector<Candidate> candidates_;
+    std::vector<std::uint32_t> vertex_stamp_;  // valid_tet's per-vertex masks, by call
+    std::vector<std::uint8_t> vertex_mask_;
+    std::uint32_t stamp_ = 0;
     std::array<Vec3, 3> new_positions_;
 
     long iteration_budget_ = 0;
@@ -505,6 +508,34 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
     auto surely_outside = [&](int i, int v) {
         return surely_positive(origin[i], normal[i], scale[i], points_[v]);
     };
+    // Per vertex, once per call (a front vertex is in about six of the local faces): bit i when
+    // it is surely outside face plane i or a vertex of face i; bit 4 + j when it is tet[j].
+    if (vertex_stamp_.size() < points_.size())
+    {
+        vertex_stamp_.resize(points_.size() + points_.size() / 2 + 16, 0);
+        vertex_mask_.resize(vertex_stamp_.size(), 0);
+    }
+    if (++stamp_ == 0)
+    {
+        std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
+        stamp_ = 1;
+    }
+    for (int j = 0; j < 4; ++j)
+    {
+        vertex_stamp_[tet[j]] = stamp_;
+        vertex_mask_[tet[j]] = static_cast<std::uint8_t>((0xF & ~(1 << j)) | (1 << (4 + j)));
+    }
+    auto mask_of = [&](int v) {
+        if (vertex_stamp_[v] != stamp_)
+        {
+            vertex_stamp_[v] = stamp_;
+            std::uint8_t m = 0;
+            for (int i = 0; i < 4; ++i)
+                if (surely_outside(i, v)) m |= static_cast<std::uint8_t>(1 << i);
+            vertex_mask_[v] = m;
+        }
+        return vertex_mask_[v];
+    };
 
     for (const detail::BucketGrid::FaceEntry& entry : local_faces_)
     {
@@ -512,32 +543,29 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
         if (!tet_box.overlaps({Vec3(entry.lo[0], entry.lo[1], entry.lo[2]),
                                Vec3(entry.hi[0], entry.hi[1], entry.hi[2])}))
             continue;
-        int shared_mask = 0, shared = 0;
-        for (int k = 0; k < 3; ++k)
-            for (int j = 0; j < 4; ++j)
-                if (t[k] == tet[j])
-                {
-                    shared_mask |= 1 << j;
-                    ++shared;
-                }
+        const std::uint8_t m0 = mask_of(t[0]), m1 = mask_of(t[1]), m2 = mask_of(t[2]);
+        const int shared_mask = (m0 | m1 | m2) >> 4;
+        const int shared = ((m0 >> 4) != 0) + ((m1 >> 4) != 0) + ((m2 >> 4) != 0);
         if (shared == 3) continue;  // the face the new tet closes against
         if (shared == 2 && folds_onto(tet, shared_mask, t)) return false;
         // quick reject: every vertex of t strictly outside one face plane or on it as a vertex
-        bool apart = false;
-        for (int i = 0; i < 4 && !apart; ++i)
+        if (m0 & m1 & m2 & 0xF) continue;
+        // quick reject: the tet's other vertices strictly on one side of t's plane
         {
-            bool all = true;
-            for (int k = 0; k < 3 && all; ++k)
+            const Vec3 &u = points_[t[0]], e1 = points_[t[1]] - u, e2 = points_[t[2]] - u;
+            const Vec3 n = e1.cross(e2);
+            const double n_scale = e1.cwiseAbs().sum() * e2.cwiseAbs().sum();
+            int above = 0, below = 0, others = 0;
+            for (int j = 0; j < 4; ++j)
             {
-                const int v = t[k];
-                const bool on_plane_vertex =
-                    (v == tet[tet::kFaceVertices[i][0]] || v == tet[tet::kFaceVertices[i][1]] ||
-                     v == tet[tet::kFaceVertices[i][2]]);
-                all = on_plane_vertex || surely_outside(i, v);
+                if (shared_mask & (1 << j)) continue;
+                ++others;
+                const Vec3& X = points_[tet[j]];
+                above += surely_positive(u, n, n_scale, X);
+                below += surely_positive(u, -n, n_scale, X);
             }
-            apart = all;
+            if (above == others || below == others) continue;
         }
-        if (apart) continue;
         if (tet_triangle_intersect(points_, tet, t)) return false;
     }
 
