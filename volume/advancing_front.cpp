@@ -186,6 +186,7 @@ private:
     std::vector<std::uint32_t> vertex_stamp_;  // valid_tet's per-vertex masks, by call
     std::vector<std::uint8_t> vertex_mask_;
     std::uint32_t stamp_ = 0;
+    int last_blocker_ = -1;  // index in local_faces_ of the face that refused the last candidate
     std::array<Vec3, 3> new_positions_;
 
     long iteration_budget_ = 0;
@@ -437,6 +438,7 @@ void FrontMesher::gather_vertices(const Box& region)
 void FrontMesher::gather_faces(int face, const Box& region)
 {
     local_faces_.clear();
+    last_blocker_ = -1;
     grid_.query_faces(region.lo, region.hi, [&](const detail::BucketGrid::FaceEntry& e) {
         if (e.face != face) local_faces_.push_back(e);
     });
@@ -537,19 +539,19 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
         return vertex_mask_[v];
     };
 
-    for (const detail::BucketGrid::FaceEntry& entry : local_faces_)
-    {
+    // true when front face `entry` forbids the tet
+    auto blocks = [&](const detail::BucketGrid::FaceEntry& entry) {
         const Triangle& t = entry.vertices;
         if (!tet_box.overlaps({Vec3(entry.lo[0], entry.lo[1], entry.lo[2]),
                                Vec3(entry.hi[0], entry.hi[1], entry.hi[2])}))
-            continue;
+            return false;
         const std::uint8_t m0 = mask_of(t[0]), m1 = mask_of(t[1]), m2 = mask_of(t[2]);
         const int shared_mask = (m0 | m1 | m2) >> 4;
         const int shared = ((m0 >> 4) != 0) + ((m1 >> 4) != 0) + ((m2 >> 4) != 0);
-        if (shared == 3) continue;  // the face the new tet closes against
-        if (shared == 2 && folds_onto(tet, shared_mask, t)) return false;
+        if (shared == 3) return false;  // the face the new tet closes against
+        if (shared == 2 && folds_onto(tet, shared_mask, t)) return true;
         // quick reject: every vertex of t strictly outside one face plane or on it as a vertex
-        if (m0 & m1 & m2 & 0xF) continue;
+        if (m0 & m1 & m2 & 0xF) return false;
         // quick reject: the tet's other vertices strictly on one side of t's plane
         {
             const Vec3 &u = points_[t[0]], e1 = points_[t[1]] - u, e2 = points_[t[2]] - u;
@@ -564,10 +566,19 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
                 above += surely_positive(u, n, n_scale, X);
                 below += surely_positive(u, -n, n_scale, X);
             }
-            if (above == others || below == others) continue;
+            if (above == others || below == others) return false;
         }
-        if (tet_triangle_intersect(points_, tet, t)) return false;
-    }
+        return tet_triangle_intersect(points_, tet, t);
+    };
+    // The face that refused the attempt's last candidate is tried first: the same obstacle
+    // usually stands in the way of the next ones.
+    if (last_blocker_ >= 0 && blocks(local_faces_[last_blocker_])) return false;
+    for (std::size_t k = 0; k < local_faces_.size(); ++k)
+        if (static_cast<int>(k) != last_blocker_ && blocks(local_faces_[k]))
+        {
+            last_blocker_ = static_cast<int>(k);
+            return false;
+        }
 
     for (int v : local_vertices_)
     {
