@@ -19,6 +19,9 @@ using namespace volume;
 namespace
 {
 
+constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
+constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
+
 double min_quality(const TetMesh& mesh)
 {
     double worst = 1.0;
@@ -100,6 +103,17 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
         if (options.verbosity >= 2) std::cout << format_pass_row(row) << std::flush;
         if (options.verbosity >= 1 && isatty(STDERR_FILENO))
             std::fprintf(stderr, "\radapt: pass %d, %d tets", pass, row.tets);
+        // A few splits a pass that no longer decrease: the long edges left are where a split
+        // does not shorten them (beside a kept triangle longer than the size); more passes only
+        // stack slivers there.
+        const int n = static_cast<int>(report.passes.size());
+        if (n > kStallPasses &&
+            row.edges_split <= kStallFraction * static_cast<double>(mesh.num_live_tets()) &&
+            row.edges_split >= report.passes[n - 1 - kStallPasses].edges_split)
+        {
+            report.stalled = true;
+            break;
+        }
     }
 
     if (options.verbosity >= 1 && isatty(STDERR_FILENO) && !report.passes.empty())
@@ -157,7 +171,10 @@ std::string format_adapt_report(const AdaptReport& report, bool with_passes)
                       report.cpu_seconds_project - report.cpu_seconds_optimize);
     out << line;
     out << (report.converged ? "sizes: no edge too long\n"
-                             : "sizes: refinement stopped at the pass cap with edges too long\n");
+            : report.stalled
+                ? "sizes: refinement stopped with a few edges too long that splitting does not "
+                  "shorten\n"
+                : "sizes: refinement stopped at the pass cap with edges too long\n");
     return out.str();
 }
 

@@ -50,6 +50,8 @@ struct AdaptReport
 {
     std::vector<AdaptPassReport> passes;
     bool converged = false;  ///< no edge too long when refinement stopped
+    /// Refinement stopped early: a few splits a pass, not decreasing (see adapt()).
+    bool stalled = false;
     double seconds_refine = 0, seconds_project = 0, seconds_optimize = 0, seconds_total = 0;
     /// The same split in CPU time of the calling thread: on a shared machine wall time
     /// measures the neighbours too.
