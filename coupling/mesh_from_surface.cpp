@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include "common/errors.h"
@@ -53,36 +54,62 @@ private:
     std::vector<double> sizes_;
 };
 
-/// The field, except that every edge of the boundary is never too long: refinement (which
-/// measures an edge at size_at_midpoint) then splits interior edges only, and the boundary
-/// stays the given triangles. An interior edge never has a boundary edge's midpoint.
-class InteriorOnlySize : public SizeField
+/// The field for a kept surface. No boundary edge is ever too long: refinement (which measures
+/// an edge at size_at_midpoint) then splits interior edges only, and the boundary stays the
+/// given triangles (an interior edge never has a boundary edge's midpoint). And beside a kept
+/// edge too long for the field, the interior may be as coarse, grading down to the field away
+/// from it: the tets on a long kept triangle have long edges whatever is done, and splitting
+/// them only stacks slivers on it, pass after pass.
+class KeptSurfaceSize : public SizeField
 {
 public:
-    InteriorOnlySize(std::shared_ptr<const SizeField> field, const TetMesh& mesh)
+    KeptSurfaceSize(std::shared_ptr<const SizeField> field, const TetMesh& mesh)
         : field_(std::move(field))
     {
+        std::vector<double> longest(mesh.points.size(), 0.0);
         for (const auto& t : mesh.triangles)
             for (int k = 0; k < 3; ++k)
+            {
+                const Vec3 &a = mesh.points[t[k]], &b = mesh.points[t[(k + 1) % 3]];
                 size_at_midpoint(
                     [&](const Vec3& p) {
                         midpoints_.push_back({p[0], p[1], p[2]});
                         return 0.0;
                     },
-                    mesh.points[t[k]], mesh.points[t[(k + 1) % 3]]);
+                    a, b);
+                const double length = (b - a).norm();
+                if (is_too_long(length, edge_target_size(*field_, a, b)))
+                    for (int v : {t[k], t[(k + 1) % 3]}) longest[v] = std::max(longest[v], length);
+            }
         std::sort(midpoints_.begin(), midpoints_.end());
+        std::vector<Vec3> ends;
+        for (std::size_t v = 0; v < longest.size(); ++v)
+            if (longest[v] > 0)
+            {
+                ends.push_back(mesh.points[v]);
+                end_length_.push_back(longest[v]);
+            }
+        if (!ends.empty()) long_edge_ends_ = std::make_unique<hdi::KnnIndex>(ends);
     }
     double size(const Vec3& p) const override
     {
         if (std::binary_search(midpoints_.begin(), midpoints_.end(),
                                std::array<double, 3>{p[0], p[1], p[2]}))
             return std::numeric_limits<double>::max();
-        return field_->size(p);
+        const double wanted = field_->size(p);
+        if (!long_edge_ends_) return wanted;
+        int nearest = -1;
+        double squared = 0;
+        if (long_edge_ends_->nearest(p, 1, &nearest, &squared) < 1) return wanted;
+        return std::max(wanted, end_length_[nearest] - kGrade * std::sqrt(squared));
     }
 
 private:
+    static constexpr double kGrade = 0.3;  // size lost per unit distance from a long edge's end
     std::shared_ptr<const SizeField> field_;
     std::vector<std::array<double, 3>> midpoints_;
+    std::unique_ptr<hdi::KnnIndex> long_edge_ends_;  // the ends of boundary edges too long
+    std::vector<double> end_length_;                 // per end: its longest such edge
 };
 
 /// The validated surface, compact: only the points the triangles use, renumbered in order.
@@ -487,7 +514,7 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
             if (options.keep_surface)
             {
                 adapt_options.project = false;
-                field = std::make_shared<InteriorOnlySize>(field, mesh);
+                field = std::make_shared<KeptSurfaceSize>(field, mesh);
             }
             report.adapt = adapt(mesh, *field, adapt_options);
         }
