@@ -21,8 +21,10 @@
 #include <vector>
 
 #include "common/stage_timer.h"
+#include "coupling/mesh_from_surface.h"
 #include "fixtures.h"
 #include "hdi/obj_reader.h"
+#include "surface/surface_io.h"
 #include "volume/advancing_front.h"
 #include "volume/check.h"
 #include "volume/optimize.h"
@@ -232,9 +234,47 @@ void print_row(const Row& r)
 
 }  // namespace
 
+/// A real surface at h, h/2, h/4: remeshed (surfremesh's pipeline), then filled by the front;
+/// the fill's CPU time per tet must not grow with the size either.
+void surface_sweep(const char* name)
+{
+    const std::string path = std::string(HDIMESH_DATA_DIR) + "/" + name + ".obj";
+    const surface::TriangleSoup soup = surface::read_triangle_soup(path);
+    std::vector<Vec3> points;
+    for (const auto& p : soup.points) points.emplace_back(p[0], p[1], p[2]);
+    const double diagonal = bbox_diagonal(points);
+    std::printf(
+        "\nsweep: %s remeshed at h, h/2, h/4 (h = 2 %% of the bbox diagonal), then the AF\n", name);
+    std::printf("%-14s %8s %9s %8s %9s %10s\n", "h", "faces", "tets", "AF s", "tets/s", "us/tet");
+    for (double fraction : {0.02, 0.01, 0.005})
+    {
+        coupling::VolumeFromSurfaceOptions options;
+        options.sizing.hsiz = fraction * diagonal;
+        options.refine = options.optimize = false;
+        options.source = name;
+        coupling::VolumeFromSurfaceReport report;
+        char label[32];
+        std::snprintf(label, sizeof label, "%.5f", options.sizing.hsiz);
+        try
+        {
+            coupling::mesh_volume_from_surface(soup, options, &report);
+        }
+        catch (const std::exception& e)
+        {
+            std::printf("%-14s FAILED: %s\n", label, e.what());
+            continue;
+        }
+        const double seconds = report.cpu_seconds_fill;
+        std::printf("%-14s %8d %9d %8.3f %9.0f %10.2f\n", label, report.surface_triangles,
+                    report.fill_tets, seconds, report.fill_tets / std::max(1e-9, seconds),
+                    1e6 * seconds / std::max(1, report.fill_tets));
+        std::fflush(stdout);
+    }
+}
+
 int main(int argc, char** argv)
 {
-    bool optimize = true, quiet = false, sweep_only = false;
+    bool optimize = true, quiet = false, sweep_only = false, surface_sweep_on = true;
     int sweep_levels = 3;
     for (int i = 1; i < argc; ++i)
     {
@@ -244,6 +284,8 @@ int main(int argc, char** argv)
             quiet = true;
         else if (!std::strcmp(argv[i], "--sweep-only"))
             sweep_only = true;
+        else if (!std::strcmp(argv[i], "--no-surface-sweep"))  // the spot sweep takes minutes
+            surface_sweep_on = false;
         else if (!std::strcmp(argv[i], "--levels") && i + 1 < argc)
             sweep_levels = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--min-point-distance") && i + 1 < argc)
@@ -294,5 +336,6 @@ int main(int argc, char** argv)
                     1e6 * r.af_seconds / std::max(1L, r.tets), r.bytes_per_tet);
         std::fflush(stdout);
     }
+    if (surface_sweep_on) surface_sweep("spot");
     return 0;
 }
