@@ -405,6 +405,112 @@ TEST_CASE("smoothing refuses a move that makes an edge too long")
     require_valid(mesh);
 }
 
+/// A regular tet of edge 1 (v0..v3) split into four tets by the interior point p (vertex 4).
+TetMesh regular_tet_star(const std::function<Vec3(const std::vector<Vec3>&)>& place)
+{
+    TetMesh base = fixtures::regular_tet();
+    std::vector<Vec3> points = base.points;
+    points.push_back(place(base.points));
+    std::vector<TetVertices> tets;
+    for (int f = 0; f < 4; ++f)
+    {
+        TetVertices t = base.tets[0];
+        t[f] = 4;  // P replaces the vertex opposite face f: positive, as P is inside
+        tets.push_back(t);
+    }
+    return mesh_from_tets(points, tets);
+}
+
+/*  A regular tet split by P, pushed from the centroid toward the midpoint M of edge v0-v1:
+
+            v3
+           /|\          the tets on the faces (v0 v1 v2) and (v0 v1 v3) are the two worst,
+          / | \         tied: each one's own gradient pushes P toward the other's face, so
+        v0--P--v2       only a direction raising both (their bisector, back toward the
+          \ M /         centroid) improves the worst of the ball
+            v1                                                                               */
+TEST_CASE("smoothing: the max-min move raises two tied worst tets at once")
+{
+    TetMesh mesh = regular_tet_star([](const std::vector<Vec3>& q) {
+        const Vec3 centroid = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+        return Vec3(centroid + 0.8 * (0.5 * (q[0] + q[1]) - centroid));
+    });
+    REQUIRE(mesh.vertex_classes[4] == VertexClass::Interior);
+    require_valid(mesh);
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+    SmoothOptions options;
+    options.nodal_shifting = false;
+
+    SUBCASE("the worst tet's gradient alone is blocked by its tied twin")
+    {
+        options.active_band = 0;
+        OperatorContext context(mesh, nullptr);
+        CHECK_FALSE(smooth_vertex(mesh, context, 4, options).moved);
+    }
+    SUBCASE("the common ascent of the nearly worst tets moves P")
+    {
+        OperatorContext context(mesh, nullptr);
+        const auto result = smooth_vertex(mesh, context, 4, options);
+        REQUIRE(result.moved);
+        CHECK(result.worst_after > 4 * result.worst_before);  // about 0.10 -> 0.44
+        CHECK(live_worst(mesh) == doctest::Approx(result.worst_after));
+    }
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
+    require_valid(mesh);
+}
+
+/*  A regular tet of edge 1 split by P just above the centre of face (v1 v2 v3), with h = 1:
+    the edges P-v1, P-v2, P-v3 are too short already (about 0.58), P-v0 is not (0.8). The
+    best shapes are at the centroid, where P-v0 = 0.61 would be too short; the move must stop
+    at the band's edge (P-v0 = 0.66 h) instead of short of it or past it.
+
+            v0
+           /|\
+          / | \        P slides up the axis v0 - centre(v1 v2 v3)
+        v1--P--v3
+            v2                                                                               */
+TEST_CASE("smoothing: a point the sizes refuse is pulled back into the size band")
+{
+    TetMesh mesh = regular_tet_star([](const std::vector<Vec3>& q) {
+        const Vec3 face_centre = (q[1] + q[2] + q[3]) / 3.0;
+        return Vec3(face_centre + 0.05 * (q[0] - face_centre));
+    });
+    const ConstantSize field(1.0);
+    const Vec3 v0 = mesh.points[0];
+    REQUIRE_FALSE(is_too_short((mesh.points[4] - v0).norm(), 1.0));
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+
+    // the best the band allows: P on the axis at 0.66 h from v0 (by symmetry)
+    const Vec3 centroid =
+        0.25 * (mesh.points[0] + mesh.points[1] + mesh.points[2] + mesh.points[3]);
+    const Vec3 band_edge = v0 + (kSizeQualityThreshold / (centroid - v0).norm()) * (centroid - v0);
+    TetMesh at_band_edge = mesh;
+    at_band_edge.points[4] = band_edge;
+    const double best_in_band = live_worst(at_band_edge);
+
+    SmoothOptions without;
+    without.size_projection = false;
+    TetMesh unprojected = mesh;
+    OperatorContext unprojected_context(unprojected, &field);
+    for (int pass = 0; pass < 3; ++pass)
+        smooth_vertex(unprojected, unprojected_context, 4, without);
+
+    OperatorContext context(mesh, &field);
+    for (int pass = 0; pass < 3; ++pass) smooth_vertex(mesh, context, 4);
+    const double length = (mesh.points[4] - v0).norm();
+    CHECK_FALSE(is_too_short(length, 1.0));
+    CHECK(length < kSizeQualityThreshold * 1.01);  // at the band's edge
+    CHECK(live_worst(mesh) > live_worst(unprojected));
+    CHECK(live_worst(mesh) == doctest::Approx(best_in_band).epsilon(0.01));
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
+    require_valid(mesh);
+    require_valid(unprojected);
+}
+
 /*  A regular tet v0 v1 v2 v3 split by an interior point P close to v0 into four tets
     (P with each face). The edge P-v0 is far too short for h = 1:
 

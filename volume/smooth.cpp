@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "volume/tet_tables.h"
 
@@ -186,6 +187,38 @@ bool sizes_allow(const TetMesh& mesh, const OperatorContext& context, const Movi
     return true;
 }
 
+/// Whether sizes_allow accepts p; when it does not, p is first moved radially from each
+/// neighbour whose edge it refuses to just inside the size band (the displacements added, one
+/// pass: the field is the costly part) and checked again.
+bool fit_size_band(const TetMesh& mesh, const OperatorContext& context, const MovingBall& ball,
+                   const Vec3& from, Vec3& p)
+{
+    if (context.field == nullptr) return true;
+    // a hair inside the band, so that the check after the move does not refuse it again
+    constexpr double kInside = 1e-3;
+    Vec3 shift = Vec3::Zero();
+    bool refused = false;
+    for (int n : ball.neighbours)
+    {
+        const Vec3& q = mesh.points[n];
+        const Vec3 d = p - q;
+        const double length = d.norm();
+        const double target = edge_target_size(*context.field, p, q);
+        double wanted = length;
+        if (is_too_short(length, target) && !context.too_short(from, q))
+            wanted = kSizeQualityThreshold * target * (1 + kInside);
+        else if (is_too_long(length, target) && !context.too_long(from, q))
+            wanted = target / kSizeQualityThreshold * (1 - kInside);
+        if (wanted == length) continue;
+        if (!(length > 0)) return false;
+        refused = true;
+        shift += (wanted / length - 1) * d;
+    }
+    if (!refused) return true;
+    p += shift;
+    return sizes_allow(mesh, context, ball, from, p);
+}
+
 /// Central-difference gradient of one tet's quality with respect to the moving point.
 Vec3 quality_gradient(const MovingBall& ball, std::size_t i, const Vec3& p, double step)
 {
@@ -198,6 +231,26 @@ Vec3 quality_gradient(const MovingBall& ball, std::size_t i, const Vec3& p, doub
         g[axis] = (ball.quality_at(i, plus) - ball.quality_at(i, minus)) / (2 * step);
     }
     return g;
+}
+
+/// The point of the convex hull of `vectors` nearest the origin (Frank-Wolfe with exact line
+/// search; a handful of vectors): every vector has a positive dot product with it unless it is
+/// zero, so it raises all their functions at once.
+Vec3 min_norm_in_hull(const std::vector<Vec3>& vectors)
+{
+    Vec3 x = vectors.front();
+    for (int iteration = 0; iteration < 64 && vectors.size() > 1; ++iteration)
+    {
+        const Vec3* vertex = &vectors.front();
+        for (const Vec3& v : vectors)
+            if (v.dot(x) < vertex->dot(x)) vertex = &v;
+        const Vec3 d = *vertex - x;
+        const double gap = -x.dot(d);  // the duality gap: zero at the optimum
+        const double d2 = d.squaredNorm();
+        if (gap <= 1e-12 * x.squaredNorm() || d2 <= 0) break;
+        x += std::min(1.0, gap / d2) * d;
+    }
+    return x;
 }
 
 }  // namespace
@@ -217,13 +270,24 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
 
     Vec3 current = start;
     double worst = worst_start;
-    auto try_point = [&](const Vec3& candidate) {
+    auto try_point = [&](Vec3 candidate) {
         const double floor = worst + options.min_gain;
         std::size_t index = 0;
         double w = 0;
-        if (!ball.worst_above(candidate, floor, &w, &index) ||
-            !sizes_allow(mesh, context, ball, start, candidate))
+        if (!ball.worst_above(candidate, floor, &w, &index)) return false;
+        if (options.size_projection)
+        {
+            // the best shapes often lie just past a too-short edge: the point pulled back into
+            // the size band is still better than staying
+            const Vec3 unfitted = candidate;
+            if (!fit_size_band(mesh, context, ball, start, candidate)) return false;
+            if (candidate != unfitted && !ball.worst_above(candidate, floor, &w, &index))
+                return false;
+        }
+        else if (!sizes_allow(mesh, context, ball, start, candidate))
+        {
             return false;
+        }
         current = candidate;
         worst = w;
         current_worst_index = index;  // w > floor: the evaluation went through every tet
@@ -238,14 +302,21 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
             if (try_point(current + alpha * (target - current))) break;
     }
 
-    // 2. max-min ascent on the worst tet, backtracking on the ball's true minimum
+    // 2. max-min ascent: the direction that raises every nearly worst tet at once (the
+    //    minimum-norm point of their gradients' hull), backtracking on the ball's true minimum
     if (options.optimization_based && worst < options.good_enough)
     {
         const double fd_step = 1e-6 * ball.mean_edge;
+        std::vector<Vec3> gradients;
         for (int iteration = 0; iteration < options.max_ascent_steps; ++iteration)
         {
-            const std::size_t w = current_worst_index;
-            const Vec3 g = quality_gradient(ball, w, current, fd_step);
+            gradients.clear();
+            gradients.push_back(quality_gradient(ball, current_worst_index, current, fd_step));
+            for (std::size_t i = 0; i < ball.faces.size(); ++i)
+                if (i != current_worst_index &&
+                    ball.quality_at(i, current) <= worst + options.active_band)
+                    gradients.push_back(quality_gradient(ball, i, current, fd_step));
+            const Vec3 g = min_norm_in_hull(gradients);
             const double gnorm = g.norm();
             if (!(gnorm > 0)) break;
             const Vec3 direction = g / gnorm;

@@ -3,10 +3,11 @@
 //  1. George's nodal shifting: every tet of the ball proposes the point that would make it
 //     regular over its opposite face; the proposals are averaged with weights 1/Qe^2 (the bad
 //     tets pull hardest) and the vertex steps toward that point (full, half, quarter step);
-//  2. a max-min optimization-based move: steepest ascent of the worst tet's quality, with a
-//     backtracking line search on the ball's true minimum.
+//  2. a max-min optimization-based move (Freitag's): the steepest common ascent of the tets
+//     near the worst quality, with a backtracking line search on the ball's true minimum.
 // A move is kept only when the ball's worst quality rises and no edge of the vertex becomes
-// too long or too short for context.field.
+// too long or too short for context.field; a candidate point that would make one is first
+// pulled radially back into the size band.
 //
 // A third move serves the sizes, not the shapes: equalize_edge_sizes pulls a vertex so that
 // its edges approach their target lengths (each neighbour x proposes the point at distance
@@ -22,9 +23,11 @@ struct SmoothOptions
 {
     bool nodal_shifting = true;
     bool optimization_based = true;
-    int max_ascent_steps = 3;  ///< iterations of the max-min move
-    double good_enough = 1.0;  ///< skip the max-min move once the ball's worst reaches this
-    double min_gain = 1e-6;    ///< the ball's worst quality must rise by this much
+    int max_ascent_steps = 3;     ///< iterations of the max-min move
+    double active_band = 0.02;    ///< tets within this Qe of the worst steer the max-min move too
+    bool size_projection = true;  ///< a point the sizes refuse is pulled back into their band
+    double good_enough = 1.0;     ///< skip the max-min move once the ball's worst reaches this
+    double min_gain = 1e-6;       ///< the ball's worst quality must rise by this much
 };
 
 struct SmoothResult
