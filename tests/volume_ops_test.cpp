@@ -15,6 +15,7 @@
 #include "volume/check.h"
 #include "volume/collapse.h"
 #include "volume/edge_removal.h"
+#include "volume/edge_split.h"
 #include "volume/face_removal.h"
 #include "volume/size_fields.h"
 #include "volume/smooth.h"
@@ -509,6 +510,82 @@ TEST_CASE("smoothing: a point the sizes refuse is pulled back into the size band
     CHECK(boundary_signature(mesh) == boundary);
     require_valid(mesh);
     require_valid(unprojected);
+}
+
+/*  An octahedron of half-height H, apexes a = (0,0,-H) and b = (0,0,H), equator r0..r3 =
+    (1,0,0) (0,1,0) (-1,0,0) (0,-1,0), meshed as the four tets around the axis a-b: all six
+    vertices on the boundary, each tet with two boundary faces meeting at an equator edge.
+
+             b
+            /|\           the axis is the only interior edge; splitting it at m gives the
+      r2 - / m \ - r0     eight tets (a, m, ri, ri+1), (m, b, ri, ri+1)
+            \ | /
+             \|/
+             a                                                                               */
+TetMesh axis_octahedron(double half_height)
+{
+    return mesh_from_tets(
+        {{0, 0, -half_height}, {0, 0, half_height}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}},
+        {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 5}, {0, 1, 5, 2}});
+}
+
+TEST_CASE("interior edge split: a tall octahedron's needles around its axis")
+{
+    SUBCASE("legal: the axis is split, the new point interior, the worst tet better")
+    {
+        TetMesh mesh = axis_octahedron(2.0);
+        require_valid(mesh);
+        OperatorContext context(mesh, nullptr);
+        const double volume = mesh.total_volume();
+        const auto boundary = boundary_signature(mesh);
+        const double worst_before = live_worst(mesh);
+        const auto result = split_interior_edge(mesh, context, 0);
+        REQUIRE(result.split);
+        CHECK(result.worst_before == doctest::Approx(worst_before));
+        CHECK(mesh.num_live_tets() == 8);
+        CHECK(live_worst(mesh) == doctest::Approx(result.worst_after));
+        CHECK(live_worst(mesh) > worst_before + 0.15);  // about 0.35 -> 0.55
+        const int m = result.new_vertex;
+        REQUIRE(m == 6);
+        CHECK(mesh.vertex_classes[m] == VertexClass::Interior);
+        CHECK(context.constraints.is_free_vertex(m));
+        CHECK(std::abs(mesh.points[m][0]) < 1e-9);  // on the axis, by symmetry
+        CHECK(std::abs(mesh.points[m][1]) < 1e-9);
+        CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+        CHECK(boundary_signature(mesh) == boundary);
+        require_valid(mesh);
+    }
+    SUBCASE("refused: nothing better (a squat octahedron's tets are good already)")
+    {
+        TetMesh mesh = axis_octahedron(0.5);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        const auto points = mesh.points;
+        CHECK_FALSE(split_interior_edge(mesh, context, 0).split);
+        CHECK(mesh.tets == tets);
+        CHECK(mesh.points == points);
+    }
+    SUBCASE("refused: the axis is a listed feature edge")
+    {
+        TetMesh mesh = axis_octahedron(2.0);
+        mesh.edges.push_back({0, 1});
+        mesh.edge_refs.push_back(0);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(split_interior_edge(mesh, context, 0).split);
+        CHECK(mesh.tets == tets);
+        CHECK(mesh.num_vertices() == 6);
+    }
+    SUBCASE("refused: the shell holds two tet refs")
+    {
+        TetMesh mesh = axis_octahedron(2.0);
+        mesh.tet_refs[2] = 7;
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(split_interior_edge(mesh, context, 0).split);
+        CHECK(mesh.tets == tets);
+        CHECK(mesh.num_vertices() == 6);
+    }
 }
 
 /*  A regular tet v0 v1 v2 v3 split by an interior point P close to v0 into four tets

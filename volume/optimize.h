@@ -17,9 +17,10 @@ namespace hdimesh::volume
 
 struct OptimizeOptions
 {
-    bool swap = true;                   ///< edge removal / face removal (--noswap turns off)
-    bool move = true;                   ///< nodal shifting (--nomove)
-    bool collapse = true;               ///< too-short edge collapse (derefinement)
+    bool swap = true;      ///< edge removal / face removal (--noswap turns off)
+    bool move = true;      ///< nodal shifting (--nomove)
+    bool collapse = true;  ///< too-short edge collapse (derefinement)
+    bool split = true;  ///< optimize_mesh's last stage: interior edge splits (volume/edge_split.h)
     double bad_quality = 0.2;           ///< elements below are "bad" (the paper's threshold)
     double target_quality = 0.5;        ///< optimize_mesh works on every tet below this
     double collapse_min_quality = 0.3;  ///< a collapse may not create a tet worse than this
@@ -53,7 +54,8 @@ OptimizeReport improve_bad_elements(TetMesh& mesh, const SizeField& field,
 /// until none collapses), move the free ends of those left toward their target lengths,
 /// collapse again, then sweep the tets below target_quality (worst first) with edge removal,
 /// multi-face removal and smoothing (at most max_sweeps sweeps). A round that changes no edge ends
-/// it.
+/// it. Last, each tet still below target_quality with no free vertex gets an interior edge split
+/// (options.split, volume/edge_split.h).
 OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field,
                              const OptimizeOptions& options = {});
 

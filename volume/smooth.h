@@ -14,6 +14,9 @@
 // hth from x toward the vertex), kept when the worst Qt of its edges rises and the ball's
 // worst shape stays above a floor.
 
+#include <array>
+#include <vector>
+
 #include "volume/tet_topology.h"
 
 namespace hdimesh::volume
@@ -42,6 +45,20 @@ struct SizeSmoothOptions
     double min_quality = 0.3;  ///< the ball's worst Qe may drop, but not below min(old, this)
     double min_gain = 1e-4;    ///< the worst Qt of the vertex's edges must rise by this much
 };
+
+struct PointPlacement
+{
+    Vec3 point;                 ///< the start when no move beat it
+    double worst_at_start = 0;  ///< worst Qe of the tets over `faces` with the vertex at the start
+    double worst = 0;           ///< and at `point`
+};
+
+/// smooth_vertex's moves for a vertex the mesh does not have yet (an operator simulating an
+/// insertion): it would see the triangles `faces`, each with (f0, f1, f2, p) positive on its
+/// side, and have an edge to each of their corners. Changes nothing.
+PointPlacement place_vertex(const OperatorContext& context,
+                            const std::vector<std::array<Vec3, 3>>& faces, const Vec3& start,
+                            const SmoothOptions& options = {});
 
 /// Moves free vertex v toward the lengths its edges should have (see above).
 SmoothResult equalize_edge_sizes(TetMesh& mesh, OperatorContext& context, int v,
