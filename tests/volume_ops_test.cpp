@@ -17,6 +17,7 @@
 #include "volume/edge_removal.h"
 #include "volume/edge_split.h"
 #include "volume/face_removal.h"
+#include "volume/quality_report.h"
 #include "volume/size_fields.h"
 #include "volume/smooth.h"
 #include "volume/tet_tables.h"
@@ -403,6 +404,49 @@ TEST_CASE("smoothing refuses a move that makes an edge too long")
     const int before = too_long_edges();
     smooth_vertex(mesh, context, v);
     CHECK(too_long_edges() <= before);
+    require_valid(mesh);
+}
+
+/// The smallest dihedral angle over the tets around vertex v, in degrees.
+double ball_smallest_dihedral(const TetMesh& mesh, const OperatorContext& context, int v)
+{
+    std::vector<int> ball;
+    vertex_ball(mesh, context.vertex_tet[v], v, ball);
+    double smallest = 180;
+    for (int t : ball)
+    {
+        const auto& tv = mesh.tets[t];
+        const auto& p = mesh.points;
+        for (double angle : dihedral_angles_deg(p[tv[0]], p[tv[1]], p[tv[2]], p[tv[3]]))
+            smallest = std::min(smallest, angle);
+    }
+    return smallest;
+}
+
+/*  A strongly jittered 5x5x5 Kuhn box: every interior vertex smoothed in turn. Each move must
+    raise its ball's worst Qe and may not take the ball's smallest dihedral angle below
+    min(its old value, 20 degrees).                                                          */
+TEST_CASE("smoothing never trades a ball's smallest dihedral angle for Qe")
+{
+    TetMesh mesh = fixtures::box_mesh(5, 0.3, 11);
+    require_valid(mesh);
+    OperatorContext context(mesh, nullptr);
+    const double volume = mesh.total_volume();
+    const SmoothOptions options;
+    int moved = 0;
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+    {
+        if (!context.constraints.is_free_vertex(v)) continue;
+        const double before = ball_smallest_dihedral(mesh, context, v);
+        const auto result = smooth_vertex(mesh, context, v, options);
+        if (!result.moved) continue;
+        ++moved;
+        CHECK(result.worst_after > result.worst_before);
+        CHECK(ball_smallest_dihedral(mesh, context, v) >=
+              std::min(before, options.min_dihedral_deg));
+    }
+    CHECK(moved > 10);
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
     require_valid(mesh);
 }
 

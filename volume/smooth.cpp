@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "volume/quality_report.h"
 #include "volume/tet_tables.h"
 
 namespace hdimesh::volume
@@ -68,6 +69,16 @@ struct MovingBall
     double mean_edge = 0;          // of the opposite faces: the scale of the steps
 
     double quality_at(std::size_t i, const Vec3& p) const { return faces[i].quality(p); }
+
+    /// The smallest dihedral angle of the ball's tets with the vertex at p, in degrees.
+    double smallest_dihedral(const Vec3& p) const
+    {
+        double smallest = 180;
+        for (const BallFace& face : faces)
+            for (double angle : dihedral_angles_deg(face.f[0], face.f[1], face.f[2], p))
+                smallest = std::min(smallest, angle);
+        return smallest;
+    }
 
     /// The worst quality with the vertex at p, stopping early once it is <= floor. When it
     /// does not stop early, *worst_index gets the first tet of least quality.
@@ -337,7 +348,11 @@ Placement best_position(const MovingBall& ball, const OperatorContext& context, 
 
     Placement placement;
     placement.worst_start = worst_start;
-    const bool moved = worst > worst_start + options.min_gain;
+    // Qe can rise while a dihedral angle falls: a move must not trade one for the other
+    const bool keeps_angles = !(worst > worst_start + options.min_gain) ||
+                              ball.smallest_dihedral(current) >=
+                                  std::min(ball.smallest_dihedral(start), options.min_dihedral_deg);
+    const bool moved = worst > worst_start + options.min_gain && keeps_angles;
     placement.point = moved ? current : start;
     placement.worst = moved ? worst : worst_start;
     return placement;

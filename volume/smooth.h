@@ -6,8 +6,9 @@
 //  2. a max-min optimization-based move (Freitag's): the steepest common ascent of the tets
 //     near the worst quality, with a backtracking line search on the ball's true minimum.
 // A move is kept only when the ball's worst quality rises and no edge of the vertex becomes
-// too long or too short for context.field; a candidate point that would make one is first
-// pulled radially back into the size band.
+// too long or too short for context.field (a candidate point that would make one is first
+// pulled radially back into the size band), and the ball's smallest dihedral angle does not
+// fall below min(its old value, options.min_dihedral_deg).
 //
 // A third move serves the sizes, not the shapes: equalize_edge_sizes pulls a vertex so that
 // its edges approach their target lengths (each neighbour x proposes the point at distance
@@ -31,6 +32,8 @@ struct SmoothOptions
     bool size_projection = true;  ///< a point the sizes refuse is pulled back into their band
     double good_enough = 1.0;     ///< skip the max-min move once the ball's worst reaches this
     double min_gain = 1e-6;       ///< the ball's worst quality must rise by this much
+    /// the ball's smallest dihedral angle may fall below its old value only down to this (deg)
+    double min_dihedral_deg = 20;
 };
 
 struct SmoothResult
