@@ -224,6 +224,56 @@ TEST_CASE("optimize_mesh: a bad tet with no free vertex gets its interior edge s
     CHECK(boundary_signature(mesh) == boundary);
 }
 
+/*  A regular tet of edge 1 split by an interior point P just above the centre of face
+    (v1 v2 v3) into four tets. No position of P gives a tet of Qe 0.5 (the centroid gives about
+    0.45), while removing P gives back the regular tet: the sweep below 0.5 collapses P
+    (none of its edges is too short for h = 0.8, so the short-edge collapse leaves it).
+
+            v0
+           /|\
+          / | \
+        v1--P--v3
+            v2                                                                               */
+TEST_CASE("improve sweep: a free vertex whose every position is worse than its removal goes")
+{
+    TetMesh base = fixtures::regular_tet();
+    std::vector<Vec3> points = base.points;
+    const Vec3 face_centre = (points[1] + points[2] + points[3]) / 3.0;
+    points.push_back(face_centre + 0.3 * (points[0] - face_centre));
+    std::vector<TetVertices> tets;
+    for (int f = 0; f < 4; ++f)
+    {
+        TetVertices t = base.tets[0];
+        t[f] = 4;  // P replaces the vertex opposite face f: positive, as P is inside
+        tets.push_back(t);
+    }
+    TetMesh mesh = fixtures::mesh_from_tets(points, tets);
+    const ConstantSize field(0.8);
+    REQUIRE(count_edges(mesh, field).too_short == 0);
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+    OptimizeOptions options;
+    options.bad_quality = 0.5;
+
+    SUBCASE("without collapses P stays")
+    {
+        options.collapse = false;
+        improve_bad_elements(mesh, field, options);
+        CHECK(mesh.num_live_tets() == 4);
+        CHECK(worst(mesh) < 0.5);
+    }
+    SUBCASE("with them P is removed and the regular tet comes back")
+    {
+        improve_bad_elements(mesh, field, options);
+        CHECK(mesh.num_live_tets() == 1);
+        CHECK(mesh.num_vertices() == 4);
+        CHECK(worst(mesh) == doctest::Approx(1.0));
+    }
+    require_valid(mesh);
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
+}
+
 TEST_CASE("deterministic: the same input gives a bitwise identical output")
 {
     const TetMesh input = fixtures::box_mesh(5, 0.2, 17);

@@ -362,7 +362,8 @@ private:
     }
 
     /// Tries the operators on tet t in a fixed order; the swaps first (cheap, topological),
-    /// then the smoothing of its free vertices while it stays below the threshold.
+    /// then the smoothing of its free vertices while it stays below the threshold, then, when
+    /// neither changed anything, the collapse of a free vertex onto another vertex of t.
     TetOutcome improve_tet(int t, double threshold)
     {
         if (options_.swap)
@@ -411,6 +412,20 @@ private:
                 }
             }
             report_.operators[kSmoothing].seconds += stopwatch.seconds();
+        }
+        if (options_.collapse && outcome == kNothing && quality(t) < threshold)
+        {
+            // a free vertex the sizes of its edges pin where its ball stays bad: remove it
+            // when no tet its removal makes is worse than the worst it had
+            CollapseOptions keep_worst;
+            keep_worst.min_quality = 1.0;
+            const TetVertices vertices = mesh_.tets[t];
+            for (int v : vertices)
+            {
+                if (!context_.constraints.is_free_vertex(v)) continue;
+                for (int u : vertices)
+                    if (u != v && attempt_collapse(v, u, keep_worst)) return kReplaced;
+            }
         }
         return outcome;
     }

@@ -1,10 +1,12 @@
 #pragma once
 // The optimization driver (paper §3.7, §5): work lists of bad tets, each attacked by edge
-// removal, multi-face removal (the 2-3 flip and larger sandwiches) and smoothing of its free
-// vertices; too-short edges collapsed first in the final optimization. Later sweeps revisit
-// only the tets an operator created or reshaped and the stuck tets with a vertex in one of
-// them, never the whole mesh. The boundary (mesh.triangles and every non-interior vertex)
-// never changes. Deterministic: fixed traversal orders only.
+// removal, multi-face removal (the 2-3 flip and larger sandwiches), smoothing of its free
+// vertices and, when it is still bad, the collapse of one of them onto another of its vertices
+// (kept when no new tet is worse than the ball's old worst); too-short edges collapsed first in
+// the final optimization. Later sweeps revisit only the tets an operator created or reshaped
+// and the stuck tets with a vertex in one of them, never the whole mesh. The boundary
+// (mesh.triangles and every non-interior vertex) never changes. Deterministic: fixed traversal
+// orders only.
 
 #include <string>
 #include <vector>
