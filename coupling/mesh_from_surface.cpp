@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <sstream>
+#include <unordered_set>
 
 #include "common/errors.h"
 #include "common/size_quality.h"
@@ -61,27 +64,44 @@ public:
     InteriorOnlySize(std::shared_ptr<const SizeField> field, const TetMesh& mesh)
         : field_(std::move(field))
     {
+        midpoints_.reserve(3 * mesh.triangles.size());
         for (const auto& t : mesh.triangles)
             for (int k = 0; k < 3; ++k)
                 size_at_midpoint(
                     [&](const Vec3& p) {
-                        midpoints_.push_back({p[0], p[1], p[2]});
+                        midpoints_.insert(key(p));
                         return 0.0;
                     },
                     mesh.points[t[k]], mesh.points[t[(k + 1) % 3]]);
-        std::sort(midpoints_.begin(), midpoints_.end());
     }
     double size(const Vec3& p) const override
     {
-        if (std::binary_search(midpoints_.begin(), midpoints_.end(),
-                               std::array<double, 3>{p[0], p[1], p[2]}))
-            return std::numeric_limits<double>::max();
+        if (midpoints_.count(key(p)) != 0) return std::numeric_limits<double>::max();
         return field_->size(p);
     }
 
 private:
+    using Key = std::array<double, 3>;
+    // + 0.0 makes -0.0 into 0.0: the two compare equal, and must hash alike
+    static Key key(const Vec3& p) { return {p[0] + 0.0, p[1] + 0.0, p[2] + 0.0}; }
+    /// A hash, not a sorted list: the optimizer asks the size of every candidate point.
+    struct KeyHash
+    {
+        std::size_t operator()(const Key& k) const
+        {
+            std::uint64_t h = 0x9e3779b97f4a7c15ull;
+            for (double x : k)
+            {
+                std::uint64_t bits;
+                std::memcpy(&bits, &x, sizeof bits);
+                h = (h ^ bits) * 0x100000001b3ull;
+                h ^= h >> 29;
+            }
+            return static_cast<std::size_t>(h);
+        }
+    };
     std::shared_ptr<const SizeField> field_;
-    std::vector<std::array<double, 3>> midpoints_;
+    std::unordered_set<Key, KeyHash> midpoints_;
 };
 
 /// The validated surface, compact: only the points the triangles use, renumbered in order.
