@@ -71,7 +71,7 @@ int main(int argc, char** argv)
             {"--no-projection", &no_projection, "keep the boundary as the input polyhedron"},
             {"--noswap", &noswap, "no edge/face removal during optimization"},
             {"--nomove", &nomove, "no vertex smoothing during optimization"},
-            {"--noinsert", &noinsert, "no refinement (no vertex insertion)"},
+            {"--noinsert", &noinsert, "no refinement (no vertex insertion, no edge split)"},
             {"--optim", &optim_only, "optimize only: keep the sizes of the input mesh"},
             {"--keep-surface", &keep_surface,
              "surface input: its triangles are the boundary, exactly (no remeshing)"},
@@ -84,6 +84,7 @@ int main(int argc, char** argv)
         options.optimizer.swap = !noswap;
         options.optimizer.move = !nomove;
         options.optimizer.collapse = !optim_only;
+        options.optimizer.split = !noinsert && !optim_only;  // a split inserts a vertex
         options.project = !no_projection;
         options.verbosity = verbosity;
         options.optimizer.verbosity = verbosity;

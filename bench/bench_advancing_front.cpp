@@ -1,15 +1,18 @@
 // The advancing front on whole volumes (issue 15): per input the surface faces, the tets and
 // points made, the AF's CPU seconds and tets per CPU-second, the volume optimizer's seconds, the
 // quality (min Qe, % Qe >= 0.5, min dihedral, % edges Qt >= 0.66) before and after
-// optimize_mesh, and the peak heap bytes per tet during the AF (every allocation counted by the
-// operator new below). Then a sweep on icospheres at h, h/2, h/4: the CPU time per tet must not
-// grow with the size.
+// optimize_mesh, the same shape figures after it over the tets with no face on a bad input
+// triangle (smallest angle under 10 degrees: such a triangle can force a bad tet; the rule of
+// bench/compare_volume_peers.py) and the number of those triangles, and the peak heap bytes per
+// tet during the AF (every allocation counted by the operator new below). Then a sweep on
+// icospheres at h, h/2, h/4: the CPU time per tet must not grow with the size.
 //
 // usage: bench_advancing_front [-q] [--no-optimize] [--sweep-only] [--levels N]
 //                              [--min-point-distance X]
 // (-q: the tables only)
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -141,6 +144,66 @@ Quality quality_of(const TetMesh& mesh, const SizeField& field)
     return {r.min_qe, r.percent_qe_ge_05, r.min_dihedral_deg, r.percent_qt_ge_066};
 }
 
+/// An input triangle with an angle under this (degrees) may force a bad tet on it.
+constexpr double kBadTriangleAngle = 10.0;
+
+double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c)
+{
+    double smallest = 180;
+    const Vec3* corners[3] = {&a, &b, &c};
+    for (int k = 0; k < 3; ++k)
+    {
+        const Vec3 u = *corners[(k + 1) % 3] - *corners[k];
+        const Vec3 w = *corners[(k + 2) % 3] - *corners[k];
+        const double cosine = u.dot(w) / std::max(1e-300, u.norm() * w.norm());
+        smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI);
+    }
+    return smallest;
+}
+
+/// Shape figures (min Qe, % Qe >= 0.5, min dihedral; percent_qt unset) over the tets with no
+/// face on a bad boundary triangle; *bad_triangles gets how many boundary triangles are bad.
+Quality quality_without_bad_triangles(const TetMesh& mesh, int* bad_triangles)
+{
+    std::vector<std::array<int, 3>> bad;
+    for (const Triangle& t : mesh.triangles)
+        if (smallest_angle_deg(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]) <
+            kBadTriangleAngle)
+        {
+            std::array<int, 3> key = {t[0], t[1], t[2]};
+            std::sort(key.begin(), key.end());
+            bad.push_back(key);
+        }
+    std::sort(bad.begin(), bad.end());
+    *bad_triangles = static_cast<int>(bad.size());
+    Quality q;
+    q.min_qe = 1;
+    q.min_dihedral = 180;
+    long kept = 0, good = 0;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        if (mesh.is_dead(t)) continue;
+        const TetVertices& tv = mesh.tets[t];
+        bool holds_bad = false;
+        for (int f = 0; f < 4 && !holds_bad; ++f)
+        {
+            std::array<int, 3> key = {tv[(f + 1) % 4], tv[(f + 2) % 4], tv[(f + 3) % 4]};
+            std::sort(key.begin(), key.end());
+            holds_bad = std::binary_search(bad.begin(), bad.end(), key);
+        }
+        if (holds_bad) continue;
+        const double qe = mesh.quality(t);
+        q.min_qe = std::min(q.min_qe, qe);
+        good += (qe >= 0.5);
+        ++kept;
+        const auto& p = mesh.points;
+        for (double angle : dihedral_angles_deg(p[tv[0]], p[tv[1]], p[tv[2]], p[tv[3]]))
+            q.min_dihedral = std::min(q.min_dihedral, angle);
+    }
+    q.percent_qe = kept > 0 ? 100.0 * static_cast<double>(good) / static_cast<double>(kept) : 100;
+    return q;
+}
+
 struct Row
 {
     std::string name;
@@ -148,6 +211,8 @@ struct Row
     long tets = 0, points = 0;
     double af_seconds = 0, optimize_seconds = 0;
     Quality before, after;
+    Quality clean_after;  // after optimize_mesh, without the tets on bad input triangles
+    int bad_triangles = 0;
     double bytes_per_tet = 0;
     int retreats = 0;
     std::size_t violations = 0;
@@ -200,6 +265,7 @@ Row run(const Surface& s, bool optimize, bool quiet)
         optimize_mesh(mesh, field);
         row.optimize_seconds = thread_cpu_seconds() - start;
         row.after = quality_of(mesh, field);
+        row.clean_after = quality_without_bad_triangles(mesh, &row.bad_triangles);
         if (!check_mesh(mesh).empty()) row.violations += 1000000;
     }
     return row;
@@ -207,11 +273,14 @@ Row run(const Surface& s, bool optimize, bool quiet)
 
 void print_header()
 {
-    std::printf("%-22s %7s %8s %7s %7s %8s %6s | %6s %5s %5s %5s | %6s %5s %5s %5s | %6s %3s %s\n",
-                "input", "faces", "tets", "points", "AF s", "tets/s", "opt s", "minQe", "%0.5",
-                "dih", "%Qt", "minQe", "%0.5", "dih", "%Qt", "B/tet", "rtr", "check");
-    std::printf("%-22s %7s %8s %7s %7s %8s %6s | %-23s | %-23s |\n", "", "", "", "", "", "", "",
-                "   after AF", "   after optimize_mesh");
+    std::printf(
+        "%-22s %7s %8s %7s %7s %8s %6s | %6s %5s %5s %5s | %6s %5s %5s %5s | %6s %5s %5s %5s | %6s "
+        "%3s %s\n",
+        "input", "faces", "tets", "points", "AF s", "tets/s", "opt s", "minQe", "%0.5", "dih",
+        "%Qt", "minQe", "%0.5", "dih", "%Qt", "minQe", "%0.5", "dih", "bad", "B/tet", "rtr",
+        "check");
+    std::printf("%-22s %7s %8s %7s %7s %8s %6s | %-23s | %-23s | %-23s |\n", "", "", "", "", "", "",
+                "", "   after AF", "   after optimize_mesh", " w/o bad-triangle tets");
 }
 
 void print_row(const Row& r)
@@ -223,12 +292,13 @@ void print_row(const Row& r)
     }
     std::printf(
         "%-22s %7zu %8ld %7ld %7.3f %8.0f %6.2f | %6.3f %5.1f %5.1f %5.1f | %6.3f %5.1f %5.1f "
-        "%5.1f | %6.0f %3d %s\n",
+        "%5.1f | %6.3f %5.1f %5.1f %5d | %6.0f %3d %s\n",
         r.name.c_str(), r.faces, r.tets, r.points, r.af_seconds,
         r.tets / std::max(1e-9, r.af_seconds), r.optimize_seconds, r.before.min_qe,
         r.before.percent_qe, r.before.min_dihedral, r.before.percent_qt, r.after.min_qe,
-        r.after.percent_qe, r.after.min_dihedral, r.after.percent_qt, r.bytes_per_tet, r.retreats,
-        r.violations == 0 ? "clean" : "VIOLATIONS");
+        r.after.percent_qe, r.after.min_dihedral, r.after.percent_qt, r.clean_after.min_qe,
+        r.clean_after.percent_qe, r.clean_after.min_dihedral, r.bad_triangles, r.bytes_per_tet,
+        r.retreats, r.violations == 0 ? "clean" : "VIOLATIONS");
     std::fflush(stdout);
 }
 

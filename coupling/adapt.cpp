@@ -138,7 +138,11 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
             report.final_projection.shortened + report.final_projection.projected > 0)
         {
             const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-            improve_bad_elements(mesh, field, options.optimizer);
+            // the moved boundary vertices reshape tets the final optimization had lifted above
+            // its target: bring them back there, not only above the passes' "bad" threshold
+            OptimizeOptions repair = options.optimizer;
+            repair.bad_quality = std::max(repair.bad_quality, repair.target_quality);
+            improve_bad_elements(mesh, field, repair);
         }
     }
     if (!mesh.has_adjacency()) mesh.build_adjacency();

@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <unordered_set>
 
 #include "common/errors.h"
 #include "common/size_quality.h"
@@ -67,13 +70,14 @@ public:
         : field_(std::move(field))
     {
         std::vector<double> longest(mesh.points.size(), 0.0);
+        midpoints_.reserve(3 * mesh.triangles.size());
         for (const auto& t : mesh.triangles)
             for (int k = 0; k < 3; ++k)
             {
                 const Vec3 &a = mesh.points[t[k]], &b = mesh.points[t[(k + 1) % 3]];
                 size_at_midpoint(
                     [&](const Vec3& p) {
-                        midpoints_.push_back({p[0], p[1], p[2]});
+                        midpoints_.insert(key(p));
                         return 0.0;
                     },
                     a, b);
@@ -81,7 +85,6 @@ public:
                 if (is_too_long(length, edge_target_size(*field_, a, b)))
                     for (int v : {t[k], t[(k + 1) % 3]}) longest[v] = std::max(longest[v], length);
             }
-        std::sort(midpoints_.begin(), midpoints_.end());
         std::vector<Vec3> ends;
         for (std::size_t v = 0; v < longest.size(); ++v)
             if (longest[v] > 0)
@@ -93,9 +96,7 @@ public:
     }
     double size(const Vec3& p) const override
     {
-        if (std::binary_search(midpoints_.begin(), midpoints_.end(),
-                               std::array<double, 3>{p[0], p[1], p[2]}))
-            return std::numeric_limits<double>::max();
+        if (midpoints_.count(key(p)) != 0) return std::numeric_limits<double>::max();
         const double wanted = field_->size(p);
         if (!long_edge_ends_) return wanted;
         int nearest = -1;
@@ -105,9 +106,28 @@ public:
     }
 
 private:
+    using Key = std::array<double, 3>;
+    // + 0.0 makes -0.0 into 0.0: the two compare equal, and must hash alike
+    static Key key(const Vec3& p) { return {p[0] + 0.0, p[1] + 0.0, p[2] + 0.0}; }
+    /// A hash, not a sorted list: the optimizer asks the size of every candidate point.
+    struct KeyHash
+    {
+        std::size_t operator()(const Key& k) const
+        {
+            std::uint64_t h = 0x9e3779b97f4a7c15ull;
+            for (double x : k)
+            {
+                std::uint64_t bits;
+                std::memcpy(&bits, &x, sizeof bits);
+                h = (h ^ bits) * 0x100000001b3ull;
+                h ^= h >> 29;
+            }
+            return static_cast<std::size_t>(h);
+        }
+    };
     static constexpr double kGrade = 0.3;  // size lost per unit distance from a long edge's end
     std::shared_ptr<const SizeField> field_;
-    std::vector<std::array<double, 3>> midpoints_;
+    std::unordered_set<Key, KeyHash> midpoints_;
     std::unique_ptr<hdi::KnnIndex> long_edge_ends_;  // the ends of boundary edges too long
     std::vector<double> end_length_;                 // per end: its longest such edge
 };

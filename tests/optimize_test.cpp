@@ -166,7 +166,7 @@ TEST_CASE("the switches turn operators off")
     const TetMesh original = mesh;
     const ConstantSize field(0.45);
     OptimizeOptions options;
-    options.swap = options.move = options.collapse = false;
+    options.swap = options.move = options.collapse = options.split = false;
     const OptimizeReport report = optimize_mesh(mesh, field, options);
     CHECK(successes(report) == 0);
     CHECK(mesh.tets == original.tets);
@@ -176,6 +176,102 @@ TEST_CASE("the switches turn operators off")
     optimize_mesh(mesh, field, options);
     require_valid(mesh);
     CHECK(mesh.points == original.points);
+}
+
+/*  A tall octahedron, apexes (0,0,+-2), equator (+-1,0,0) (0,+-1,0), meshed as the four tets
+    around its axis: every vertex on the boundary, every tet a needle with two boundary faces,
+    so no vertex of them may move. Here the axis' removal would fix them too; with the swaps off
+    only the last stage, the split of the axis, can.
+
+            (0,0,2)
+             /|\
+            / | \         axis: the one interior edge
+      (-1,0,0)-+-(1,0,0)
+            \ | /
+             \|/
+            (0,0,-2)                                                                         */
+TEST_CASE("optimize_mesh: a bad tet with no free vertex gets its interior edge split")
+{
+    TetMesh mesh = fixtures::mesh_from_tets(
+        {{0, 0, -2}, {0, 0, 2}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}},
+        {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 5}, {0, 1, 5, 2}});
+    const ConstantSize field(2.0);  // nothing too long: refinement would not touch the axis
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+    const double before = worst(mesh);
+    REQUIRE(before < 0.4);
+    OptimizeOptions options;
+    options.swap = false;
+
+    SUBCASE("without the split nothing changes")
+    {
+        options.split = false;
+        optimize_mesh(mesh, field, options);
+        CHECK(worst(mesh) == before);
+        CHECK(mesh.num_vertices() == 6);
+    }
+    SUBCASE("the split raises the worst tet")
+    {
+        const OptimizeReport report = optimize_mesh(mesh, field, options);
+        CHECK(report.operators.back().name == "edge split");
+        CHECK(report.operators.back().successes == 1);
+        CHECK(mesh.num_vertices() == 7);
+        CHECK(mesh.num_live_tets() == 8);
+        CHECK(worst(mesh) > before + 0.15);
+    }
+    require_valid(mesh);
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
+}
+
+/*  A regular tet of edge 1 split by an interior point P just above the centre of face
+    (v1 v2 v3) into four tets. No position of P gives a tet of Qe 0.5 (the centroid gives about
+    0.45), while removing P gives back the regular tet: the sweep below 0.5 collapses P
+    (none of its edges is too short for h = 0.8, so the short-edge collapse leaves it).
+
+            v0
+           /|\
+          / | \
+        v1--P--v3
+            v2                                                                               */
+TEST_CASE("improve sweep: a free vertex whose every position is worse than its removal goes")
+{
+    TetMesh base = fixtures::regular_tet();
+    std::vector<Vec3> points = base.points;
+    const Vec3 face_centre = (points[1] + points[2] + points[3]) / 3.0;
+    points.push_back(face_centre + 0.3 * (points[0] - face_centre));
+    std::vector<TetVertices> tets;
+    for (int f = 0; f < 4; ++f)
+    {
+        TetVertices t = base.tets[0];
+        t[f] = 4;  // P replaces the vertex opposite face f: positive, as P is inside
+        tets.push_back(t);
+    }
+    TetMesh mesh = fixtures::mesh_from_tets(points, tets);
+    const ConstantSize field(0.8);
+    REQUIRE(count_edges(mesh, field).too_short == 0);
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+    OptimizeOptions options;
+    options.bad_quality = 0.5;
+
+    SUBCASE("without collapses P stays")
+    {
+        options.collapse = false;
+        improve_bad_elements(mesh, field, options);
+        CHECK(mesh.num_live_tets() == 4);
+        CHECK(worst(mesh) < 0.5);
+    }
+    SUBCASE("with them P is removed and the regular tet comes back")
+    {
+        improve_bad_elements(mesh, field, options);
+        CHECK(mesh.num_live_tets() == 1);
+        CHECK(mesh.num_vertices() == 4);
+        CHECK(worst(mesh) == doctest::Approx(1.0));
+    }
+    require_valid(mesh);
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
 }
 
 TEST_CASE("deterministic: the same input gives a bitwise identical output")

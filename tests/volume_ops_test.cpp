@@ -15,7 +15,9 @@
 #include "volume/check.h"
 #include "volume/collapse.h"
 #include "volume/edge_removal.h"
+#include "volume/edge_split.h"
 #include "volume/face_removal.h"
+#include "volume/quality_report.h"
 #include "volume/size_fields.h"
 #include "volume/smooth.h"
 #include "volume/tet_tables.h"
@@ -403,6 +405,231 @@ TEST_CASE("smoothing refuses a move that makes an edge too long")
     smooth_vertex(mesh, context, v);
     CHECK(too_long_edges() <= before);
     require_valid(mesh);
+}
+
+/// The smallest dihedral angle over the tets around vertex v, in degrees.
+double ball_smallest_dihedral(const TetMesh& mesh, const OperatorContext& context, int v)
+{
+    std::vector<int> ball;
+    vertex_ball(mesh, context.vertex_tet[v], v, ball);
+    double smallest = 180;
+    for (int t : ball)
+    {
+        const auto& tv = mesh.tets[t];
+        const auto& p = mesh.points;
+        for (double angle : dihedral_angles_deg(p[tv[0]], p[tv[1]], p[tv[2]], p[tv[3]]))
+            smallest = std::min(smallest, angle);
+    }
+    return smallest;
+}
+
+/*  A strongly jittered 5x5x5 Kuhn box: every interior vertex smoothed in turn. Each move must
+    raise its ball's worst Qe and may not take the ball's smallest dihedral angle below
+    min(its old value, 20 degrees).                                                          */
+TEST_CASE("smoothing never trades a ball's smallest dihedral angle for Qe")
+{
+    TetMesh mesh = fixtures::box_mesh(5, 0.3, 11);
+    require_valid(mesh);
+    OperatorContext context(mesh, nullptr);
+    const double volume = mesh.total_volume();
+    const SmoothOptions options;
+    int moved = 0;
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+    {
+        if (!context.constraints.is_free_vertex(v)) continue;
+        const double before = ball_smallest_dihedral(mesh, context, v);
+        const auto result = smooth_vertex(mesh, context, v, options);
+        if (!result.moved) continue;
+        ++moved;
+        CHECK(result.worst_after > result.worst_before);
+        CHECK(ball_smallest_dihedral(mesh, context, v) >=
+              std::min(before, options.min_dihedral_deg));
+    }
+    CHECK(moved > 10);
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    require_valid(mesh);
+}
+
+/// A regular tet of edge 1 (v0..v3) split into four tets by the interior point p (vertex 4).
+TetMesh regular_tet_star(const std::function<Vec3(const std::vector<Vec3>&)>& place)
+{
+    TetMesh base = fixtures::regular_tet();
+    std::vector<Vec3> points = base.points;
+    points.push_back(place(base.points));
+    std::vector<TetVertices> tets;
+    for (int f = 0; f < 4; ++f)
+    {
+        TetVertices t = base.tets[0];
+        t[f] = 4;  // P replaces the vertex opposite face f: positive, as P is inside
+        tets.push_back(t);
+    }
+    return mesh_from_tets(points, tets);
+}
+
+/*  A regular tet split by P, pushed from the centroid toward the midpoint M of edge v0-v1:
+
+            v3
+           /|\          the tets on the faces (v0 v1 v2) and (v0 v1 v3) are the two worst,
+          / | \         tied: each one's own gradient pushes P toward the other's face, so
+        v0--P--v2       only a direction raising both (their bisector, back toward the
+          \ M /         centroid) improves the worst of the ball
+            v1                                                                               */
+TEST_CASE("smoothing: the max-min move raises two tied worst tets at once")
+{
+    TetMesh mesh = regular_tet_star([](const std::vector<Vec3>& q) {
+        const Vec3 centroid = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+        return Vec3(centroid + 0.8 * (0.5 * (q[0] + q[1]) - centroid));
+    });
+    REQUIRE(mesh.vertex_classes[4] == VertexClass::Interior);
+    require_valid(mesh);
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+    SmoothOptions options;
+    options.nodal_shifting = false;
+
+    SUBCASE("the worst tet's gradient alone is blocked by its tied twin")
+    {
+        options.active_band = 0;
+        OperatorContext context(mesh, nullptr);
+        CHECK_FALSE(smooth_vertex(mesh, context, 4, options).moved);
+    }
+    SUBCASE("the common ascent of the nearly worst tets moves P")
+    {
+        OperatorContext context(mesh, nullptr);
+        const auto result = smooth_vertex(mesh, context, 4, options);
+        REQUIRE(result.moved);
+        CHECK(result.worst_after > 4 * result.worst_before);  // about 0.10 -> 0.44
+        CHECK(live_worst(mesh) == doctest::Approx(result.worst_after));
+    }
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
+    require_valid(mesh);
+}
+
+/*  A regular tet of edge 1 split by P just above the centre of face (v1 v2 v3), with h = 1:
+    the edges P-v1, P-v2, P-v3 are too short already (about 0.58), P-v0 is not (0.8). The
+    best shapes are at the centroid, where P-v0 = 0.61 would be too short; the move must stop
+    at the band's edge (P-v0 = 0.66 h) instead of short of it or past it.
+
+            v0
+           /|\
+          / | \        P slides up the axis v0 - centre(v1 v2 v3)
+        v1--P--v3
+            v2                                                                               */
+TEST_CASE("smoothing: a point the sizes refuse is pulled back into the size band")
+{
+    TetMesh mesh = regular_tet_star([](const std::vector<Vec3>& q) {
+        const Vec3 face_centre = (q[1] + q[2] + q[3]) / 3.0;
+        return Vec3(face_centre + 0.05 * (q[0] - face_centre));
+    });
+    const ConstantSize field(1.0);
+    const Vec3 v0 = mesh.points[0];
+    REQUIRE_FALSE(is_too_short((mesh.points[4] - v0).norm(), 1.0));
+    const double volume = mesh.total_volume();
+    const auto boundary = boundary_signature(mesh);
+
+    // the best the band allows: P on the axis at 0.66 h from v0 (by symmetry)
+    const Vec3 centroid =
+        0.25 * (mesh.points[0] + mesh.points[1] + mesh.points[2] + mesh.points[3]);
+    const Vec3 band_edge = v0 + (kSizeQualityThreshold / (centroid - v0).norm()) * (centroid - v0);
+    TetMesh at_band_edge = mesh;
+    at_band_edge.points[4] = band_edge;
+    const double best_in_band = live_worst(at_band_edge);
+
+    SmoothOptions without;
+    without.size_projection = false;
+    TetMesh unprojected = mesh;
+    OperatorContext unprojected_context(unprojected, &field);
+    for (int pass = 0; pass < 3; ++pass)
+        smooth_vertex(unprojected, unprojected_context, 4, without);
+
+    OperatorContext context(mesh, &field);
+    for (int pass = 0; pass < 3; ++pass) smooth_vertex(mesh, context, 4);
+    const double length = (mesh.points[4] - v0).norm();
+    CHECK_FALSE(is_too_short(length, 1.0));
+    CHECK(length < kSizeQualityThreshold * 1.01);  // at the band's edge
+    CHECK(live_worst(mesh) > live_worst(unprojected));
+    CHECK(live_worst(mesh) == doctest::Approx(best_in_band).epsilon(0.01));
+    CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+    CHECK(boundary_signature(mesh) == boundary);
+    require_valid(mesh);
+    require_valid(unprojected);
+}
+
+/*  An octahedron of half-height H, apexes a = (0,0,-H) and b = (0,0,H), equator r0..r3 =
+    (1,0,0) (0,1,0) (-1,0,0) (0,-1,0), meshed as the four tets around the axis a-b: all six
+    vertices on the boundary, each tet with two boundary faces meeting at an equator edge.
+
+             b
+            /|\           the axis is the only interior edge; splitting it at m gives the
+      r2 - / m \ - r0     eight tets (a, m, ri, ri+1), (m, b, ri, ri+1)
+            \ | /
+             \|/
+             a                                                                               */
+TetMesh axis_octahedron(double half_height)
+{
+    return mesh_from_tets(
+        {{0, 0, -half_height}, {0, 0, half_height}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}},
+        {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 5}, {0, 1, 5, 2}});
+}
+
+TEST_CASE("interior edge split: a tall octahedron's needles around its axis")
+{
+    SUBCASE("legal: the axis is split, the new point interior, the worst tet better")
+    {
+        TetMesh mesh = axis_octahedron(2.0);
+        require_valid(mesh);
+        OperatorContext context(mesh, nullptr);
+        const double volume = mesh.total_volume();
+        const auto boundary = boundary_signature(mesh);
+        const double worst_before = live_worst(mesh);
+        const auto result = split_interior_edge(mesh, context, 0);
+        REQUIRE(result.split);
+        CHECK(result.worst_before == doctest::Approx(worst_before));
+        CHECK(mesh.num_live_tets() == 8);
+        CHECK(live_worst(mesh) == doctest::Approx(result.worst_after));
+        CHECK(live_worst(mesh) > worst_before + 0.15);  // about 0.35 -> 0.55
+        const int m = result.new_vertex;
+        REQUIRE(m == 6);
+        CHECK(mesh.vertex_classes[m] == VertexClass::Interior);
+        CHECK(context.constraints.is_free_vertex(m));
+        CHECK(std::abs(mesh.points[m][0]) < 1e-9);  // on the axis, by symmetry
+        CHECK(std::abs(mesh.points[m][1]) < 1e-9);
+        CHECK(mesh.total_volume() == doctest::Approx(volume).epsilon(1e-12));
+        CHECK(boundary_signature(mesh) == boundary);
+        require_valid(mesh);
+    }
+    SUBCASE("refused: nothing better (a squat octahedron's tets are good already)")
+    {
+        TetMesh mesh = axis_octahedron(0.5);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        const auto points = mesh.points;
+        CHECK_FALSE(split_interior_edge(mesh, context, 0).split);
+        CHECK(mesh.tets == tets);
+        CHECK(mesh.points == points);
+    }
+    SUBCASE("refused: the axis is a listed feature edge")
+    {
+        TetMesh mesh = axis_octahedron(2.0);
+        mesh.edges.push_back({0, 1});
+        mesh.edge_refs.push_back(0);
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(split_interior_edge(mesh, context, 0).split);
+        CHECK(mesh.tets == tets);
+        CHECK(mesh.num_vertices() == 6);
+    }
+    SUBCASE("refused: the shell holds two tet refs")
+    {
+        TetMesh mesh = axis_octahedron(2.0);
+        mesh.tet_refs[2] = 7;
+        OperatorContext context(mesh, nullptr);
+        const auto tets = mesh.tets;
+        CHECK_FALSE(split_interior_edge(mesh, context, 0).split);
+        CHECK(mesh.tets == tets);
+        CHECK(mesh.num_vertices() == 6);
+    }
 }
 
 /*  A regular tet v0 v1 v2 v3 split by an interior point P close to v0 into four tets

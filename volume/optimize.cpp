@@ -8,6 +8,7 @@
 #include "common/stage_timer.h"
 #include "volume/collapse.h"
 #include "volume/edge_removal.h"
+#include "volume/edge_split.h"
 #include "volume/face_removal.h"
 #include "volume/smooth.h"
 #include "volume/tet_tables.h"
@@ -26,11 +27,12 @@ enum OperatorIndex
     kSmoothing = 2,
     kCollapse = 3,
     kSizeSmoothing = 4,
-    kNumOperators = 5
+    kEdgeSplit = 5,
+    kNumOperators = 6
 };
 
-const char* const kOperatorNames[kNumOperators] = {"edge removal", "multi-face removal",
-                                                   "smoothing", "collapse", "size smoothing"};
+const char* const kOperatorNames[kNumOperators] = {
+    "edge removal", "multi-face removal", "smoothing", "collapse", "size smoothing", "edge split"};
 
 struct QualitySummary
 {
@@ -194,6 +196,38 @@ public:
         }
     }
 
+    /// Splits an interior edge of each tet below `threshold` none of whose vertices may move
+    /// (smoothing cannot reach it, and the swaps already failed on it), worst first. No sweep
+    /// follows: the split placed its vertex already, and smoothing it again for Qe alone
+    /// trades dihedral angles away. Returns the number of splits.
+    long split_locked_tets(double threshold)
+    {
+        if (!options_.split) return 0;
+        const SweepCounters before = counters();
+        const WallStopwatch stopwatch;
+        auto locked = [&](int t) {
+            const auto& tv = mesh_.tets[t];
+            return std::none_of(tv.begin(), tv.end(),
+                                [&](int v) { return context_.constraints.is_free_vertex(v); });
+        };
+        std::vector<int> work;
+        for (int t = 0; t < mesh_.num_tet_slots(); ++t)
+            if (!mesh_.is_dead(t) && quality(t) < threshold && locked(t)) work.push_back(t);
+        order_worst_first(work);
+        long splits = 0;
+        for (int t : work)
+        {
+            if (mesh_.is_dead(t) || quality(t) >= threshold || !locked(t)) continue;
+            ++report_.operators[kEdgeSplit].attempts;
+            const bool done = split_interior_edge(mesh_, context_, t).split;
+            report_.operators[kEdgeSplit].successes += done;
+            splits += done;
+        }
+        report_.operators[kEdgeSplit].seconds += stopwatch.seconds();
+        print_sweep("split", before);
+        return splits;
+    }
+
     /// Sorts a work list worst first by quality band (kQualityBands per unit of Qe), by id
     /// inside a band, each tet once: the worst elements get the first pick of the operators,
     /// and inside a band the walk follows memory (ids follow space after adapt's renumbering)
@@ -328,7 +362,8 @@ private:
     }
 
     /// Tries the operators on tet t in a fixed order; the swaps first (cheap, topological),
-    /// then the smoothing of its free vertices while it stays below the threshold.
+    /// then the smoothing of its free vertices while it stays below the threshold, then, when
+    /// neither changed anything, the collapse of a free vertex onto another vertex of t.
     TetOutcome improve_tet(int t, double threshold)
     {
         if (options_.swap)
@@ -377,6 +412,20 @@ private:
                 }
             }
             report_.operators[kSmoothing].seconds += stopwatch.seconds();
+        }
+        if (options_.collapse && outcome == kNothing && quality(t) < threshold)
+        {
+            // a free vertex the sizes of its edges pin where its ball stays bad: remove it
+            // when no tet its removal makes is worse than the worst it had
+            CollapseOptions keep_worst;
+            keep_worst.min_quality = 1.0;
+            const TetVertices vertices = mesh_.tets[t];
+            for (int v : vertices)
+            {
+                if (!context_.constraints.is_free_vertex(v)) continue;
+                for (int u : vertices)
+                    if (u != v && attempt_collapse(v, u, keep_worst)) return kReplaced;
+            }
         }
         return outcome;
     }
@@ -434,6 +483,8 @@ OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field, const Optimi
         if (round > 0 && changes == 0) break;
         optimizer.improve_below(threshold);
     }
+    // last: the bad tets no move can reach; nothing collapses their new vertices afterwards
+    optimizer.split_locked_tets(threshold);
     return optimizer.finish();
 }
 

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
+#include "volume/quality_report.h"
 #include "volume/tet_tables.h"
 
 namespace hdimesh::volume
@@ -11,6 +13,13 @@ namespace hdimesh::volume
 
 namespace
 {
+
+/// What a move found: the point and the ball's worst quality there and at the start.
+struct Placement
+{
+    Vec3 point;
+    double worst_start = 0, worst = 0;
+};
 
 /// One tet of the moving ball: its face opposite the vertex, ordered so that (f0, f1, f2, P) is
 /// positive for P on the tet's side, with what tet_quality computes from the face alone done
@@ -56,10 +65,20 @@ struct MovingBall
     int vertex = -1;
     std::vector<int> tets;
     std::vector<BallFace> faces;
-    std::vector<int> neighbours;  // the other vertices of the ball, sorted, unique
-    double mean_edge = 0;         // of the opposite faces: the scale of the steps
+    std::vector<Vec3> neighbours;  // the other vertices of the ball, each once
+    double mean_edge = 0;          // of the opposite faces: the scale of the steps
 
     double quality_at(std::size_t i, const Vec3& p) const { return faces[i].quality(p); }
+
+    /// The smallest dihedral angle of the ball's tets with the vertex at p, in degrees.
+    double smallest_dihedral(const Vec3& p) const
+    {
+        double smallest = 180;
+        for (const BallFace& face : faces)
+            for (double angle : dihedral_angles_deg(face.f[0], face.f[1], face.f[2], p))
+                smallest = std::min(smallest, angle);
+        return smallest;
+    }
 
     /// The worst quality with the vertex at p, stopping early once it is <= floor. When it
     /// does not stop early, *worst_index gets the first tet of least quality.
@@ -124,6 +143,7 @@ MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int
     MovingBall ball;
     ball.vertex = v;
     context.ball(mesh, v, ball.tets);
+    std::vector<int> neighbour_ids;
     double edge_sum = 0;
     for (int t : ball.tets)
     {
@@ -136,11 +156,12 @@ MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int
         const Vec3& f2 = mesh.points[tv[fv[1]]];
         ball.faces.emplace_back(std::array<Vec3, 3>{f0, f1, f2});
         edge_sum += ball.faces.back().perimeter;
-        for (int k : fv) ball.neighbours.push_back(tv[k]);
+        for (int k : fv) neighbour_ids.push_back(tv[k]);
     }
-    std::sort(ball.neighbours.begin(), ball.neighbours.end());
-    ball.neighbours.erase(std::unique(ball.neighbours.begin(), ball.neighbours.end()),
-                          ball.neighbours.end());
+    std::sort(neighbour_ids.begin(), neighbour_ids.end());
+    neighbour_ids.erase(std::unique(neighbour_ids.begin(), neighbour_ids.end()),
+                        neighbour_ids.end());
+    for (int n : neighbour_ids) ball.neighbours.push_back(mesh.points[n]);
     ball.mean_edge = edge_sum / (3.0 * static_cast<double>(ball.faces.size()));
     return ball;
 }
@@ -171,19 +192,49 @@ Vec3 nodal_shifting_target(const MovingBall& ball, const Vec3& current)
 /// No edge of the vertex may become too long or too short at p (edges already so may stay).
 /// The candidate's length and target are computed once per edge (the field is the costly part);
 /// the old edge is measured only when the new one fails.
-bool sizes_allow(const TetMesh& mesh, const OperatorContext& context, const MovingBall& ball,
-                 const Vec3& from, const Vec3& to)
+bool sizes_allow(const OperatorContext& context, const MovingBall& ball, const Vec3& from,
+                 const Vec3& to)
 {
     if (context.field == nullptr) return true;
-    for (int n : ball.neighbours)
+    for (const Vec3& q : ball.neighbours)
     {
-        const Vec3& q = mesh.points[n];
         const double length = (q - to).norm();
         const double target = edge_target_size(*context.field, to, q);
         if (is_too_long(length, target) && !context.too_long(from, q)) return false;
         if (is_too_short(length, target) && !context.too_short(from, q)) return false;
     }
     return true;
+}
+
+/// Whether sizes_allow accepts p; when it does not, p is first moved radially from each
+/// neighbour whose edge it refuses to just inside the size band (the displacements added, one
+/// pass: the field is the costly part) and checked again.
+bool fit_size_band(const OperatorContext& context, const MovingBall& ball, const Vec3& from,
+                   Vec3& p)
+{
+    if (context.field == nullptr) return true;
+    // a hair inside the band, so that the check after the move does not refuse it again
+    constexpr double kInside = 1e-3;
+    Vec3 shift = Vec3::Zero();
+    bool refused = false;
+    for (const Vec3& q : ball.neighbours)
+    {
+        const Vec3 d = p - q;
+        const double length = d.norm();
+        const double target = edge_target_size(*context.field, p, q);
+        double wanted = length;
+        if (is_too_short(length, target) && !context.too_short(from, q))
+            wanted = kSizeQualityThreshold * target * (1 + kInside);
+        else if (is_too_long(length, target) && !context.too_long(from, q))
+            wanted = target / kSizeQualityThreshold * (1 - kInside);
+        if (wanted == length) continue;
+        if (!(length > 0)) return false;
+        refused = true;
+        shift += (wanted / length - 1) * d;
+    }
+    if (!refused) return true;
+    p += shift;
+    return sizes_allow(context, ball, from, p);
 }
 
 /// Central-difference gradient of one tet's quality with respect to the moving point.
@@ -200,30 +251,56 @@ Vec3 quality_gradient(const MovingBall& ball, std::size_t i, const Vec3& p, doub
     return g;
 }
 
-}  // namespace
-
-SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
-                           const SmoothOptions& options)
+/// The point of the convex hull of `vectors` nearest the origin (Frank-Wolfe with exact line
+/// search; a handful of vectors): every vector has a positive dot product with it unless it is
+/// zero, so it raises all their functions at once.
+Vec3 min_norm_in_hull(const std::vector<Vec3>& vectors)
 {
-    SmoothResult result;
-    if (!context.constraints.is_free_vertex(v) || context.vertex_tet[v] < 0) return result;
-    const MovingBall ball = collect_ball(mesh, context, v);
-    const Vec3 start = mesh.points[v];
+    Vec3 x = vectors.front();
+    for (int iteration = 0; iteration < 64 && vectors.size() > 1; ++iteration)
+    {
+        const Vec3* vertex = &vectors.front();
+        for (const Vec3& v : vectors)
+            if (v.dot(x) < vertex->dot(x)) vertex = &v;
+        const Vec3 d = *vertex - x;
+        const double gap = -x.dot(d);  // the duality gap: zero at the optimum
+        const double d2 = d.squaredNorm();
+        if (gap <= 1e-12 * x.squaredNorm() || d2 <= 0) break;
+        x += std::min(1.0, gap / d2) * d;
+    }
+    return x;
+}
+
+/// Where the vertex of `ball` should go from `start`: smooth_vertex's two moves (see the
+/// header). Returns the start itself when nothing beats it by options.min_gain.
+Placement best_position(const MovingBall& ball, const OperatorContext& context, const Vec3& start,
+                        const SmoothOptions& options)
+{
     // the index of the current worst tet comes with every full evaluation at the current point
     std::size_t current_worst_index = 0;
     const double worst_start =
         ball.worst_at(start, -std::numeric_limits<double>::infinity(), &current_worst_index);
-    result.worst_before = result.worst_after = worst_start;
 
     Vec3 current = start;
     double worst = worst_start;
-    auto try_point = [&](const Vec3& candidate) {
+    auto try_point = [&](Vec3 candidate) {
         const double floor = worst + options.min_gain;
         std::size_t index = 0;
         double w = 0;
-        if (!ball.worst_above(candidate, floor, &w, &index) ||
-            !sizes_allow(mesh, context, ball, start, candidate))
+        if (!ball.worst_above(candidate, floor, &w, &index)) return false;
+        if (options.size_projection)
+        {
+            // the best shapes often lie just past a too-short edge: the point pulled back into
+            // the size band is still better than staying
+            const Vec3 unfitted = candidate;
+            if (!fit_size_band(context, ball, start, candidate)) return false;
+            if (candidate != unfitted && !ball.worst_above(candidate, floor, &w, &index))
+                return false;
+        }
+        else if (!sizes_allow(context, ball, start, candidate))
+        {
             return false;
+        }
         current = candidate;
         worst = w;
         current_worst_index = index;  // w > floor: the evaluation went through every tet
@@ -238,14 +315,21 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
             if (try_point(current + alpha * (target - current))) break;
     }
 
-    // 2. max-min ascent on the worst tet, backtracking on the ball's true minimum
+    // 2. max-min ascent: the direction that raises every nearly worst tet at once (the
+    //    minimum-norm point of their gradients' hull), backtracking on the ball's true minimum
     if (options.optimization_based && worst < options.good_enough)
     {
         const double fd_step = 1e-6 * ball.mean_edge;
+        std::vector<Vec3> gradients;
         for (int iteration = 0; iteration < options.max_ascent_steps; ++iteration)
         {
-            const std::size_t w = current_worst_index;
-            const Vec3 g = quality_gradient(ball, w, current, fd_step);
+            gradients.clear();
+            gradients.push_back(quality_gradient(ball, current_worst_index, current, fd_step));
+            for (std::size_t i = 0; i < ball.faces.size(); ++i)
+                if (i != current_worst_index &&
+                    ball.quality_at(i, current) <= worst + options.active_band)
+                    gradients.push_back(quality_gradient(ball, i, current, fd_step));
+            const Vec3 g = min_norm_in_hull(gradients);
             const double gnorm = g.norm();
             if (!(gnorm > 0)) break;
             const Vec3 direction = g / gnorm;
@@ -262,13 +346,63 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
         }
     }
 
-    if (worst > worst_start + options.min_gain)
+    Placement placement;
+    placement.worst_start = worst_start;
+    // Qe can rise while a dihedral angle falls: a move must not trade one for the other
+    const bool keeps_angles = !(worst > worst_start + options.min_gain) ||
+                              ball.smallest_dihedral(current) >=
+                                  std::min(ball.smallest_dihedral(start), options.min_dihedral_deg);
+    const bool moved = worst > worst_start + options.min_gain && keeps_angles;
+    placement.point = moved ? current : start;
+    placement.worst = moved ? worst : worst_start;
+    return placement;
+}
+
+}  // namespace
+
+SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
+                           const SmoothOptions& options)
+{
+    SmoothResult result;
+    if (!context.constraints.is_free_vertex(v) || context.vertex_tet[v] < 0) return result;
+    const MovingBall ball = collect_ball(mesh, context, v);
+    const Placement placement = best_position(ball, context, mesh.points[v], options);
+    result.worst_before = placement.worst_start;
+    result.worst_after = placement.worst;
+    if (placement.worst > placement.worst_start)
     {
-        mesh.points[v] = current;
+        mesh.points[v] = placement.point;
         context.tets_changed(ball.tets);
         result.moved = true;
-        result.worst_after = worst;
     }
+    return result;
+}
+
+PointPlacement place_vertex(const OperatorContext& context,
+                            const std::vector<std::array<Vec3, 3>>& faces, const Vec3& start,
+                            const SmoothOptions& options)
+{
+    MovingBall ball;
+    double edge_sum = 0;
+    for (const auto& f : faces)
+    {
+        ball.faces.emplace_back(f);
+        edge_sum += ball.faces.back().perimeter;
+        for (const Vec3& q : f) ball.neighbours.push_back(q);
+    }
+    std::sort(ball.neighbours.begin(), ball.neighbours.end(), [](const Vec3& x, const Vec3& y) {
+        return std::lexicographical_compare(x.data(), x.data() + 3, y.data(), y.data() + 3);
+    });
+    ball.neighbours.erase(std::unique(ball.neighbours.begin(), ball.neighbours.end()),
+                          ball.neighbours.end());
+    ball.mean_edge = faces.empty() ? 0 : edge_sum / (3.0 * static_cast<double>(faces.size()));
+    PointPlacement result;
+    result.point = start;
+    if (faces.empty()) return result;
+    const Placement placement = best_position(ball, context, start, options);
+    result.point = placement.point;
+    result.worst_at_start = placement.worst_start;
+    result.worst = placement.worst;
     return result;
 }
 
@@ -283,8 +417,7 @@ SmoothResult equalize_edge_sizes(TetMesh& mesh, OperatorContext& context, int v,
     const Vec3 start = mesh.points[v];
     auto worst_size = [&](const Vec3& p) {
         double worst = 1.0;
-        for (int n : ball.neighbours)
-            worst = std::min(worst, context.size_quality(p, mesh.points[n]));
+        for (const Vec3& q : ball.neighbours) worst = std::min(worst, context.size_quality(p, q));
         return worst;
     };
     const double size_before = worst_size(start);
@@ -293,9 +426,8 @@ SmoothResult equalize_edge_sizes(TetMesh& mesh, OperatorContext& context, int v,
 
     // each neighbour proposes the point at its edge's target length, toward the vertex
     Vec3 target = Vec3::Zero();
-    for (int n : ball.neighbours)
+    for (const Vec3& q : ball.neighbours)
     {
-        const Vec3& q = mesh.points[n];
         const Vec3 d = start - q;
         const double length = d.norm();
         if (length <= 0) return result;
@@ -311,9 +443,9 @@ SmoothResult equalize_edge_sizes(TetMesh& mesh, OperatorContext& context, int v,
         if (shape <= 0 || shape < floor) continue;
         if (worst_size(candidate) <= size_before + options.min_gain) continue;
         bool creates_long = false;
-        for (int n : ball.neighbours)
-            creates_long = creates_long || (context.too_long(candidate, mesh.points[n]) &&
-                                            !context.too_long(start, mesh.points[n]));
+        for (const Vec3& q : ball.neighbours)
+            creates_long =
+                creates_long || (context.too_long(candidate, q) && !context.too_long(start, q));
         if (creates_long) continue;
         mesh.points[v] = candidate;
         context.tets_changed(ball.tets);
