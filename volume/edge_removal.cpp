@@ -96,24 +96,10 @@ EdgeRemovalPlan plan_edge_removal(const TetMesh& mesh, const OperatorContext& co
                                   int local_edge, const EdgeRemovalOptions& options)
 {
     EdgeRemovalPlan plan;
-    const auto& ev = tet::kEdgeVertices[local_edge];
-    const int a = mesh.tets[seed][ev[0]], b = mesh.tets[seed][ev[1]];
-    // layer 1: topology — a closed shell of a modest size
-    if (!edge_shell(mesh, seed, a, b, plan.shell) || !plan.shell.closed) return plan;
-    const int m = static_cast<int>(plan.shell.tets.size());
-    if (m < 3 || m > options.max_ring) return plan;
-    // layer 2: constraints — no listed edge, no constrained face through the edge, one ref
-    const auto& constraints = context.constraints;
-    if (constraints.is_constrained_edge(a, b)) return plan;
-    plan.ref = mesh.tet_refs[seed];
-    for (int i = 0; i < m; ++i)
-    {
-        const int t = plan.shell.tets[i];
-        if (mesh.tet_refs[t] != plan.ref || !constraints.is_removable_tet(t)) return plan;
-        // the face shared with the next tet of the shell is opposite ring[i]
-        if (constraints.is_constrained_face(mesh, t, local_index(mesh, t, plan.shell.ring[i])))
-            return plan;
-    }
+    // layers 1 and 2: topology and constraints
+    if (!free_interior_shell(mesh, context, seed, local_edge, options.max_ring, plan.shell,
+                             plan.ref))
+        return plan;
     plan.legal = true;
     plan.worst_before = context.worst_quality(mesh, plan.shell.tets);
     // layers 3 and 4: geometry and quality, by the dynamic program

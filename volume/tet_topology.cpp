@@ -402,4 +402,26 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
     return ids;
 }
 
+bool free_interior_shell(const TetMesh& mesh, const OperatorContext& context, int seed,
+                         int local_edge, int max_ring, EdgeShell& shell, int& ref)
+{
+    const auto& ev = tet::kEdgeVertices[local_edge];
+    const int a = mesh.tets[seed][ev[0]], b = mesh.tets[seed][ev[1]];
+    if (!edge_shell(mesh, seed, a, b, shell) || !shell.closed) return false;
+    const int m = static_cast<int>(shell.tets.size());
+    if (m < 3 || m > max_ring) return false;
+    const auto& constraints = context.constraints;
+    if (constraints.is_constrained_edge(a, b)) return false;
+    ref = mesh.tet_refs[seed];
+    for (int i = 0; i < m; ++i)
+    {
+        const int t = shell.tets[i];
+        if (mesh.tet_refs[t] != ref || !constraints.is_removable_tet(t)) return false;
+        // the face shared with the next tet of the shell is opposite ring[i]
+        if (constraints.is_constrained_face(mesh, t, local_index(mesh, t, shell.ring[i])))
+            return false;
+    }
+    return true;
+}
+
 }  // namespace hdimesh::volume

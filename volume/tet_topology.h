@@ -139,4 +139,11 @@ std::vector<int> replace_tets(TetMesh& mesh, OperatorContext& context,
                               const std::vector<int>& removed,
                               const std::vector<TetVertices>& added, int ref);
 
+/// The legality every operator on an edge's shell shares (topology, then constraints): edge
+/// local_edge of live tet seed is interior (a closed shell) with 3..max_ring tets, not a listed
+/// feature edge, its tets of one ref, all removable, and no constrained face through the edge.
+/// Fills `shell` and `ref` (the shell's tet ref); false when any of it fails.
+bool free_interior_shell(const TetMesh& mesh, const OperatorContext& context, int seed,
+                         int local_edge, int max_ring, EdgeShell& shell, int& ref);
+
 }  // namespace hdimesh::volume
