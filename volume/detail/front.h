@@ -293,15 +293,8 @@ public:
 
     void remove_vertex(int v, const Vec3& p)
     {
-        auto& vs = vertex_cells_[index(cell_of(p))];
-        for (std::size_t k = 0; k < vs.size(); ++k)
-            if (vs[k].vertex == v)
-            {
-                vs[k] = vs.back();
-                vs.pop_back();
-                return;
-            }
-        assert(false && "the vertex is not in the grid");
+        erase_one(vertex_cells_[index(cell_of(p))],
+                  [v](const VertexEntry& e) { return e.vertex == v; });
     }
 
     /// A face is listed once, in the cell of its box's centre; queries widen by the largest
@@ -321,15 +314,8 @@ public:
 
     void remove_face(int f, const Vec3& lo, const Vec3& hi)
     {
-        auto& fs = face_cells_[index(cell_of(0.5 * (lo + hi)))];
-        for (std::size_t k = 0; k < fs.size(); ++k)
-            if (fs[k].face == f)
-            {
-                fs[k] = fs.back();
-                fs.pop_back();
-                return;
-            }
-        assert(false && "the face is not in the grid");
+        erase_one(face_cells_[index(cell_of(0.5 * (lo + hi)))],
+                  [f](const FaceEntry& e) { return e.face == f; });
     }
 
     /// Calls on_vertex(v) for the vertices inside [lo, hi].
@@ -377,6 +363,20 @@ private:
         Vec3 position;
         int vertex;
     };
+
+    /// Removes the cell's entry that matches (there is one), not keeping the order.
+    template <class Entries, class Match>
+    static void erase_one(Entries& entries, Match&& match)
+    {
+        for (std::size_t k = 0; k < entries.size(); ++k)
+            if (match(entries[k]))
+            {
+                entries[k] = entries.back();
+                entries.pop_back();
+                return;
+            }
+        assert(false && "the entry is not in the grid");
+    }
 
     std::array<int, 3> cell_of(const Vec3& p) const
     {
