@@ -2,8 +2,9 @@
 // stage (vertex fan, kernel fan, exhaustive search, and stages 1-3 together as
 // fill_small_cavity runs them) whether it fills, the tets, the Steiner points, the worst Qe,
 // cavities per CPU-second (each fill repeated for a while) and the median CPU time of one
-// call. Then the two figures the issue targets: fan stages on cavities of up to 50 faces, and
-// the exhaustive search's median.
+// call, and whether the fill is exactly the cavity (tests/cavity_fill_check.h, the mesh
+// checker included). Then the two figures the issue targets: fan stages on cavities of up to
+// 50 faces, and the exhaustive search's median.
 //
 // usage: bench_cavity [name filter] [-q]   (-q: shorter timing, rougher figures)
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "cavity_corpus.h"
+#include "cavity_fill_check.h"
 #include "volume/detail/cavity_stages.h"
 
 using namespace hdimesh;
@@ -111,8 +113,10 @@ int main(int argc, char** argv)
                                        {"kernel fan", kernel_fan},
                                        {"exhaustive", exhaustive},
                                        {"stages 1-3", small_cavity}};
-    std::printf("%-28s %5s %5s  %-10s %6s %5s %7s %8s %12s %10s\n", "case", "faces", "pts", "stage",
-                "filled", "tets", "steiner", "worst Qe", "cavities/s", "median us");
+    std::printf("%-28s %5s %5s  %-10s %6s %5s %7s %8s %12s %10s  %s\n", "case", "faces", "pts",
+                "stage", "filled", "tets", "steiner", "worst Qe", "cavities/s", "median us",
+                "check");
+    int defects = 0;
     double fan_calls_time = 0;  // sum over (case, fan stage) of 1 / rate, cases <= 50 faces
     int fan_runs = 0;
     std::vector<double> exhaustive_medians;
@@ -128,10 +132,15 @@ int main(int argc, char** argv)
             CavityFill fill;
             const bool filled = stage.run(cavity, fill);
             const Timing timing = time_stage(stage, cavity, seconds);
-            std::printf("%-28s %5zu %5zu  %-10s %6s %5zu %7zu %8.4f %12.0f %10.2f\n",
+            const std::string defect = filled ? cavity_corpus::fill_defect(cavity, fill) : "";
+            defects += !defect.empty();
+            std::printf("%-28s %5zu %5zu  %-10s %6s %5zu %7zu %8.4f %12.0f %10.2f  %s\n",
                         cavity.name.c_str(), cavity.faces.size(), vertices.size(), stage.name,
                         filled ? "yes" : "no", fill.tets.size(), fill.new_points.size(),
-                        filled ? fill.worst_quality : 0.0, timing.per_second, timing.median_us);
+                        filled ? fill.worst_quality : 0.0, timing.per_second, timing.median_us,
+                        !filled          ? "-"
+                        : defect.empty() ? "clean"
+                                         : defect.c_str());
             const bool fan_stage = &stage == &stages[0] || &stage == &stages[1];
             if (fan_stage && filled && cavity.faces.size() <= 50)
             {
@@ -154,5 +163,6 @@ int main(int argc, char** argv)
             " slowest case %.1f us\n",
             exhaustive_medians[exhaustive_medians.size() / 2], exhaustive_medians.back());
     }
-    return 0;
+    std::printf("fills with a defect (check column): %d\n", defects);
+    return defects == 0 ? 0 : 1;
 }

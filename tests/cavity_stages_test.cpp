@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cavity_corpus.h"
+#include "cavity_fill_check.h"
 #include "fixtures.h"
 #include "volume/check.h"
 #include "volume/detail/kernel.h"
@@ -34,126 +35,12 @@ namespace detail = volume::detail;
 namespace
 {
 
-/// The triangle turned so that its smallest id comes first (orientation kept).
-Triangle rotated_to_smallest(const Triangle& t)
-{
-    const int k = static_cast<int>(std::min_element(t.begin(), t.end()) - t.begin());
-    return {t[k], t[(k + 1) % 3], t[(k + 2) % 3]};
-}
-
-/// p lies in the closed triangle (a, b, c), exactly.
-bool on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
-{
-    if (orient3d(a, b, c, p) != 0) return false;
-    const Vec3 normal = (b - a).cross(c - a).cwiseAbs();
-    int drop = 0;
-    if (normal[1] > normal[drop]) drop = 1;
-    if (normal[2] > normal[drop]) drop = 2;
-    const int s = orient2d(a, b, c, drop);
-    return s != 0 && s * orient2d(a, b, p, drop) >= 0 && s * orient2d(b, c, p, drop) >= 0 &&
-           s * orient2d(c, a, p, drop) >= 0;
-}
-
-/// A vertex whose faces form more than one fan (two parts of the cavity touching at a point):
-/// a valid cavity, but its boundary is not a manifold for the mesh checker.
-bool has_pinched_vertex(const std::vector<Triangle>& faces)
-{
-    std::map<int, std::map<int, int>> link;  // vertex -> (next -> following) around it
-    for (const auto& f : faces)
-        for (int k = 0; k < 3; ++k) link[f[k]][f[(k + 1) % 3]] = f[(k + 2) % 3];
-    for (const auto& [vertex, successor] : link)
-    {
-        int steps = 0;
-        const int start = successor.begin()->first;
-        int at = start;
-        do
-        {
-            at = successor.at(at);
-            ++steps;
-        } while (at != start && steps <= static_cast<int>(successor.size()));
-        if (steps != static_cast<int>(successor.size())) return true;
-    }
-    return false;
-}
-
 void require_valid_fill(const Cavity& cavity, const CavityFill& fill)
 {
     INFO(cavity.name);
     REQUIRE(fill.filled);
-    std::vector<Vec3> all = cavity.points;
-    all.insert(all.end(), fill.new_points.begin(), fill.new_points.end());
-    const int num_points = static_cast<int>(all.size());
-
-    double volume = 0, worst = std::numeric_limits<double>::max();
-    std::map<Triangle, std::vector<Triangle>> faces_by_sorted;
-    std::vector<bool> used(num_points, false);
-    for (const auto& t : fill.tets)
-    {
-        for (int v : t)
-        {
-            REQUIRE(v >= 0);
-            REQUIRE(v < num_points);
-            used[v] = true;
-        }
-        REQUIRE(orient3d(all[t[0]], all[t[1]], all[t[2]], all[t[3]]) > 0);
-        volume += signed_volume(all[t[0]], all[t[1]], all[t[2]], all[t[3]]);
-        worst = std::min(worst, tet_quality(all[t[0]], all[t[1]], all[t[2]], all[t[3]]));
-        for (const auto& fv : tet::kFaceVertices)
-        {
-            const Triangle f{t[fv[0]], t[fv[1]], t[fv[2]]};
-            Triangle key = f;
-            std::sort(key.begin(), key.end());
-            faces_by_sorted[key].push_back(rotated_to_smallest(f));
-        }
-    }
-    CHECK(volume == doctest::Approx(cavity_corpus::enclosed_volume(cavity.points, cavity.faces))
-                        .epsilon(1e-12));
-    CHECK(fill.worst_quality == doctest::Approx(worst).epsilon(1e-12));
-
-    // the boundary of the tets is the input, as an oriented set; inner faces pair up
-    std::vector<Triangle> boundary, input;
-    for (const auto& [key, list] : faces_by_sorted)
-    {
-        REQUIRE(list.size() <= 2);
-        if (list.size() == 1)
-            boundary.push_back(list[0]);
-        else
-            CHECK(list[0] != list[1]);  // the same sorted triple, so opposite orientations
-    }
-    for (const auto& f : cavity.faces) input.push_back(rotated_to_smallest(f));
-    std::sort(boundary.begin(), boundary.end());
-    std::sort(input.begin(), input.end());
-    CHECK(boundary == input);
-
-    // no cavity vertex dropped; every Steiner point used and on no input face
-    for (const auto& f : cavity.faces)
-        for (int v : f) CHECK(used[v]);
-    for (int k = 0; k < static_cast<int>(fill.new_points.size()); ++k)
-    {
-        const int id = static_cast<int>(cavity.points.size()) + k;
-        CHECK(used[id]);
-        for (const auto& f : cavity.faces)
-            CHECK_FALSE(on_triangle(all[id], cavity.points[f[0]], cavity.points[f[1]],
-                                    cavity.points[f[2]]));
-    }
-
-    // and the mesh checker agrees (it needs every point used: the cavity's own points only)
-    if (has_pinched_vertex(cavity.faces)) return;
-    std::vector<int> old2new(num_points, -1);
-    std::vector<Vec3> mesh_points;
-    for (int v = 0; v < num_points; ++v)
-        if (used[v])
-        {
-            old2new[v] = static_cast<int>(mesh_points.size());
-            mesh_points.push_back(all[v]);
-        }
-    std::vector<TetVertices> mesh_tets;
-    for (const auto& t : fill.tets)
-        mesh_tets.push_back({old2new[t[0]], old2new[t[1]], old2new[t[2]], old2new[t[3]]});
-    const TetMesh mesh = fixtures::mesh_from_tets(mesh_points, mesh_tets);
-    const auto violations = check_mesh(mesh);
-    INFO(format_violations(violations));
-    CHECK(violations.empty());
+    const std::string defect = cavity_corpus::fill_defect(cavity, fill);
+    CHECK_MESSAGE(defect.empty(), defect);
 }
 
 bool same_fill(const CavityFill& a, const CavityFill& b)
