@@ -86,19 +86,28 @@ public:
                     for (int v : {t[k], t[(k + 1) % 3]}) longest[v] = std::max(longest[v], length);
             }
         std::vector<Vec3> ends;
+        double reach = 0;  // no end lifts the size farther than its length over the grade
         for (std::size_t v = 0; v < longest.size(); ++v)
             if (longest[v] > 0)
             {
                 ends.push_back(mesh.points[v]);
                 end_length_.push_back(longest[v]);
+                reach = std::max(reach, longest[v] / kGrade);
+                reach_lo_ = reach_lo_.cwiseMin(mesh.points[v]);
+                reach_hi_ = reach_hi_.cwiseMax(mesh.points[v]);
             }
-        if (!ends.empty()) long_edge_ends_ = std::make_unique<hdi::KnnIndex>(ends);
+        if (ends.empty()) return;
+        reach_lo_ -= Vec3::Constant(reach);
+        reach_hi_ += Vec3::Constant(reach);
+        long_edge_ends_ = std::make_unique<hdi::KnnIndex>(ends);
     }
     double size(const Vec3& p) const override
     {
         if (midpoints_.count(key(p)) != 0) return std::numeric_limits<double>::max();
         const double wanted = field_->size(p);
-        if (!long_edge_ends_) return wanted;
+        if (!long_edge_ends_ || (p.array() < reach_lo_.array()).any() ||
+            (p.array() > reach_hi_.array()).any())
+            return wanted;
         int nearest = -1;
         double squared = 0;
         if (long_edge_ends_->nearest(p, 1, &nearest, &squared) < 1) return wanted;
@@ -130,6 +139,8 @@ private:
     std::unordered_set<Key, KeyHash> midpoints_;
     std::unique_ptr<hdi::KnnIndex> long_edge_ends_;  // the ends of boundary edges too long
     std::vector<double> end_length_;                 // per end: its longest such edge
+    Vec3 reach_lo_ = Vec3::Constant(std::numeric_limits<double>::infinity());  // where an end
+    Vec3 reach_hi_ = -reach_lo_;  // may lift the size: their box, widened by the reach
 };
 
 /// The validated surface, compact: only the points the triangles use, renumbered in order.
