@@ -175,7 +175,6 @@ private:
     // scratch of one attempt, reused so the inner loop does not allocate
     std::vector<int> local_vertices_;
     std::vector<detail::BucketGrid::FaceEntry> local_faces_;
-    std::vector<Box> face_boxes_;  // per front slot
     struct Candidate
     {
         double quality;
@@ -367,7 +366,6 @@ void FrontMesher::build_grid()
     const long max_cells = use_grid_ ? 8L * front_.alive_count + 4096 : 1;
     grid_.init(lo, hi, kGridCellFactor * typical, max_cells);
     std::fill(in_grid_.begin(), in_grid_.end(), 0);
-    face_boxes_.resize(front_.vertices.size());
     for (int v = 0; v < static_cast<int>(points_.size()); ++v)
         if (front_.valence[v] > 0)
         {
@@ -378,7 +376,7 @@ void FrontMesher::build_grid()
         if (front_.alive[f])
         {
             const Triangle& t = front_.vertices[f];
-            const Box& b = face_boxes_[f] = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
+            const Box b = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
             grid_.add_face(f, t, b.lo, b.hi);
         }
 }
@@ -608,15 +606,16 @@ void FrontMesher::add_face(const Triangle& t)
             grid_.add_vertex(v, points_[v]);
             in_grid_[v] = 1;
         }
-    if (face_boxes_.size() < front_.vertices.size()) face_boxes_.resize(front_.vertices.size());
-    const Box& b = face_boxes_[id] = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
+    const Box b = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
     grid_.add_face(id, t, b.lo, b.hi);
     front_.push(id);
 }
 
 void FrontMesher::remove_face(int id)
 {
-    const Box& b = face_boxes_[id];
+    // the points never move, so the box is the one the face was listed with
+    const Triangle& t = front_.vertices[id];
+    const Box b = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
     grid_.remove_face(id, b.lo, b.hi);
     front_.remove(id);
     for (int v : front_.vertices[id])

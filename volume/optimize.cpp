@@ -77,16 +77,23 @@ public:
 
     /// Collapses too-short edges with a free endpoint, shortest (relative to the size) first,
     /// pass after pass until one collapses nothing. Returns the number of collapses.
-    long collapse_short_edges()
+    /// `from`: the tets that hold every too-short edge (all live tets when null).
+    long collapse_short_edges(const std::vector<int>* from = nullptr)
     {
-        if (!options_.collapse) return 0;
+        left_short_.clear();
+        if (!options_.collapse)
+        {
+            left_short_ = short_edges(from ? *from : all_live_tets());
+            return 0;
+        }
         CollapseOptions collapse_options;
         collapse_options.min_quality = options_.collapse_min_quality;
         long total = 0;
         // the first pass sees every short edge; later ones only those of tets changed since,
         // as nothing else can have become collapsible
-        std::vector<ShortEdge> candidates = short_edges(all_live_tets());
-        for (int pass = 0; pass < options_.max_sweeps && !candidates.empty(); ++pass)
+        std::vector<ShortEdge> candidates = short_edges(from ? *from : all_live_tets());
+        int pass = 0;
+        for (; pass < options_.max_sweeps && !candidates.empty(); ++pass)
         {
             const SweepCounters before = counters();
             const WallStopwatch stopwatch;
@@ -106,6 +113,7 @@ public:
                 if (!done && context_.constraints.is_free_vertex(v))
                     done = attempt_collapse(v, u, collapse_options);
                 collapsed += done;
+                if (!done) left_short_.push_back(candidate);
             }
             report_.operators[kCollapse].seconds += stopwatch.seconds();
             print_sweep("collapse", before);
@@ -118,7 +126,60 @@ public:
             changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
             candidates = short_edges(changed);
         }
+        // Every short edge left was a candidate that did not collapse, or is still pending: an
+        // edge a collapse makes, or reshapes by moving its survivor, lies in a changed tet.
+        if (pass == options_.max_sweeps)
+            left_short_.insert(left_short_.end(), candidates.begin(), candidates.end());
+        keep_short_edges_left();
         return total;
+    }
+
+    /// left_short_ becomes the too-short edges of the mesh, as short_edges(all_live_tets())
+    /// would list them: drops repeats, edges gone with a collapsed vertex and edges a moved
+    /// survivor lengthened, measures the others again and re-sorts.
+    void keep_short_edges_left()
+    {
+        std::vector<ShortEdge> kept;
+        kept.reserve(left_short_.size());
+        std::sort(left_short_.begin(), left_short_.end(),
+                  [](const ShortEdge& a, const ShortEdge& b) {
+                      return a.u != b.u ? a.u < b.u : a.v < b.v;
+                  });
+        for (std::size_t k = 0; k < left_short_.size(); ++k)
+        {
+            const ShortEdge& e = left_short_[k];
+            if (k > 0 && left_short_[k - 1].u == e.u && left_short_[k - 1].v == e.v) continue;
+            if (context_.vertex_tet[e.u] < 0 || context_.vertex_tet[e.v] < 0) continue;
+            context_.ball(mesh_, e.u, ball_);
+            const bool is_edge = std::any_of(ball_.begin(), ball_.end(), [&](int t) {
+                const auto& tv = mesh_.tets[t];
+                return std::find(tv.begin(), tv.end(), e.v) != tv.end();
+            });
+            if (!is_edge) continue;
+            const Vec3& pu = mesh_.points[e.u];
+            const Vec3& pv = mesh_.points[e.v];
+            const double length = (pv - pu).norm();
+            const double target = edge_target_size(*context_.field, pu, pv);
+            if (is_too_short(length, target)) kept.push_back({length / target, e.u, e.v});
+        }
+        std::sort(kept.begin(), kept.end());
+        left_short_ = std::move(kept);
+    }
+
+    /// The tets around the ends of the short edges left: they hold every short edge while only
+    /// those ends move.
+    std::vector<int> tets_around_short_edges()
+    {
+        std::vector<int> tets;
+        for (const ShortEdge& e : left_short_)
+            for (int w : {e.u, e.v})
+            {
+                context_.ball(mesh_, w, ball_);
+                tets.insert(tets.end(), ball_.begin(), ball_.end());
+            }
+        std::sort(tets.begin(), tets.end());
+        tets.erase(std::unique(tets.begin(), tets.end()), tets.end());
+        return tets;
     }
 
     /// Moves the free endpoints of the too-short edges that collapses could not remove toward
@@ -131,7 +192,7 @@ public:
         SizeSmoothOptions size_options;
         size_options.min_quality = options_.collapse_min_quality;
         long moved = 0;
-        for (const auto& candidate : short_edges(all_live_tets()))
+        for (const auto& candidate : left_short_)
             for (int w : {candidate.u, candidate.v})
             {
                 if (!context_.constraints.is_free_vertex(w) || context_.vertex_tet[w] < 0) continue;
@@ -447,7 +508,9 @@ private:
     }
 
     TetMesh& mesh_;
-    std::vector<char> changed_vertex_;  // scratch of improve_below, all zero between uses
+    std::vector<char> changed_vertex_;   // scratch of improve_below, all zero between uses
+    std::vector<ShortEdge> left_short_;  // the short edges the last collapse_short_edges left
+    std::vector<int> ball_;              // scratch
     OptimizeOptions options_;
     // only a removal matters here, not how good a refused one would have been
     const EdgeRemovalOptions edge_removal_options_ = [] {
@@ -478,8 +541,9 @@ OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field, const Optimi
     for (int round = 0; round < 3; ++round)
     {
         long changes = optimizer.collapse_short_edges();
+        const std::vector<int> around = optimizer.tets_around_short_edges();
         const long moved = optimizer.equalize_short_edges();
-        if (moved > 0) changes += moved + optimizer.collapse_short_edges();
+        if (moved > 0) changes += moved + optimizer.collapse_short_edges(&around);
         if (round > 0 && changes == 0) break;
         optimizer.improve_below(threshold);
     }

@@ -370,8 +370,15 @@ private:
     /// Slot of child i of refined tet t: the parent's own slot for child 0, then its extra slots.
     int child_slot(int t, int i) const { return i == 0 ? t : extra_start_[ordinal_[t]] + i - 1; }
 
+    /// A tet with no positive children in doubles, and the edge slot of each local edge.
+    struct StuckTet
+    {
+        int tet;
+        std::array<int, 6> slots;
+    };
+
     int mark_edges(const EdgeTable& edges);
-    std::vector<std::array<int, 6>> choose_patterns(const EdgeTable& edges);
+    std::vector<StuckTet> choose_patterns(const EdgeTable& edges);
     void add_midpoints(const EdgeTable& edges);
     void rebuild_tets();
     void link_children();
@@ -426,7 +433,7 @@ int RefinePass::mark_edges(const EdgeTable& edges)
 
 /// Pass 1, a simulation: the pattern of every tet and a positive way to build it. Nothing is
 /// changed; returns the edge slots of the tets that cannot be rebuilt positively.
-std::vector<std::array<int, 6>> RefinePass::choose_patterns(const EdgeTable& edges)
+std::vector<RefinePass::StuckTet> RefinePass::choose_patterns(const EdgeTable& edges)
 {
     const int nt = mesh_.num_tet_slots();
     const PatternBuilds& builds = pattern_builds();
@@ -436,7 +443,7 @@ std::vector<std::array<int, 6>> RefinePass::choose_patterns(const EdgeTable& edg
     refined_slots_.clear();
     num_new_points_ = 0;
     num_fallbacks_ = 0;
-    std::vector<std::array<int, 6>> stuck;
+    std::vector<StuckTet> stuck;
     std::array<Vec3, kPatternNumLocalPoints> p;
     p.fill(Vec3::Zero());
     num_children_ = nt;
@@ -460,7 +467,7 @@ std::vector<std::array<int, 6>> RefinePass::choose_patterns(const EdgeTable& edg
                 build = Build::ConePointAverage;
             else
             {
-                stuck.push_back(s.slot);
+                stuck.push_back({t, s.slot});
                 continue;
             }
         }
@@ -804,14 +811,15 @@ RefinePassResult RefinePass::run()
         // pass (the optimizer in between takes it apart); its neighbours are simulated again.
         for (int round = 0; report.edges_split > 0; ++round)
         {
-            const std::vector<std::array<int, 6>> stuck = choose_patterns(edges);
+            const std::vector<StuckTet> stuck = choose_patterns(edges);
             if (stuck.empty()) break;
             if (round == kMaxDeferRounds)
                 throw InputError("refine: " + std::to_string(stuck.size()) +
-                                 " tets cannot be split without a non-positive child; the mesh "
-                                 "is unchanged");
-            for (const auto& slots : stuck)
-                for (int slot : slots)
+                                 " tets cannot be split without a non-positive child (the first: "
+                                 "tet " +
+                                 std::to_string(stuck.front().tet) + "); the mesh is unchanged");
+            for (const auto& stuck_tet : stuck)
+                for (int slot : stuck_tet.slots)
                     if (slot >= 0 && midpoint_[slot] >= 0)
                     {
                         midpoint_[slot] = -1;
