@@ -286,6 +286,7 @@ public:
         const std::size_t n = static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2];
         vertex_cells_.assign(n, {});
         face_cells_.assign(n, {});
+        face_cell_boxes_.assign(n, CellBox{});
         face_margin_ = 0;
     }
 
@@ -309,13 +310,21 @@ public:
             e.lo[k] = std::nextafter(static_cast<float>(lo[k]), -HUGE_VALF);
             e.hi[k] = std::nextafter(static_cast<float>(hi[k]), HUGE_VALF);
         }
-        face_cells_[index(cell_of(0.5 * (lo + hi)))].push_back(e);
+        const std::size_t cell = index(cell_of(0.5 * (lo + hi)));
+        face_cells_[cell].push_back(e);
+        CellBox& box = face_cell_boxes_[cell];
+        for (int k = 0; k < 3; ++k)
+        {
+            box.lo[k] = std::min(box.lo[k], e.lo[k]);
+            box.hi[k] = std::max(box.hi[k], e.hi[k]);
+        }
     }
 
     void remove_face(int f, const Vec3& lo, const Vec3& hi)
     {
-        erase_one(face_cells_[index(cell_of(0.5 * (lo + hi)))],
-                  [f](const FaceEntry& e) { return e.face == f; });
+        const std::size_t cell = index(cell_of(0.5 * (lo + hi)));
+        erase_one(face_cells_[cell], [f](const FaceEntry& e) { return e.face == f; });
+        if (face_cells_[cell].empty()) face_cell_boxes_[cell] = CellBox{};
     }
 
     /// Calls on_vertex(v) for the vertices inside [lo, hi].
@@ -342,10 +351,15 @@ public:
         for (int z = a[2]; z <= b[2]; ++z)
             for (int y = a[1]; y <= b[1]; ++y)
                 for (int x = a[0]; x <= b[0]; ++x)
-                    for (const FaceEntry& e : face_cells_[index({x, y, z})])
+                {
+                    const std::size_t cell = index({x, y, z});
+                    // the margin is the largest face's: most cells it adds hold none that reach
+                    if (!face_cell_boxes_[cell].overlaps(lo, hi)) continue;
+                    for (const FaceEntry& e : face_cells_[cell])
                         if (e.lo[0] <= hi[0] && lo[0] <= e.hi[0] && e.lo[1] <= hi[1] &&
                             lo[1] <= e.hi[1] && e.lo[2] <= hi[2] && lo[2] <= e.hi[2])
                             on_face(e);
+                }
     }
 
     std::size_t memory_bytes() const
@@ -354,10 +368,24 @@ public:
                             face_cells_.capacity() * sizeof(face_cells_[0]);
         for (const auto& c : vertex_cells_) bytes += c.capacity() * sizeof(VertexEntry);
         for (const auto& c : face_cells_) bytes += c.capacity() * sizeof(FaceEntry);
+        bytes += face_cell_boxes_.capacity() * sizeof(CellBox);
         return bytes;
     }
 
 private:
+    /// The union of the boxes of a cell's faces (empty: none); it grows only until the cell
+    /// empties, so it always holds them.
+    struct CellBox
+    {
+        std::array<float, 3> lo{HUGE_VALF, HUGE_VALF, HUGE_VALF},
+            hi{-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+        bool overlaps(const Vec3& qlo, const Vec3& qhi) const
+        {
+            return lo[0] <= qhi[0] && qlo[0] <= hi[0] && lo[1] <= qhi[1] && qlo[1] <= hi[1] &&
+                   lo[2] <= qhi[2] && qlo[2] <= hi[2];
+        }
+    };
+
     struct VertexEntry
     {
         Vec3 position;
@@ -402,6 +430,7 @@ private:
     std::array<int, 3> dims_{1, 1, 1};
     std::vector<std::vector<VertexEntry>> vertex_cells_;
     std::vector<std::vector<FaceEntry>> face_cells_;
+    std::vector<CellBox> face_cell_boxes_;  // per cell
 };
 
 }  // namespace hdimesh::volume::detail
