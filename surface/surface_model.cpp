@@ -67,9 +67,11 @@ struct QuadricFitScratch
 };
 
 // max(|k1|, |k2|) at v from z = a x² + b xy + c y² + d x + e y fitted to its 2-ring in the frame
-// of the vertex normal; 0 when the ring is too small to fit.
-double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& stars, int v,
-                         const Vec3d& normal, QuadricFitScratch& scratch)
+// of the vertex normal; 0 when the ring is too small to fit. The second ring grows from smooth
+// neighbours only: beyond a feature vertex lies another patch, whose turn is not curvature.
+double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& stars,
+                         const std::vector<char>& smooth, int v, const Vec3d& normal,
+                         QuadricFitScratch& scratch)
 {
     // The 2-ring without v, each vertex once (a vertex is stamped with the index of the ring it
     // was put in).
@@ -89,6 +91,7 @@ double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& st
     {
         const int w = neighbours[i];
         add(w);
+        if (!smooth[w]) continue;
         for (int k = offsets[w]; k < offsets[w + 1]; ++k) add(neighbours[k]);
     }
     if (ring.size() < 6 || !(normal.norm() > 0.0)) return 0.0;
@@ -274,10 +277,12 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     for (auto f : input.faces()) face_area[f.idx()] = input.calc_face_area(f);
     const VertexStars stars(input, face_normal_by_index, face_area);
     QuadricFitScratch scratch;
+    std::vector<char> smooth(input.n_vertices());
+    for (auto v : input.vertices()) smooth[v.idx()] = is_smooth(v);
     for (auto v : input.vertices())
-        if (is_smooth(v))
-            curvature_[v.idx()] =
-                quadric_curvature(points_, stars, v.idx(), stars.area_normals[v.idx()], scratch);
+        if (smooth[v.idx()])
+            curvature_[v.idx()] = quadric_curvature(points_, stars, smooth, v.idx(),
+                                                    stars.area_normals[v.idx()], scratch);
 }
 
 // For the descent's bound (FacePlane). Every sine of the triangle's angles is at least

@@ -17,14 +17,18 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <random>
 #include <vector>
 
 #include "surface/detail/closest_point_tree.h"
 #include "surface/detail/local_ops_geometry.h"
+#include "surface/features.h"
 #include "surface/local_ops.h"
 #include "surface/surface_model.h"
 #include "surface_fixtures.h"
@@ -586,4 +590,64 @@ TEST_CASE(
     const Vec3d zero(0, 0, 0), up(0, 0, 2);
     CHECK(detail::turn_ok_cross(zero, 0.0, up, 2.0, 0.9));
     CHECK(!detail::turn_ok_cross(up, 2.0, zero, 0.0, 0.9));
+}
+
+TEST_CASE("surface model: a smooth vertex beside a ridge fits its own patch, not the one beyond")
+{
+    // A thin box, 2 × 1 × 0.05, its faces cut into lattice squares; the side strips are two
+    // squares high, so a row of smooth vertices runs between the two ridges of each strip:
+    //
+    //     z = 0.05  +---+---+---+   (ridge)
+    //               |   |   |   |
+    //     z = 0.025 +---+---+---+   smooth vertices, a 2-ring away from the top and bottom
+    //               |   |   |   |
+    //     z = 0     +---+---+---+   (ridge)
+    //
+    // Every face is flat: every smooth vertex has curvature 0. A fit over a ring that crossed the
+    // ridges saw the 90° turn as a curvature of about 1 / 0.05.
+    const int nx = 16, ny = 8, nz = 2;
+    const double sx = 2.0 / nx, sy = 1.0 / ny, sz = 0.05 / nz;
+    SurfaceMesh mesh;
+    std::map<std::array<int, 3>, VertexHandle> lattice;
+    auto vertex = [&](int i, int j, int k) {
+        auto [it, added] = lattice.try_emplace({i, j, k});
+        if (added) it->second = mesh.add_vertex(Vec3d(i * sx, j * sy, k * sz));
+        return it->second;
+    };
+    // one box face: lattice points p0 + a·u + b·w, outward when u × w points out
+    auto add_face = [&](std::array<int, 3> p0, std::array<int, 3> u, std::array<int, 3> w, int nu,
+                        int nw) {
+        auto at = [&](int a, int b) {
+            return vertex(p0[0] + a * u[0] + b * w[0], p0[1] + a * u[1] + b * w[1],
+                          p0[2] + a * u[2] + b * w[2]);
+        };
+        for (int a = 0; a < nu; ++a)
+            for (int b = 0; b < nw; ++b)
+            {
+                mesh.add_face(at(a, b), at(a + 1, b), at(a + 1, b + 1));
+                mesh.add_face(at(a, b), at(a + 1, b + 1), at(a, b + 1));
+            }
+    };
+    add_face({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, ny, nx);   // bottom, -z
+    add_face({0, 0, nz}, {1, 0, 0}, {0, 1, 0}, nx, ny);  // top, +z
+    add_face({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, nx, nz);   // y = 0, -y
+    add_face({0, ny, 0}, {0, 0, 1}, {1, 0, 0}, nz, nx);  // y = 1, +y
+    add_face({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, nz, ny);   // x = 0, -x
+    add_face({nx, 0, 0}, {0, 1, 0}, {0, 0, 1}, ny, nz);  // x = 2, +x
+    REQUIRE(mesh.n_vertices() == lattice.size());
+    REQUIRE(fixtures::euler(mesh) == 2);
+    detect_features(mesh);
+    const SurfaceModel model(mesh);
+    const SurfaceProperties props(mesh);
+    int strip_vertices = 0;
+    double worst = 0;
+    for (auto v : mesh.vertices())
+    {
+        if (mesh.property(props.vertex_class, v) != VertexClass::Smooth) continue;
+        worst = std::max(worst, model.input_curvature()[v.idx()]);
+        const double z = mesh.point(v)[2];
+        strip_vertices += z > 0 && z < 0.05 - 1e-12;
+    }
+    CHECK(strip_vertices == 2 * (nx - 1) + 2 * (ny - 1));
+    CHECK(worst < 1e-9);
 }

@@ -224,7 +224,9 @@ TEST_CASE(
     for (auto v : mesh.vertices())
         if (mesh.property(out_props.vertex_class, v) != VertexClass::Smooth)
             CHECK(input_ridges.closest(mesh.point(v)).distance < 1e-9 * diagonal);
-    // Recall: every input ridge edge is covered by output ridge edges (its ends and midpoint).
+    // Recall: every input ridge edge is covered by output ridge edges (its ends and midpoint),
+    // within half the default tolerance (0.002 diag): the curve sizing h = sqrt(3 hausd / k)
+    // lets a chord stray h²k/8, 3/8 of it.
     for (auto e : input.edges())
     {
         if (input.property(in_props.edge_curve, e) == kNoCurve) continue;
@@ -232,7 +234,7 @@ TEST_CASE(
         const Vec3d a = input.point(input.from_vertex_handle(h)),
                     b = input.point(input.to_vertex_handle(h));
         INFO("input ridge edge midpoint " << 0.5 * (a + b));
-        CHECK(output_ridges.closest(0.5 * (a + b)).distance < 6.5e-4 * diagonal);
+        CHECK(output_ridges.closest(0.5 * (a + b)).distance < 1e-3 * diagonal);
     }
     // Corners kept exactly.
     std::set<std::array<double, 3>> out_corners;
