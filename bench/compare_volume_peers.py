@@ -227,7 +227,7 @@ def main():
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix='hdimesh_volpeers_')
     have_gmsh = shutil.which('gmsh') is not None
-    netgen = os.path.join(args.build, 'bench', 'netgen_volume')
+    netgen = os.path.abspath(os.path.join(args.build, 'bench', 'netgen_volume'))
     print(f"{'input':<12}{'tool':<10}{'tets':>9}{'cpu s':>8}{'tets/s':>9}{'min Qe':>8}{'Qe>=.5':>8}"
           f"{'dihedral':>13}{'Qt>=.66':>8}   {'without bad-triangle tets':<26}")
     for name in args.inputs.split(','):

@@ -101,10 +101,11 @@ CavityFill refill_tets(const TetMesh& mesh, const std::vector<int>& tets, const 
 
 /// Puts a fill into the mesh in one step: adds new_points (Interior, ref 0), kills
 /// removed_tets, adds the new tets with fill.ref into the freed slots first. Keeps the
-/// adjacency when the mesh has it (the new tets are linked to each other and to the tets
-/// across fill.faces). mesh.triangles, refs and the classes of existing vertices are
-/// unchanged: the faces are the cavity's boundary, kept exactly. Returns the new tet ids.
-/// O(n log n) in the fill's size, so whole volumes go through it too.
+/// adjacency when the mesh has it and is not empty (the new tets are linked to each other and
+/// to the tets across fill.faces); into an empty mesh (a whole volume) the caller then runs
+/// build_adjacency. mesh.triangles, refs and the classes of existing vertices are unchanged:
+/// the faces are the cavity's boundary, kept exactly. Returns the new tet ids. O(n log n) in
+/// the fill's size.
 /// \pre fill.filled and mesh.num_vertices() == fill.first_new_vertex.
 std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill);
 
