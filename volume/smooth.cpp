@@ -67,6 +67,31 @@ struct MovingBall
     std::vector<BallFace> faces;
     std::vector<Vec3> neighbours;  // the other vertices of the ball, each once
     double mean_edge = 0;          // of the opposite faces: the scale of the steps
+    // The old edges' targets, each asked of the field once per start (NaN: not yet): every
+    // candidate the band refuses compares with the same old edge.
+    mutable Vec3 targets_from = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    mutable std::vector<double> old_targets;
+
+    /// The target of the edge from `from` to neighbour i, as OperatorContext::too_long measures it.
+    double old_target(const OperatorContext& context, const Vec3& from, std::size_t i) const
+    {
+        if (!(targets_from == from))
+        {
+            targets_from = from;
+            old_targets.assign(neighbours.size(), std::numeric_limits<double>::quiet_NaN());
+        }
+        double& target = old_targets[i];
+        if (std::isnan(target)) target = edge_target_size(*context.field, from, neighbours[i]);
+        return target;
+    }
+    bool old_too_long(const OperatorContext& context, const Vec3& from, std::size_t i) const
+    {
+        return is_too_long((neighbours[i] - from).norm(), old_target(context, from, i));
+    }
+    bool old_too_short(const OperatorContext& context, const Vec3& from, std::size_t i) const
+    {
+        return is_too_short((neighbours[i] - from).norm(), old_target(context, from, i));
+    }
 
     double quality_at(std::size_t i, const Vec3& p) const { return faces[i].quality(p); }
 
@@ -196,12 +221,13 @@ bool sizes_allow(const OperatorContext& context, const MovingBall& ball, const V
                  const Vec3& to)
 {
     if (context.field == nullptr) return true;
-    for (const Vec3& q : ball.neighbours)
+    for (std::size_t i = 0; i < ball.neighbours.size(); ++i)
     {
+        const Vec3& q = ball.neighbours[i];
         const double length = (q - to).norm();
         const double target = edge_target_size(*context.field, to, q);
-        if (is_too_long(length, target) && !context.too_long(from, q)) return false;
-        if (is_too_short(length, target) && !context.too_short(from, q)) return false;
+        if (is_too_long(length, target) && !ball.old_too_long(context, from, i)) return false;
+        if (is_too_short(length, target) && !ball.old_too_short(context, from, i)) return false;
     }
     return true;
 }
@@ -217,15 +243,16 @@ bool fit_size_band(const OperatorContext& context, const MovingBall& ball, const
     constexpr double kInside = 1e-3;
     Vec3 shift = Vec3::Zero();
     bool refused = false;
-    for (const Vec3& q : ball.neighbours)
+    for (std::size_t i = 0; i < ball.neighbours.size(); ++i)
     {
+        const Vec3& q = ball.neighbours[i];
         const Vec3 d = p - q;
         const double length = d.norm();
         const double target = edge_target_size(*context.field, p, q);
         double wanted = length;
-        if (is_too_short(length, target) && !context.too_short(from, q))
+        if (is_too_short(length, target) && !ball.old_too_short(context, from, i))
             wanted = kSizeQualityThreshold * target * (1 + kInside);
-        else if (is_too_long(length, target) && !context.too_long(from, q))
+        else if (is_too_long(length, target) && !ball.old_too_long(context, from, i))
             wanted = target / kSizeQualityThreshold * (1 - kInside);
         if (wanted == length) continue;
         if (!(length > 0)) return false;
