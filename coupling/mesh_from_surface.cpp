@@ -77,7 +77,10 @@ public:
                 const Vec3 &a = mesh.points[t[k]], &b = mesh.points[t[(k + 1) % 3]];
                 size_at_midpoint(
                     [&](const Vec3& p) {
-                        midpoints_.insert(key(p));
+                        const Key k = key(p);
+                        midpoints_.insert(k);
+                        const std::size_t bit = KeyHash()(k) & (kFilterBits - 1);
+                        filter_[bit / 64] |= std::uint64_t{1} << (bit % 64);
                         return 0.0;
                     },
                     a, b);
@@ -103,7 +106,10 @@ public:
     }
     double size(const Vec3& p) const override
     {
-        if (midpoints_.count(key(p)) != 0) return std::numeric_limits<double>::max();
+        const Key k = key(p);
+        const std::size_t bit = KeyHash()(k) & (kFilterBits - 1);
+        if ((filter_[bit / 64] >> (bit % 64) & 1) && midpoints_.count(k) != 0)
+            return std::numeric_limits<double>::max();
         const double wanted = field_->size(p);
         if (!long_edge_ends_ || (p.array() < reach_lo_.array()).any() ||
             (p.array() > reach_hi_.array()).any())
@@ -135,8 +141,12 @@ private:
         }
     };
     static constexpr double kGrade = 0.3;  // size lost per unit distance from a long edge's end
+    // One bit per hash of the midpoints, in cache: most queried points are none, and the bit
+    // says so without the set's scattered buckets.
+    static constexpr std::size_t kFilterBits = std::size_t{1} << 20;
     std::shared_ptr<const SizeField> field_;
     std::unordered_set<Key, KeyHash> midpoints_;
+    std::vector<std::uint64_t> filter_ = std::vector<std::uint64_t>(kFilterBits / 64, 0);
     std::unique_ptr<hdi::KnnIndex> long_edge_ends_;  // the ends of boundary edges too long
     std::vector<double> end_length_;                 // per end: its longest such edge
     Vec3 reach_lo_ = Vec3::Constant(std::numeric_limits<double>::infinity());  // where an end
