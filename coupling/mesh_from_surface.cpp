@@ -79,7 +79,7 @@ public:
                     [&](const Vec3& p) {
                         const Key k = key(p);
                         midpoints_.insert(k);
-                        const std::size_t bit = KeyHash()(k) & (kFilterBits - 1);
+                        const std::size_t bit = filter_bit(k);
                         filter_[bit / 64] |= std::uint64_t{1} << (bit % 64);
                         return 0.0;
                     },
@@ -107,7 +107,7 @@ public:
     double size(const Vec3& p) const override
     {
         const Key k = key(p);
-        const std::size_t bit = KeyHash()(k) & (kFilterBits - 1);
+        const std::size_t bit = filter_bit(k);
         if ((filter_[bit / 64] >> (bit % 64) & 1) && midpoints_.count(k) != 0)
             return std::numeric_limits<double>::max();
         const double wanted = field_->size(p);
@@ -144,6 +144,7 @@ private:
     // One bit per hash of the midpoints, in cache: most queried points are none, and the bit
     // says so without the set's scattered buckets.
     static constexpr std::size_t kFilterBits = std::size_t{1} << 20;
+    static std::size_t filter_bit(const Key& k) { return KeyHash()(k) & (kFilterBits - 1); }
     std::shared_ptr<const SizeField> field_;
     std::unordered_set<Key, KeyHash> midpoints_;
     std::vector<std::uint64_t> filter_ = std::vector<std::uint64_t>(kFilterBits / 64, 0);

@@ -618,7 +618,7 @@ void FrontMesher::remove_face(int id)
     const Box b = box_of(points_[t[0]], points_[t[1]], points_[t[2]]);
     grid_.remove_face(id, b.lo, b.hi);
     front_.remove(id);
-    for (int v : front_.vertices[id])
+    for (int v : t)
         if (front_.valence[v] == 0 && in_grid_[v])
         {
             grid_.remove_vertex(v, points_[v]);

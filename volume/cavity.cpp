@@ -387,8 +387,8 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
     assert(mesh.num_vertices() == fill.first_new_vertex);
     for (const Vec3& p : fill.new_points) mesh.add_vertex(p, 0, VertexClass::Interior);
 
-    // a fill into an empty mesh (a whole volume) has nothing to link to: build_adjacency's
-    // counting sort does the whole mesh faster, once every region is in
+    // a fill into an empty mesh (a whole volume) has nothing to link to: the caller links the
+    // whole mesh with build_adjacency once every region is in
     const bool linked = mesh.has_adjacency() && !mesh.tets.empty();
     // the links to mend: each hull face of the removed tets, with the tet outside it
     struct HullLink

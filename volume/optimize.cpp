@@ -541,9 +541,13 @@ OptimizeReport optimize_mesh(TetMesh& mesh, const SizeField& field, const Optimi
     for (int round = 0; round < 3; ++round)
     {
         long changes = optimizer.collapse_short_edges();
-        const std::vector<int> around = optimizer.tets_around_short_edges();
         const long moved = optimizer.equalize_short_edges();
-        if (moved > 0) changes += moved + optimizer.collapse_short_edges(&around);
+        if (moved > 0)
+        {
+            // the moves changed no topology: the balls are those of the short edges left
+            const std::vector<int> around = optimizer.tets_around_short_edges();
+            changes += moved + optimizer.collapse_short_edges(&around);
+        }
         if (round > 0 && changes == 0) break;
         optimizer.improve_below(threshold);
     }

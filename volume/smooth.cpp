@@ -67,31 +67,6 @@ struct MovingBall
     std::vector<BallFace> faces;
     std::vector<Vec3> neighbours;  // the other vertices of the ball, each once
     double mean_edge = 0;          // of the opposite faces: the scale of the steps
-    // The old edges' targets, each asked of the field once per start (NaN: not yet): every
-    // candidate the band refuses compares with the same old edge.
-    mutable Vec3 targets_from = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
-    mutable std::vector<double> old_targets;
-
-    /// The target of the edge from `from` to neighbour i, as OperatorContext::too_long measures it.
-    double old_target(const OperatorContext& context, const Vec3& from, std::size_t i) const
-    {
-        if (!(targets_from == from))
-        {
-            targets_from = from;
-            old_targets.assign(neighbours.size(), std::numeric_limits<double>::quiet_NaN());
-        }
-        double& target = old_targets[i];
-        if (std::isnan(target)) target = edge_target_size(*context.field, from, neighbours[i]);
-        return target;
-    }
-    bool old_too_long(const OperatorContext& context, const Vec3& from, std::size_t i) const
-    {
-        return is_too_long((neighbours[i] - from).norm(), old_target(context, from, i));
-    }
-    bool old_too_short(const OperatorContext& context, const Vec3& from, std::size_t i) const
-    {
-        return is_too_short((neighbours[i] - from).norm(), old_target(context, from, i));
-    }
 
     double quality_at(std::size_t i, const Vec3& p) const { return faces[i].quality(p); }
 
@@ -214,10 +189,40 @@ Vec3 nodal_shifting_target(const MovingBall& ball, const Vec3& current)
     return weight_sum > 0 ? Vec3(sum / weight_sum) : current;
 }
 
+/// The ball's edges at the start of a move, each measured against the field only when a
+/// candidate first needs it, and then once: every candidate the band refuses compares with the
+/// same old edge.
+class OldEdges
+{
+public:
+    OldEdges(const OperatorContext& context, const MovingBall& ball, const Vec3& from)
+        : context_(context), ball_(ball), from_(from),
+          targets_(ball.neighbours.size(), std::numeric_limits<double>::quiet_NaN())
+    {
+    }
+    /// As OperatorContext::too_long(from, neighbour i) and too_short measure them.
+    bool too_long(std::size_t i) const { return is_too_long(length(i), target(i)); }
+    bool too_short(std::size_t i) const { return is_too_short(length(i), target(i)); }
+
+private:
+    double length(std::size_t i) const { return (ball_.neighbours[i] - from_).norm(); }
+    double target(std::size_t i) const
+    {
+        double& t = targets_[i];
+        if (std::isnan(t)) t = edge_target_size(*context_.field, from_, ball_.neighbours[i]);
+        return t;
+    }
+
+    const OperatorContext& context_;
+    const MovingBall& ball_;
+    const Vec3 from_;
+    mutable std::vector<double> targets_;  // NaN: not asked yet
+};
+
 /// No edge of the vertex may become too long or too short at p (edges already so may stay).
 /// The candidate's length and target are computed once per edge (the field is the costly part);
 /// the old edge is measured only when the new one fails.
-bool sizes_allow(const OperatorContext& context, const MovingBall& ball, const Vec3& from,
+bool sizes_allow(const OperatorContext& context, const MovingBall& ball, const OldEdges& old,
                  const Vec3& to)
 {
     if (context.field == nullptr) return true;
@@ -226,8 +231,8 @@ bool sizes_allow(const OperatorContext& context, const MovingBall& ball, const V
         const Vec3& q = ball.neighbours[i];
         const double length = (q - to).norm();
         const double target = edge_target_size(*context.field, to, q);
-        if (is_too_long(length, target) && !ball.old_too_long(context, from, i)) return false;
-        if (is_too_short(length, target) && !ball.old_too_short(context, from, i)) return false;
+        if (is_too_long(length, target) && !old.too_long(i)) return false;
+        if (is_too_short(length, target) && !old.too_short(i)) return false;
     }
     return true;
 }
@@ -235,7 +240,7 @@ bool sizes_allow(const OperatorContext& context, const MovingBall& ball, const V
 /// Whether sizes_allow accepts p; when it does not, p is first moved radially from each
 /// neighbour whose edge it refuses to just inside the size band (the displacements added, one
 /// pass: the field is the costly part) and checked again.
-bool fit_size_band(const OperatorContext& context, const MovingBall& ball, const Vec3& from,
+bool fit_size_band(const OperatorContext& context, const MovingBall& ball, const OldEdges& old,
                    Vec3& p)
 {
     if (context.field == nullptr) return true;
@@ -250,9 +255,9 @@ bool fit_size_band(const OperatorContext& context, const MovingBall& ball, const
         const double length = d.norm();
         const double target = edge_target_size(*context.field, p, q);
         double wanted = length;
-        if (is_too_short(length, target) && !ball.old_too_short(context, from, i))
+        if (is_too_short(length, target) && !old.too_short(i))
             wanted = kSizeQualityThreshold * target * (1 + kInside);
-        else if (is_too_long(length, target) && !ball.old_too_long(context, from, i))
+        else if (is_too_long(length, target) && !old.too_long(i))
             wanted = target / kSizeQualityThreshold * (1 - kInside);
         if (wanted == length) continue;
         if (!(length > 0)) return false;
@@ -261,7 +266,7 @@ bool fit_size_band(const OperatorContext& context, const MovingBall& ball, const
     }
     if (!refused) return true;
     p += shift;
-    return sizes_allow(context, ball, from, p);
+    return sizes_allow(context, ball, old, p);
 }
 
 /// Central-difference gradient of one tet's quality with respect to the moving point.
@@ -310,6 +315,7 @@ Placement best_position(const MovingBall& ball, const OperatorContext& context, 
 
     Vec3 current = start;
     double worst = worst_start;
+    const OldEdges old(context, ball, start);
     auto try_point = [&](Vec3 candidate) {
         const double floor = worst + options.min_gain;
         std::size_t index = 0;
@@ -320,11 +326,11 @@ Placement best_position(const MovingBall& ball, const OperatorContext& context, 
             // the best shapes often lie just past a too-short edge: the point pulled back into
             // the size band is still better than staying
             const Vec3 unfitted = candidate;
-            if (!fit_size_band(context, ball, start, candidate)) return false;
+            if (!fit_size_band(context, ball, old, candidate)) return false;
             if (candidate != unfitted && !ball.worst_above(candidate, floor, &w, &index))
                 return false;
         }
-        else if (!sizes_allow(context, ball, start, candidate))
+        else if (!sizes_allow(context, ball, old, candidate))
         {
             return false;
         }

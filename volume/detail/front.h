@@ -354,11 +354,10 @@ public:
                 {
                     const std::size_t cell = index({x, y, z});
                     // the margin is the largest face's: most cells it adds hold none that reach
-                    if (!face_cell_boxes_[cell].overlaps(lo, hi)) continue;
+                    const CellBox& box = face_cell_boxes_[cell];
+                    if (!overlaps(box.lo, box.hi, lo, hi)) continue;
                     for (const FaceEntry& e : face_cells_[cell])
-                        if (e.lo[0] <= hi[0] && lo[0] <= e.hi[0] && e.lo[1] <= hi[1] &&
-                            lo[1] <= e.hi[1] && e.lo[2] <= hi[2] && lo[2] <= e.hi[2])
-                            on_face(e);
+                        if (overlaps(e.lo, e.hi, lo, hi)) on_face(e);
                 }
     }
 
@@ -379,12 +378,15 @@ private:
     {
         std::array<float, 3> lo{HUGE_VALF, HUGE_VALF, HUGE_VALF},
             hi{-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
-        bool overlaps(const Vec3& qlo, const Vec3& qhi) const
-        {
-            return lo[0] <= qhi[0] && qlo[0] <= hi[0] && lo[1] <= qhi[1] && qlo[1] <= hi[1] &&
-                   lo[2] <= qhi[2] && qlo[2] <= hi[2];
-        }
     };
+
+    /// Float box [lo, hi] (a face's or a cell's) against the query box [qlo, qhi].
+    static bool overlaps(const std::array<float, 3>& lo, const std::array<float, 3>& hi,
+                         const Vec3& qlo, const Vec3& qhi)
+    {
+        return lo[0] <= qhi[0] && qlo[0] <= hi[0] && lo[1] <= qhi[1] && qlo[1] <= hi[1] &&
+               lo[2] <= qhi[2] && qlo[2] <= hi[2];
+    }
 
     struct VertexEntry
     {
