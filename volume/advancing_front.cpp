@@ -36,6 +36,7 @@ constexpr int kExtraAttempts = 2;        // attempts at the last floor before a 
 constexpr double kGridCellFactor = 1.5;  // grid cell = this times the typical size
 constexpr int kBruteForceFaces = 256;
 constexpr double kRetreatPreferFactor = 0.6;  // existing vertices win more easily per retreat
+constexpr int kRetreatRings = 1;    // tet layers a retreat clears beyond the open faces, at most
 constexpr double kFoldSine = 1e-7;  // a new face this flat against a front face folds    // a front
                                     // this small is searched in one cell
 
@@ -893,8 +894,10 @@ bool FrontMesher::retreat()
     const int n = static_cast<int>(points_.size());
     std::vector<std::uint8_t> on_front(n, 0);
     for (int v = 0; v < n; ++v) on_front[v] = front_.valence[v] > 0;
-    // later rounds clear a wider region around the open faces: one tet layer more per round
-    for (int ring = 0; ring < retreat_rounds_; ++ring)
+    // later rounds also clear the tets one layer beyond: a wider region re-advances more
+    // volume and strands more faces than it frees
+    const int rings = std::min(retreat_rounds_, kRetreatRings);
+    for (int ring = 0; ring < rings; ++ring)
     {
         std::vector<std::uint8_t> grown = on_front;
         for (const TetVertices& t : tets_)
