@@ -27,18 +27,17 @@ using detail::sorted_triple;
 constexpr double kTwoThirdsRoot = 0.816496580927726;  // sqrt(2/3): a regular tet's height / edge
 constexpr double kMinSizeFactor = 0.6;                // d never below this times the face's edge
 constexpr double kMaxSizeFactor = 1.6;                // ... nor above this
-constexpr double kPreferExisting = 0.8;  // an existing vertex wins at this fraction of P*'s Qe
-constexpr double kSearchRadius = 0.7;    // vertex candidates within this times d of P* ...
-constexpr double kRadiusGrowth = 0.5;    // ... plus this times d per failure
-constexpr double kVolumeFloor = 1e-6;    // 6 V >= this times the face's mean edge cubed
-constexpr double kCrowdingRelax = 0.8;   // the new-point distance shrinks so per failure
-constexpr int kExtraAttempts = 2;        // attempts at the last floor before a face is stuck
-constexpr double kGridCellFactor = 1.5;  // grid cell = this times the typical size
-constexpr int kBruteForceFaces = 256;
+constexpr double kPreferExisting = 0.8;       // an existing vertex wins at this fraction of P*'s Qe
+constexpr double kSearchRadius = 0.7;         // vertex candidates within this times d of P* ...
+constexpr double kRadiusGrowth = 0.5;         // ... plus this times d per failure
+constexpr double kVolumeFloor = 1e-6;         // 6 V >= this times the face's mean edge cubed
+constexpr double kCrowdingRelax = 0.8;        // the new-point distance shrinks so per failure
+constexpr int kExtraAttempts = 2;             // attempts at the last floor before a face is stuck
+constexpr double kGridCellFactor = 1.5;       // grid cell = this times the typical size
+constexpr int kBruteForceFaces = 256;         // a front this small is searched in one cell
 constexpr double kRetreatPreferFactor = 0.6;  // existing vertices win more easily per retreat
 constexpr int kRetreatRings = 1;    // tet layers a retreat clears beyond the open faces, at most
-constexpr double kFoldSine = 1e-7;  // a new face this flat against a front face folds    // a front
-                                    // this small is searched in one cell
+constexpr double kFoldSine = 1e-7;  // a new face this flat against a front face folds
 
 struct Box
 {

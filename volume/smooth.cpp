@@ -189,9 +189,8 @@ Vec3 nodal_shifting_target(const MovingBall& ball, const Vec3& current)
     return weight_sum > 0 ? Vec3(sum / weight_sum) : current;
 }
 
-/// The ball's edges at the start of a move, each measured against the field only when a
-/// candidate first needs it, and then once: every candidate the band refuses compares with the
-/// same old edge.
+/// The ball's edges at the start of a move: every candidate compares with the same old edges,
+/// so each old target is asked of the field once, when first needed.
 class OldEdges
 {
 public:
