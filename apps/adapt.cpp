@@ -46,7 +46,7 @@ int main(int argc, char** argv)
         cli::SizeFlags size;
         bool check = false, no_optimize = false, no_projection = false, optim_only = false;
         bool noswap = false, nomove = false, noinsert = false;
-        bool keep_surface = false, has_hausd = false;
+        bool keep_surface = false, has_hausd = false, nosurf = false;
         double hausd = 0;
         int verbosity = 1;
         coupling::AdaptOptions options;
@@ -63,7 +63,9 @@ int main(int argc, char** argv)
         cl.option("-o", &output, "output mesh (.mesh .meshb .msh .vtu)");
         size.add_to(cl, true);
         cl.option("--hausd", &hausd,
-                  "surface input: curvature-adaptive size keeping this distance to it", &has_hausd);
+                  "the boundary's distance bound to the input surface (a surface input: "
+                  "curvature-adaptive sizes keeping it)",
+                  &has_hausd);
         cl.option("--stats", &stats_path, "write the final quality report as JSON");
         cl.flags({
             {"--check", &check, "print the mesh checker's verdict on the input and output"},
@@ -72,6 +74,8 @@ int main(int argc, char** argv)
             {"--noswap", &noswap, "no edge/face removal during optimization"},
             {"--nomove", &nomove, "no vertex smoothing during optimization"},
             {"--noinsert", &noinsert, "no refinement (no vertex insertion, no edge split)"},
+            {"--nosurf", &nosurf,
+             "tet input: keep the boundary (only split and projected), no surface remeshing"},
             {"--optim", &optim_only, "optimize only: keep the sizes of the input mesh"},
             {"--keep-surface", &keep_surface,
              "surface input: its triangles are the boundary, exactly (no remeshing)"},
@@ -131,8 +135,10 @@ int main(int argc, char** argv)
         }
         else
         {
-            if (has_hausd || keep_surface)
-                throw cli::UsageError("--hausd and --keep-surface apply to a surface input");
+            if (keep_surface) throw cli::UsageError("--keep-surface applies to a surface input");
+            if (has_hausd && !(hausd > 0)) throw cli::UsageError("--hausd must be positive");
+            options.hausd = has_hausd ? hausd : 0.0;
+            options.surface = !nosurf && !optim_only;
             if (const auto violations = check_mesh(mesh); !violations.empty())
                 throw InputError(input + ": the input mesh is not valid:\n" +
                                  format_violations(violations));

@@ -5,11 +5,18 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 
+#include "common/size_quality.h"
 #include "common/stage_timer.h"
+#include "coupling/boundary_map.h"
+#include "surface/features.h"
+#include "surface/surface_quality.h"
 #include "volume/reorder.h"
+#include "volume/size_fields.h"
 
 namespace hdimesh::coupling
 {
@@ -39,6 +46,32 @@ std::string format_pass_row(const AdaptPassReport& p)
     return row;
 }
 
+/// The surface pass's settings: the field's size, a constant when it is one at every boundary
+/// vertex (the uniform sizing, with its curvature cap); the distance bound when --hausd gives one.
+surface::SurfaceRemeshSettings surface_settings(const surface::SurfaceMesh& boundary,
+                                                const SizeField& field, const AdaptOptions& options)
+{
+    surface::SurfaceRemeshSettings settings = options.surface_settings;
+    auto size = [&field](const surface::Vec3d& p) { return field.size(Vec3(p[0], p[1], p[2])); };
+    double lo = std::numeric_limits<double>::max(), hi = 0.0;
+    for (auto v : boundary.vertices())
+    {
+        const double h = size(boundary.point(v));
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+    }
+    settings.input_sizes.clear();
+    settings.sizing.hsiz = 0.0;
+    settings.size_function = nullptr;
+    if (lo == hi)
+        settings.sizing.hsiz = lo;
+    else
+        settings.size_function = size;  // field outlives the pass
+    if (options.hausd > 0.0) settings.sizing.hausd = options.hausd;
+    settings.keep_classification = true;  // classified once, before the model is built
+    return settings;
+}
+
 const char* kPassHeader =
     " pass     split       tets   vertices projected shortened   min Qe     time\n";
 
@@ -50,74 +83,160 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     const Stopwatch clock;
     if (!mesh.has_adjacency()) mesh.build_adjacency();
 
+    // One classification of the input boundary, given to both meshes before either model is
+    // built from it.
+    std::optional<BoundaryMap> input;  // its surface is the model's; its tet ids go stale
+    surface::SurfaceRemeshSettings settings;
+    if (options.surface && options.project)  // no projection: the polyhedron is kept
+    {
+        const StageTimer timer(report.seconds_surface, report.cpu_seconds_surface);
+        report.surface_refusal = coupled_surface_refusal(mesh);
+        if (report.surface_refusal.empty() && mesh.num_live_tets() > 0)
+        {
+            input = extract_boundary(mesh);
+            settings = surface_settings(input->surface, field, options);
+            surface::detect_features(input->surface, surface::feature_options(settings));
+            write_back(*input, mesh);
+        }
+    }
+
     std::unique_ptr<BoundaryProjector> projector;
     if (options.project)
     {
         const StageTimer timer(report.seconds_project, report.cpu_seconds_project);
         projector = std::make_unique<BoundaryProjector>(mesh, options.projection);
     }
+
     if (options.verbosity >= 2) std::cout << kPassHeader;
 
-    // refinement passes, each followed by projection and local repair
-    report.converged = !options.refine;
-    for (int pass = 1; options.refine && pass <= options.max_passes; ++pass)
-    {
-        AdaptPassReport row;
-        row.pass = pass;
-        const Stopwatch pass_clock;
+    // Refinement passes, each followed by projection and local repair, until no edge is too
+    // long (or they stall, or reach the cap).
+    auto refine_to_field = [&](const SizeField& target) {
+        report.converged = !options.refine;
+        report.stalled = false;
+        const int first = static_cast<int>(report.passes.size()) + 1;
+        for (int pass = first; options.refine && pass < first + options.max_passes; ++pass)
+        {
+            AdaptPassReport row;
+            row.pass = pass;
+            const Stopwatch pass_clock;
 
-        RefinePassResult refined;
-        {
-            const StageTimer timer(report.seconds_refine, report.cpu_seconds_refine);
-            refined = refine_pass(mesh, field);
-        }
-        row.edges_split = refined.report.edges_split;
-        if (row.edges_split == 0)
-        {
-            report.converged = true;
-            break;
-        }
+            RefinePassResult refined;
+            {
+                const StageTimer timer(report.seconds_refine, report.cpu_seconds_refine);
+                refined = refine_pass(mesh, target);
+            }
+            row.edges_split = refined.report.edges_split;
+            if (row.edges_split == 0)
+            {
+                report.converged = true;
+                break;
+            }
 
-        if (projector)
-        {
-            const StageTimer timer(report.seconds_project, report.cpu_seconds_project);
-            const ProjectionReport moved = projector->project(mesh, refined.new_boundary_vertices);
-            row.projected = moved.projected;
-            row.shortened = moved.shortened;
-        }
-        if (options.optimize)
-        {
-            const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-            row.min_quality =
-                improve_bad_elements(mesh, field, options.optimizer).min_quality_after;
-        }
-        else
-        {
-            row.min_quality = min_quality(mesh);
-        }
+            if (projector)
+            {
+                const StageTimer timer(report.seconds_project, report.cpu_seconds_project);
+                const ProjectionReport moved =
+                    projector->project(mesh, refined.new_boundary_vertices);
+                row.projected = moved.projected;
+                row.shortened = moved.shortened;
+            }
+            if (options.optimize)
+            {
+                const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
+                row.min_quality =
+                    improve_bad_elements(mesh, target, options.optimizer).min_quality_after;
+            }
+            else
+            {
+                row.min_quality = min_quality(mesh);
+            }
 
-        row.tets = mesh.num_live_tets();
-        row.vertices = mesh.num_vertices();
-        row.seconds = pass_clock.wall_seconds();
-        report.passes.push_back(row);
-        if (options.verbosity >= 2) std::cout << format_pass_row(row) << std::flush;
-        if (options.verbosity >= 1 && isatty(STDERR_FILENO))
-            std::fprintf(stderr, "\radapt: pass %d, %d tets", pass, row.tets);
-        // A few splits a pass that no longer decrease: the long edges left are where a split
-        // does not shorten them (beside a kept triangle longer than the size); more passes only
-        // stack slivers there.
-        const int n = static_cast<int>(report.passes.size());
-        if (n > kStallPasses &&
-            row.edges_split <= kStallFraction * static_cast<double>(mesh.num_live_tets()) &&
-            row.edges_split >= report.passes[n - 1 - kStallPasses].edges_split)
-        {
-            report.stalled = true;
-            break;
+            row.tets = mesh.num_live_tets();
+            row.vertices = mesh.num_vertices();
+            row.seconds = pass_clock.wall_seconds();
+            report.passes.push_back(row);
+            if (options.verbosity >= 2) std::cout << format_pass_row(row) << std::flush;
+            if (options.verbosity >= 1 && isatty(STDERR_FILENO))
+                std::fprintf(stderr, "\radapt: pass %d, %d tets", pass, row.tets);
+            // A few splits a pass that no longer decrease: the long edges left are where a split
+            // does not shorten them (beside a kept triangle longer than the size); more passes only
+            // stack slivers there.
+            const int n = static_cast<int>(report.passes.size());
+            if (n > kStallPasses &&
+                row.edges_split <= kStallFraction * static_cast<double>(mesh.num_live_tets()) &&
+                row.edges_split >= report.passes[n - 1 - kStallPasses].edges_split)
+            {
+                report.stalled = true;
+                break;
+            }
         }
-    }
+    };
+    refine_to_field(field);
 
     if (options.verbosity >= 1 && isatty(STDERR_FILENO) && !report.passes.empty())
-        std::fprintf(stderr, "\radapt: final optimization...\n");
+        std::fprintf(stderr, "\radapt: surface and final optimization...\n");
+
+    // The surface pass on the input's model, once the tets are at the field's size near the
+    // boundary: the tets follow every change (the mirror).
+    std::unique_ptr<BackgroundMeshSize> graded;
+    const SizeField* volume_field = &field;
+    if (input)
+    {
+        const StageTimer timer(report.seconds_surface, report.cpu_seconds_surface);
+        mesh.compact();
+        if (!mesh.has_adjacency()) mesh.build_adjacency();
+        BoundaryMap boundary = extract_boundary(mesh);
+        report.surface_triangles_before = static_cast<int>(input->surface.n_faces());
+        settings.model_surface = &input->surface;
+        // One model on both sides: smooth vertices go onto the projection's HDI surface where
+        // the input's facets are too coarse for the tolerance, trusted as far from their chords
+        // as those are from the smooth surface; elsewhere the facets are the finer model.
+        settings.hdi_model = &projector->model();
+        settings.hdi_projection.max_deviation_edge_fraction = 0.25;
+        settings.hdi_projection.coarse_facet_tolerance =
+            surface::distance_tolerance(settings, surface::bounding_box_diagonal(input->surface));
+        const surface::SurfaceHooks hooks =
+            make_hooks(mesh, boundary, options.mirror, &report.mirror);
+        surface::remesh_surface(boundary.surface, settings, hooks);
+        write_back(boundary, mesh);
+        // The sizes the surface reached (the field's, or finer where the tolerance asked),
+        // by tet vertex across the compaction.
+        std::vector<double> surface_size(mesh.num_vertices(), 0.0);
+        const surface::SurfaceProperties props(boundary.surface);
+        for (auto v : boundary.surface.vertices())
+            surface_size[boundary.tet_vertex_of(v)] =
+                boundary.surface.property(props.vertex_size, v);
+        const CompactionMaps maps = mesh.compact();
+        report.surface_remeshed = true;
+        // The volume grades from the boundary's sizes to the field's (Mmg's hgrad) where the
+        // tolerance made them finer than the field's band, so the tets between that boundary
+        // and a coarse interior keep their shape.
+        std::vector<double> sizes = sample_vertex_sizes(mesh, field);
+        bool finer = false;
+        for (std::size_t old = 0; old < maps.old2new_verts.size(); ++old)
+        {
+            const int v = maps.old2new_verts[old];
+            // (within the field's band the tets keep the field: its edges are not too short)
+            if (v < 0 || !(surface_size[old] > 0.0) ||
+                !(surface_size[old] < kSizeQualityThreshold * sizes[v]))
+                continue;
+            sizes[v] = surface_size[old];
+            finer = true;
+        }
+        if (finer)
+        {
+            grade_vertex_sizes(mesh, sizes, std::max(1.0, settings.sizing.hgrad));
+            graded = std::make_unique<BackgroundMeshSize>(mesh, std::move(sizes));
+            volume_field = graded.get();
+        }
+    }
+    // The surface's bands and the refills may leave a few edges too long on either side.
+    if (report.surface_remeshed)
+    {
+        refine_to_field(*volume_field);
+        report.surface_triangles_after = static_cast<int>(mesh.triangles.size());
+    }
 
     // the final optimization, then the moves the guard had shortened
     if (options.optimize)
@@ -126,9 +245,11 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
         mesh.compact();  // renumbering needs a compact mesh; the passes leave it so, this makes
                          // sure
         renumber_spatially(mesh);
-        optimize_mesh(mesh, field, options.optimizer);
+        optimize_mesh(mesh, *volume_field, options.optimizer);
     }
-    if (projector)
+    // After a surface pass the boundary lies on the model already; else the refinement's
+    // shortened moves are left to finish.
+    if (projector && !report.surface_remeshed)
     {
         {
             const StageTimer timer(report.seconds_project, report.cpu_seconds_project);
@@ -142,7 +263,7 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
             // its target: bring them back there, not only above the passes' "bad" threshold
             OptimizeOptions repair = options.optimizer;
             repair.bad_quality = std::max(repair.bad_quality, repair.target_quality);
-            improve_bad_elements(mesh, field, repair);
+            improve_bad_elements(mesh, *volume_field, repair);
         }
     }
     if (!mesh.has_adjacency()) mesh.build_adjacency();
@@ -160,19 +281,32 @@ std::string format_adapt_report(const AdaptReport& report, bool with_passes)
         for (const auto& p : report.passes) out << format_pass_row(p);
     }
     char line[256];
-    const double rest = report.seconds_total - report.seconds_refine - report.seconds_project -
-                        report.seconds_optimize;
+    if (report.surface_remeshed)
+    {
+        std::snprintf(line, sizeof line, "surface: %d triangles -> %d, on the input's model\n",
+                      report.surface_triangles_before, report.surface_triangles_after);
+        out << line << report.mirror.format();
+    }
+    else if (!report.surface_refusal.empty())
+    {
+        out << "surface: kept (" << report.surface_refusal << ")\n";
+    }
+    const double rest = report.seconds_total - report.seconds_surface - report.seconds_refine -
+                        report.seconds_project - report.seconds_optimize;
     std::snprintf(line, sizeof line,
-                  "time: total %.3f s = refine %.3f + project %.3f + optimize %.3f + other %.3f\n",
-                  report.seconds_total, report.seconds_refine, report.seconds_project,
-                  report.seconds_optimize, rest);
+                  "time: total %.3f s = surface %.3f + refine %.3f + project %.3f + optimize %.3f "
+                  "+ other %.3f\n",
+                  report.seconds_total, report.seconds_surface, report.seconds_refine,
+                  report.seconds_project, report.seconds_optimize, rest);
     out << line;
     std::snprintf(line, sizeof line,
-                  "cpu:  total %.3f s = refine %.3f + project %.3f + optimize %.3f + other %.3f\n",
-                  report.cpu_seconds_total, report.cpu_seconds_refine, report.cpu_seconds_project,
-                  report.cpu_seconds_optimize,
-                  report.cpu_seconds_total - report.cpu_seconds_refine -
-                      report.cpu_seconds_project - report.cpu_seconds_optimize);
+                  "cpu:  total %.3f s = surface %.3f + refine %.3f + project %.3f + optimize %.3f "
+                  "+ other %.3f\n",
+                  report.cpu_seconds_total, report.cpu_seconds_surface, report.cpu_seconds_refine,
+                  report.cpu_seconds_project, report.cpu_seconds_optimize,
+                  report.cpu_seconds_total - report.cpu_seconds_surface -
+                      report.cpu_seconds_refine - report.cpu_seconds_project -
+                      report.cpu_seconds_optimize);
     out << line;
     out << (report.converged ? "sizes: no edge too long\n"
             : report.stalled

@@ -1,19 +1,26 @@
 #pragma once
 // adapt(): the paper's coupled adaptation of a tet mesh and its boundary to a size field.
 //
+//   classify           the input boundary's features (one detector, both meshes)
 //   model  = HDI model of the input boundary                 (once)
 //   repeat                                                    (refinement passes)
 //       refine_pass        split every too-long edge, patterns from the 239-table
 //       project            new boundary vertices onto the model, never inverting a tet
 //       improve_bad        remove elements below Qe 0.2 around the changes
 //   until no edge is too long
-//   optimize_mesh          collapse too-short edges, swap and smooth to the end
-//   project_all            finish the moves that were shortened, then improve again
+//   surface pass       the boundary remeshed on the input's model to the field (split,
+//                      collapse, flip, shift; coarsening too), every change mirrored into the
+//                      tets; the field then grades from the boundary's sizes where the
+//                      tolerance made them finer; refinement passes again for what it left long
+//   optimize_mesh      collapse too-short edges, swap and smooth to the end
+//   project_all        (no surface pass) finish the moves that were shortened, improve again
 
 #include <string>
 #include <vector>
 
 #include "coupling/boundary_projection.h"
+#include "coupling/mirror.h"
+#include "surface/remesh_surface.h"
 #include "volume/optimize.h"
 #include "volume/refine.h"
 #include "volume/size_field.h"
@@ -28,6 +35,17 @@ struct AdaptOptions
     bool optimize = true;  ///< improve after each pass and at the end (--no-optimize)
     bool project = true;   ///< keep boundary vertices on the HDI model (--no-projection)
     int max_passes = 40;   ///< refinement passes at most
+    /// Remesh the boundary to the field on the input's model, mirrored into the tets (off:
+    /// --nosurf, the boundary is only split and projected). Skipped, with the reason in the
+    /// report, when coupled_surface_refusal() refuses the mesh.
+    bool surface = true;
+    /// > 0: the boundary's distance bound to the input (--hausd); else the surface remesher's
+    /// default (0.0016 of the diagonal for a uniform size, 0.002 otherwise).
+    double hausd = 0.0;
+    /// The surface pass's settings; its sizes (hsiz, or the field itself) and hausd come from
+    /// the field and `hausd`.
+    surface::SurfaceRemeshSettings surface_settings;
+    MirrorOptions mirror;
     volume::OptimizeOptions optimizer;
     ProjectionOptions projection;
     /// 0 silent; 1 progress on stderr when it is a terminal; 2 also a table row per pass on
@@ -58,6 +76,12 @@ struct AdaptReport
     double cpu_seconds_refine = 0, cpu_seconds_project = 0, cpu_seconds_optimize = 0,
            cpu_seconds_total = 0;
     ProjectionReport final_projection;
+    /// The surface pass: why it did not run (empty: it ran, or options.surface was off).
+    std::string surface_refusal;
+    bool surface_remeshed = false;
+    int surface_triangles_before = 0, surface_triangles_after = 0;
+    MirrorStatistics mirror;
+    double seconds_surface = 0, cpu_seconds_surface = 0;
 };
 
 /// Adapts mesh in place. \pre mesh passes check_mesh (positive tets, closed boundary).

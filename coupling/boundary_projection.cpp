@@ -1,6 +1,7 @@
 #include "coupling/boundary_projection.h"
 
 #include <algorithm>
+#include <limits>
 #include <unordered_map>
 
 #include "volume/tet_topology.h"
@@ -25,6 +26,16 @@ double ball_quality_at(const TetMesh& mesh, const std::vector<int>& ball, int v,
         worst = std::min(worst, tet_quality(*q[0], *q[1], *q[2], *q[3]));
     }
     return worst;
+}
+
+/// The shortest edge at v in its ball.
+double shortest_edge(const TetMesh& mesh, const std::vector<int>& ball, int v)
+{
+    double shortest = std::numeric_limits<double>::max();
+    for (int t : ball)
+        for (int w : mesh.tets[t])
+            if (w != v) shortest = std::min(shortest, (mesh.points[w] - mesh.points[v]).norm());
+    return shortest;
 }
 
 }  // namespace
@@ -87,7 +98,9 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
         const Vec3 from = mesh.points[v];
         const hdi::Projection target =
             cls == VertexClass::Ridge ? model_->project_to_ridge(from) : model_->project(from);
-        if (target.status == hdi::ProjectionStatus::Failed)
+        if (target.status == hdi::ProjectionStatus::Failed ||
+            (target.point - from).norm() >
+                options_.max_move_fraction * shortest_edge(mesh, ball, v))
         {
             ++report.failed;
             continue;

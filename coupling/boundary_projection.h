@@ -20,13 +20,18 @@ struct ProjectionOptions
     /// A move that would push a tet's quality below this is shortened (halved until valid).
     double min_quality_after_move = 1e-3;
     int max_halvings = 6;
+    /// A target farther than this fraction of the vertex's shortest edge is a fit gone wrong
+    /// (neighbours from another sheet): the vertex stays, counted as failed. A new vertex at
+    /// the midpoint of an edge 2s long is s/(2R) s from a surface of radius R it samples: this
+    /// allows radii down to twice the edge.
+    double max_move_fraction = 0.25;
 };
 
 struct ProjectionReport
 {
     int projected = 0;  ///< vertices moved all the way onto the model
     int shortened = 0;  ///< vertices moved only part of the way (an incident tet would invert)
-    int failed = 0;     ///< the model gave no projection (status Failed)
+    int failed = 0;     ///< the model gave no projection (status Failed), or a far one
     double max_remaining_distance = 0;  ///< of the shortened vertices, from the model
 };
 

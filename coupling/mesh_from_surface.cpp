@@ -552,6 +552,7 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
             AdaptOptions adapt_options = options.adapt;
             adapt_options.refine = options.refine;
             adapt_options.optimize = options.optimize;
+            adapt_options.surface = false;  // the surface was remeshed (or kept) already
             std::shared_ptr<const SizeField> field = report.field;
             if (options.keep_surface)
             {

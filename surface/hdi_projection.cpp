@@ -23,6 +23,30 @@ ProjectedPoint to_projected(const hdi::Projection& fit)
     return out;
 }
 
+// `surface` as model's smooth projection, trusted where it stays within the deviation bound
+// of the facets.
+void install(SurfaceModel& model, std::shared_ptr<const hdi::HdiSurface> surface,
+             const HdiProjectionOptions& options)
+{
+    if (options.coarse_facet_tolerance > 0.0 &&
+        !(model.coarse_area_fraction(options.coarse_facet_tolerance) > 0.5))
+        return;
+    const double max_deviation = options.max_deviation_fraction * model.diagonal();
+    const double edge_fraction = options.max_deviation_edge_fraction;
+    const SurfaceModel* facets = &model;
+    model.set_smooth_projection(
+        [surface = std::move(surface), facets, max_deviation, edge_fraction](const Vec3d& p) {
+            ProjectedPoint out = to_projected(surface->project(hdi::Vec3(p[0], p[1], p[2])));
+            if (!out.ok) return out;
+            const ProjectedPoint on_facets = facets->closest_on_input(out.point);
+            const double bound =
+                std::max(max_deviation, edge_fraction * facets->shortest_edge(on_facets.face));
+            out.ok = on_facets.ok && (on_facets.point - out.point).norm() <= bound;
+            out.face = on_facets.face;
+            return out;
+        });
+}
+
 }  // namespace
 
 ProjectedPoint HdiProjector::project(const Vec3d& p, VertexClass cls, int) const
@@ -87,16 +111,15 @@ void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
     hdi_options.neighbours = options.neighbours;
     auto surface = std::make_shared<const hdi::HdiSurface>(std::move(points), std::move(triangles),
                                                            features, hdi_options);
-    const double max_deviation = options.max_deviation_fraction * model.diagonal();
-    const SurfaceModel* facets = &model;
-    model.set_smooth_projection([surface, facets, max_deviation](const Vec3d& p) {
-        ProjectedPoint out = to_projected(surface->project(hdi::Vec3(p[0], p[1], p[2])));
-        if (!out.ok) return out;
-        const ProjectedPoint on_facets = facets->closest_on_input(out.point);
-        out.ok = on_facets.ok && (on_facets.point - out.point).norm() <= max_deviation;
-        out.face = on_facets.face;
-        return out;
-    });
+    install(model, surface, options);
+}
+
+void attach_hdi_projection(SurfaceModel& model, const hdi::HdiSurface& surface,
+                           const HdiProjectionOptions& options)
+{
+    // Not owned: the caller's model outlives this one.
+    install(model, std::shared_ptr<const hdi::HdiSurface>(&surface, [](const hdi::HdiSurface*) {}),
+            options);
 }
 
 }  // namespace hdimesh::surface

@@ -34,12 +34,24 @@ struct HdiProjectionOptions
     /// A projection farther than this fraction of the bbox diagonal from the input's facets is
     /// not trusted (a fit across a thin part): the facets are used there instead.
     double max_deviation_fraction = 0.002;
+    /// ... or than this fraction of the shortest edge of the facet under it, when larger: a
+    /// coarse input's chords lie that far from the smooth surface it samples (0: off).
+    double max_deviation_edge_fraction = 0.0;
+    /// > 0: the HDI only when most of the input's area is on facets that may stray farther
+    /// than this from the smooth surface (SurfaceModel::chord_error: a coarse tessellation of a
+    /// smooth shape); otherwise the facets are the finer model, and nothing is installed.
+    double coarse_facet_tolerance = 0.0;
 };
 
 /// Builds the HDI model of `input` (classified by detect_features: its ridges, boundary curves
 /// and corners are handed to the model) and installs it as `model`'s smooth projection.
 /// The model keeps its own copy of the input; `model` must outlive nothing else.
 void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
+                           const HdiProjectionOptions& options = {});
+
+/// The same with a model built already (e.g. the coupling's, from the same input), which must
+/// outlive `model`; options.neighbours is the model's own.
+void attach_hdi_projection(SurfaceModel& model, const hdi::HdiSurface& surface,
                            const HdiProjectionOptions& options = {});
 
 }  // namespace hdimesh::surface

@@ -5,6 +5,7 @@
 // triangle, distance to the model), quality — and only then commits and calls the on_* hook.
 // A refusal is an OpResult with the layer that refused, never an exception.
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -35,8 +36,11 @@ struct SurfaceHooks
     /// Move of v to `point`.
     std::function<bool(const SurfaceMesh&, VertexHandle v, const Vec3d& point)> allow_move;
     std::function<void(const SurfaceMesh&, VertexHandle v, const Vec3d& old_point)> on_move;
-    /// Removal of v and retriangulation of its hole by `new_faces` (already in the mesh).
-    std::function<bool(const SurfaceMesh&, VertexHandle v)> allow_remove_vertex;
+    /// Removal of v and retriangulation of its hole: allow_* is told the triangles it would
+    /// add (outward, as the mesh will have them), on_* the faces it added.
+    std::function<bool(const SurfaceMesh&, VertexHandle v,
+                       const std::vector<std::array<VertexHandle, 3>>& new_triangles)>
+        allow_remove_vertex;
     std::function<void(const SurfaceMesh&, VertexHandle removed,
                        const std::vector<FaceHandle>& new_faces)>
         on_remove_vertex;
@@ -193,7 +197,7 @@ OpResult try_remove_vertex(OperatorContext& ctx, VertexHandle v);
 
 struct ShiftOptions
 {
-    double step = 0.5;  // α: fraction of the way to the optimal point
+    double step = 0.5;  // α: fraction of the way to the optimal point (0: only onto the model)
     bool smart = true;  // reject a move that lowers the worst Qe of the ball
     /// The caller's last layer (empty: none): asked with the point a trial would commit, after
     /// every layer of the shift passed; false refuses the shift (no smaller step is tried).

@@ -47,6 +47,22 @@ void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& k
                  long_edges, keeper.count_short_edges());
 }
 
+// The fraction of the area of `mesh` whose faces' mean vertex size is under `limit`.
+double area_fraction_below(const SurfaceMesh& mesh, const std::vector<double>& vertex_sizes,
+                           double limit)
+{
+    double total = 0.0, below = 0.0;
+    for (auto f : mesh.faces())
+    {
+        double mean = 0.0;
+        for (auto v : mesh.fv_range(f)) mean += vertex_sizes[v.idx()] / 3.0;
+        const double area = mesh.calc_face_area(f);
+        total += area;
+        if (mean < limit) below += area;
+    }
+    return total > 0.0 ? below / total : 0.0;
+}
+
 }  // namespace
 
 RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& options,
@@ -62,6 +78,13 @@ RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& optio
     detail::Cleanup cleanup(run, keeper, log, options.tolerance, options.cleanup);
     auto stage_done = [&](const char* stage) { report_stage(run, keeper, stage); };
 
+    if (options.project_first)
+    {
+        ShiftOptions onto_model;  // no step toward the ideal point: the projection alone
+        onto_model.step = 0.0;
+        onto_model.smart = false;
+        for (auto v : mesh.vertices()) shift_vertex(run.ctx, v, onto_model);
+    }
     // The sizes into band: split, collapse, flip, shift.
     run.update_sizes();
     detail::run_iterations(run);
@@ -102,7 +125,28 @@ RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& optio
     return run.report;
 }
 
-SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings)
+double distance_tolerance(const SurfaceRemeshSettings& settings, double diagonal)
+{
+    if (settings.sizing.hausd > 0.0) return settings.sizing.hausd;
+    if (settings.sizing.hsiz > 0.0) return settings.uniform_hausd_fraction * diagonal;
+    return 0.002 * diagonal;
+}
+
+FeatureOptions feature_options(const SurfaceRemeshSettings& settings)
+{
+    FeatureOptions features = settings.features;
+    if (features.min_corner_spacing <= 0.0)
+    {
+        const double h = settings.sizing.hsiz > 0.0   ? settings.sizing.hsiz
+                         : settings.sizing.hmin > 0.0 ? settings.sizing.hmin
+                                                      : 0.0;
+        features.min_corner_spacing = 0.5 * h;
+    }
+    return features;
+}
+
+SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings,
+                                   const SurfaceHooks& hooks)
 {
     SurfaceRemeshResult result;
     // Verbose: the CPU time of the fixed costs before the remesher starts (features, model, sizes).
@@ -112,22 +156,22 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
             std::fprintf(stderr, "remesh_surface: after %s (%.2f s, cpu %.3f s)\n", stage,
                          clock.wall_seconds(), clock.cpu_seconds());
     };
-    result.diagonal = bounding_box_diagonal(mesh);
-    FeatureOptions features = settings.features;
-    if (features.min_corner_spacing <= 0.0)
-    {
-        const double h = settings.sizing.hsiz > 0.0   ? settings.sizing.hsiz
-                         : settings.sizing.hmin > 0.0 ? settings.sizing.hmin
-                                                      : 0.0;
-        features.min_corner_spacing = 0.5 * h;
-    }
-    result.features = detect_features(mesh, features);
+    if (!settings.keep_classification)
+        result.features = detect_features(mesh, feature_options(settings));
     report_setup("features");
-    SurfaceModel model(mesh);
-    if (settings.use_hdi) attach_hdi_projection(model, mesh);
+    // The model's surface: the mesh itself, or the input it was derived from (a coupled pass on
+    // a refined boundary stays on the input's geometry).
+    const SurfaceMesh& input = settings.model_surface ? *settings.model_surface : mesh;
+    result.diagonal = bounding_box_diagonal(input);
+    SurfaceModel model(input);
+    if (settings.hdi_model)
+        attach_hdi_projection(model, *settings.hdi_model, settings.hdi_projection);
+    else if (settings.use_hdi)
+        attach_hdi_projection(model, input, settings.hdi_projection);
     report_setup("model");
 
     SizeMap sizes = SizeMap::uniform(settings.sizing.hsiz);
+    bool coarse = false;  // the tolerance wins over the uniform size
     if (settings.sizing.hsiz > 0.0 && settings.uniform_hausd_fraction > 0.0)
     {
         // A uniform size, but no coarser than the curvature allows for the tolerance: a fillet
@@ -135,16 +179,22 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         SizingOptions capped = settings.sizing;
         capped.hmax = settings.sizing.hsiz;
         if (!(capped.hausd > 0.0)) capped.hausd = settings.uniform_hausd_fraction * result.diagonal;
-        std::vector<double> local = curvature_sizes(mesh, model, capped);
+        std::vector<double> local = curvature_sizes(input, model, capped);
+        // Where the tolerance needs edges too short for the size on a few places, the size
+        // wins (a short-edge budget); on much of the surface, the tolerance does (Mmg's hausd
+        // over hsiz), the size an upper bound.
+        coarse = area_fraction_below(input, local, kSizeQualityThreshold * settings.sizing.hsiz) >
+                 settings.tolerance_wins_area_fraction;
+        const double size_floor = coarse ? settings.coarse_size_floor : settings.uniform_size_floor;
         // Never below the floor (edges shorter than 0.66·hsiz fail the size criterion); on ridges
         // down to half of it: a curved ridge must stay within its tolerance. Open boundaries of
         // scans zig-zag, so their turning is no curvature to follow.
-        SurfaceProperties props(mesh);
-        for (auto v : mesh.vertices())
+        OpenMesh::VPropHandleT<VertexClass> input_class;
+        input.get_property_handle(input_class, property_names::vertex_class);
+        for (auto v : input.vertices())
         {
-            const bool ridge = mesh.property(props.vertex_class, v) == VertexClass::Ridge;
-            const double floor =
-                (ridge ? 0.5 : 1.0) * settings.uniform_size_floor * settings.sizing.hsiz;
+            const bool ridge = input.property(input_class, v) == VertexClass::Ridge;
+            const double floor = (ridge ? 0.5 : 1.0) * size_floor * settings.sizing.hsiz;
             local[v.idx()] = std::max(local[v.idx()], floor);
         }
         const bool all_uniform = std::all_of(local.begin(), local.end(),
@@ -153,17 +203,17 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     }
     if (!settings.input_sizes.empty())
     {
-        if (settings.input_sizes.size() != mesh.n_vertices())
+        if (settings.input_sizes.size() != input.n_vertices())
             throw InputError("remesh_surface: " + std::to_string(settings.input_sizes.size()) +
-                             " sizes for " + std::to_string(mesh.n_vertices()) + " vertices");
+                             " sizes for " + std::to_string(input.n_vertices()) + " vertices");
         std::vector<double> graded = settings.input_sizes;
-        bound_and_grade(mesh, graded, settings.sizing);
+        bound_and_grade(input, graded, settings.sizing);
         sizes = SizeMap::per_input_vertex(model, std::move(graded));
         result.adaptive = true;
     }
-    else if (!(settings.sizing.hsiz > 0.0))
+    else if (!(settings.sizing.hsiz > 0.0) && !settings.size_function)
     {
-        sizes = SizeMap::per_input_vertex(model, curvature_sizes(mesh, model, settings.sizing));
+        sizes = SizeMap::per_input_vertex(model, curvature_sizes(input, model, settings.sizing));
         result.adaptive = true;
     }
     result.uniform_size = settings.sizing.hsiz > 0.0 ? settings.sizing.hsiz : sizes.uniform_size();
@@ -173,15 +223,34 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     options.loop.size_near = [&sizes](const Vec3d& p, int face_hint) {
         return sizes.at(p, face_hint);
     };
+    if (settings.size_function)
     {
-        // The remeshed surface starts as the model's own input: each vertex's first hint is a face
-        // of its own (the model numbers the input faces in iteration order).
+        options.loop.size = settings.size_function;
+        options.loop.size_near = [&settings](const Vec3d& p, int) {
+            return settings.size_function(p);
+        };
+        result.adaptive = true;
+    }
+    {
         const SurfaceProperties props(mesh);
-        int model_face = 0;
-        for (auto f : mesh.faces())
+        if (settings.model_surface)
         {
-            for (auto v : mesh.fv_range(f)) mesh.property(props.vertex_model_face, v) = model_face;
-            ++model_face;
+            // Another surface: each vertex's first hint is the input face it lies nearest.
+            for (auto v : mesh.vertices())
+                mesh.property(props.vertex_model_face, v) =
+                    model.closest_on_input(mesh.point(v)).face;
+        }
+        else
+        {
+            // The remeshed surface starts as the model's own input: each vertex's first hint is
+            // a face of its own (the model numbers the input faces in iteration order).
+            int model_face = 0;
+            for (auto f : mesh.faces())
+            {
+                for (auto v : mesh.fv_range(f))
+                    mesh.property(props.vertex_model_face, v) = model_face;
+                ++model_face;
+            }
         }
     }
     options.loop.iterations = settings.iterations;
@@ -192,44 +261,43 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         options.loop.max_model_distance = settings.sizing.hausd;
     else
         options.loop.max_model_distance = 0.002 * result.diagonal;
-    // The tolerance both ways: hausd when given, else the fraction for a uniform size.
-    if (settings.sizing.hausd > 0.0)
-        options.tolerance.tolerance = settings.sizing.hausd;
-    else if (settings.sizing.hsiz > 0.0)
-        options.tolerance.tolerance = settings.uniform_hausd_fraction * result.diagonal;
-    else
-        options.tolerance.tolerance = 0.002 * result.diagonal;
+    options.tolerance.tolerance = distance_tolerance(settings, result.diagonal);
     if (settings.refine_to_tolerance && options.tolerance.tolerance > 0.0)
     {
-        const SurfaceProperties props(mesh);
-        options.tolerance.model_points.reserve(mesh.n_vertices() + mesh.n_edges());
-        options.tolerance.model_point_smooth.reserve(mesh.n_vertices() + mesh.n_edges());
-        for (auto v : mesh.vertices())
+        OpenMesh::VPropHandleT<VertexClass> input_class;
+        OpenMesh::EPropHandleT<int> input_curve;
+        input.get_property_handle(input_class, property_names::vertex_class);
+        input.get_property_handle(input_curve, property_names::edge_curve);
+        options.tolerance.model_points.reserve(input.n_vertices() + input.n_edges());
+        options.tolerance.model_point_smooth.reserve(input.n_vertices() + input.n_edges());
+        for (auto v : input.vertices())
         {
-            if (mesh.is_isolated(v)) continue;
-            options.tolerance.model_points.push_back(mesh.point(v));
-            options.tolerance.model_point_smooth.push_back(mesh.property(props.vertex_class, v) ==
+            if (input.is_isolated(v)) continue;
+            options.tolerance.model_points.push_back(input.point(v));
+            options.tolerance.model_point_smooth.push_back(input.property(input_class, v) ==
                                                            VertexClass::Smooth);
         }
         // Edge midpoints too (the Hausdorff samples of the input): a crease the features dropped
         // is farthest from the output between its vertices. With a uniform size too: the
-        // short-edge budget then goes to those creases (docs/tuning.md).
-        for (auto e : mesh.edges())
+        // short-edge budget then goes to those creases (docs/tuning.md). Not on a smooth
+        // model: a chord's midpoint is off it.
+        for (auto e : input.edges())
         {
-            const auto h = mesh.halfedge_handle(e, 0);
-            const Vec3d mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) +
-                                     mesh.point(mesh.to_vertex_handle(h)));
+            if (model.has_smooth_projection()) break;
+            const auto h = input.halfedge_handle(e, 0);
+            const Vec3d mid = 0.5 * (input.point(input.from_vertex_handle(h)) +
+                                     input.point(input.to_vertex_handle(h)));
             options.tolerance.model_points.push_back(mid);
             options.tolerance.model_point_smooth.push_back(
-                mesh.property(props.edge_curve, e) == kNoCurve && !mesh.is_boundary(e));
+                input.property(input_curve, e) == kNoCurve && !input.is_boundary(e));
         }
     }
     if (!settings.refine_to_tolerance) options.tolerance.tolerance = 0.0;
-    options.tolerance.reference_size = settings.sizing.hsiz;
-    options.refinement.short_edge_budget = settings.refine_short_edge_budget;
+    options.tolerance.reference_size = coarse ? 0.0 : settings.sizing.hsiz;
+    options.refinement.short_edge_budget = coarse ? 1.0 : settings.refine_short_edge_budget;
     options.refinement.final_short_edge_budget =
-        std::max(settings.refine_final_short_edge_budget, settings.refine_short_edge_budget);
-    if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty())
+        std::max(settings.refine_final_short_edge_budget, options.refinement.short_edge_budget);
+    if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty() && !settings.size_function)
     {
         // Curvature-adaptive: the tolerance is the contract (no size target to keep), with a
         // margin for the samples the refinement does not look at (input edge midpoints, centroids).
@@ -239,8 +307,9 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         options.tolerance.min_length_ratio = 0.15;
         options.refinement.rounds = 20;
     }
+    options.project_first = settings.model_surface != nullptr;
     report_setup("sizes and model points");
-    result.report = remesh_surface(mesh, options, model);
+    result.report = remesh_surface(mesh, options, model, hooks);
     return result;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "surface/features.h"
+#include "surface/hdi_projection.h"
 #include "surface/remesh.h"
 #include "surface/sizing.h"
 #include "surface/surface_mesh.h"
@@ -78,6 +79,9 @@ struct CleanupOptions
 struct SurfaceRemeshOptions
 {
     RemeshOptions loop;  // its size is required
+    /// The mesh is not the model's own input (e.g. a refined boundary whose new vertices were
+    /// placed on another model): first every vertex onto this model, where the hooks allow.
+    bool project_first = false;
     ToleranceOptions tolerance;
     ToleranceRefinementOptions refinement;
     PolishOptions polish;
@@ -94,14 +98,33 @@ RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& optio
 struct SurfaceRemeshSettings
 {
     FeatureOptions features;
+    /// The mesh already carries its classes and curves (detect_features ran on it): keep them.
+    bool keep_classification = false;
+    /// Set: the model, its curvature sizes and the tolerance's points come from this classified
+    /// surface (the input the mesh was derived from, e.g. before a refinement), whose curve ids
+    /// the mesh's must match; input_sizes are then per vertex of it. It must outlive the call.
+    const SurfaceMesh* model_surface = nullptr;
+    /// Set: smooth vertices go onto this HDI model of the model's surface (use_hdi with a model
+    /// built already, e.g. the coupling's projection's), which must outlive the call.
+    const hdi::HdiSurface* hdi_model = nullptr;
+    /// Its trust bound: see HdiProjectionOptions.
+    HdiProjectionOptions hdi_projection;
     SizingOptions sizing;  // hsiz > 0: uniform; else curvature from hausd (default 0.002·diag)
     std::vector<double>
-        input_sizes;     // non-empty: a size per input vertex (--sol), bounded and graded
+        input_sizes;  // non-empty: a size per input vertex (--sol), bounded and graded
+    /// Set: the size anywhere (a volume's size field, already bounded and graded); it wins
+    /// over hsiz and input_sizes.
+    std::function<double(const Vec3d&)> size_function;
     int iterations = 8;  // RemeshOptions::iterations
     /// With a uniform size: refine below it where the curvature needs it to stay within
     /// hausd (if given) or this fraction of the bbox diagonal (≤ 0: strictly uniform).
     double uniform_hausd_fraction = 0.0016;
     double uniform_size_floor = 0.85;  // ... but never below this fraction of hsiz
+    /// ... or of this one when the curvature asks for edges too short for hsiz (Qt < 0.66) on
+    /// more than this fraction of the area: the tolerance then wins over the size (a coarse
+    /// size), the refinement to it has no short-edge budget.
+    double coarse_size_floor = 0.2;
+    double tolerance_wins_area_fraction = 0.05;
     /// Smooth vertices on the HDI model instead of the input facets. Off by default: it is
     /// slower and its projections near ridges leave slivers (docs/tuning.md).
     bool use_hdi = false;
@@ -125,8 +148,18 @@ struct SurfaceRemeshResult
     bool adaptive = false;
 };
 
+/// The distance between output and model that remesh_surface refines to, both ways: hausd when
+/// given, else uniform_hausd_fraction of the diagonal for a uniform size, else 0.002 of it.
+double distance_tolerance(const SurfaceRemeshSettings& settings, double diagonal);
+
+/// The feature options remesh_surface classifies with: settings.features, with a corner
+/// spacing of half the size when it sets none.
+FeatureOptions feature_options(const SurfaceRemeshSettings& settings);
+
 /// Detects features of `mesh`, builds the model from it, chooses the sizes and remeshes it in
-/// place. The vertex size property of the result holds the target size at each vertex.
-SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings);
+/// place. The vertex size property of the result holds the target size at each vertex. Hooks
+/// see every change (the coupling's mirror into the tets).
+SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSettings& settings,
+                                   const SurfaceHooks& hooks = {});
 
 }  // namespace hdimesh::surface

@@ -145,10 +145,17 @@ OpResult try_remove_vertex(OperatorContext& ctx, VertexHandle v)
                 return result;
             }
         }
-    if (ctx.hooks.allow_remove_vertex && !ctx.hooks.allow_remove_vertex(mesh, v))
+    if (ctx.hooks.allow_remove_vertex)
     {
-        result.status = OpStatus::Hook;
-        return result;
+        std::vector<std::array<VertexHandle, 3>> planned;
+        planned.reserve(hole.triangles.size());
+        for (const auto& t : hole.triangles)
+            planned.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});
+        if (!ctx.hooks.allow_remove_vertex(mesh, v, planned))
+        {
+            result.status = OpStatus::Hook;
+            return result;
+        }
     }
 
     // Commit: the ring vertices are interior and the chords are new, so every add_face succeeds.

@@ -298,7 +298,10 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
     // Below this a trial is refused by one of the tests after ball.quality() below.
     const double refused_below =
         options.smart ? old_quality - 1e-12 : std::min(ctx.limits.min_new_quality, old_quality);
-    for (double step = options.step; step > options.step / 5.0; step *= 0.5)
+    // Three trials, halving the step; a step of 0 is one: p itself onto the model.
+    const int trials = options.step > 0.0 ? 3 : 1;
+    double step = options.step;
+    for (int trial = 0; trial < trials; ++trial, step *= 0.5)
     {
         Vec3d target = p + step * (optimal - p);
         if (cls == VertexClass::Smooth)

@@ -570,4 +570,38 @@ ProjectedPoint SurfaceModel::project_near(const Vec3d& p, VertexClass cls, int c
     return {};
 }
 
+double SurfaceModel::chord_error(int face) const
+{
+    if (face < 0) return 0.0;
+    const auto& f = face_vertices_[face];
+    const double longest =
+        std::max({(points_[f[0]] - points_[f[1]]).norm(), (points_[f[1]] - points_[f[2]]).norm(),
+                  (points_[f[2]] - points_[f[0]]).norm()});
+    const double curvature = std::max({curvature_[f[0]], curvature_[f[1]], curvature_[f[2]]});
+    return curvature * longest * longest / 8.0;
+}
+
+double SurfaceModel::coarse_area_fraction(double tolerance) const
+{
+    double total = 0.0, coarse = 0.0;
+    for (int f = 0; f < static_cast<int>(face_vertices_.size()); ++f)
+    {
+        const auto& v = face_vertices_[f];
+        const double area =
+            0.5 *
+            OpenMesh::cross(points_[v[1]] - points_[v[0]], points_[v[2]] - points_[v[0]]).norm();
+        total += area;
+        if (chord_error(f) > tolerance) coarse += area;
+    }
+    return total > 0.0 ? coarse / total : 0.0;
+}
+
+double SurfaceModel::shortest_edge(int face) const
+{
+    if (face < 0) return 0.0;
+    const auto& f = face_vertices_[face];
+    return std::min({(points_[f[0]] - points_[f[1]]).norm(), (points_[f[1]] - points_[f[2]]).norm(),
+                     (points_[f[2]] - points_[f[0]]).norm()});
+}
+
 }  // namespace hdimesh::surface

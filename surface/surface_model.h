@@ -29,6 +29,7 @@ public:
     /// closest point on the input triangles. Returning ok == false falls back to the triangles.
     using SmoothProjection = std::function<ProjectedPoint(const Vec3d&)>;
     void set_smooth_projection(SmoothProjection projection) { smooth_ = std::move(projection); }
+    bool has_smooth_projection() const { return static_cast<bool>(smooth_); }
 
     ProjectedPoint project(const Vec3d& p, VertexClass cls, int curve) const override;
     /// project() for placing a vertex near `face_hint` (an input face index, e.g. the `face` of
@@ -72,6 +73,14 @@ public:
     double interpolate(const Vec3d& p, const std::vector<double>& per_input_vertex,
                        int face_hint = -1) const;
     double diagonal() const { return diagonal_; }
+    /// The shortest edge of input face `face` (0 for a negative index).
+    double shortest_edge(int face) const;
+    /// How far input face `face` may lie from the smooth surface it samples: its longest edge
+    /// squared times its vertices' largest curvature, over 8 (a chord's sagitta; 0 for a
+    /// negative index, and on features, whose curvature is 0).
+    double chord_error(int face) const;
+    /// The fraction of the input's area on faces whose chord_error exceeds `tolerance`.
+    double coarse_area_fraction(double tolerance) const;
     std::size_t curve_count() const;
 
 private:

@@ -391,3 +391,32 @@ TEST_CASE(
                         << focused_report.shifts << " shifts), " << worst_qe(everywhere)
                         << " (everywhere, " << everywhere_report.shifts << " shifts)");
 }
+
+TEST_CASE("a size too coarse for the tolerance on much of the surface: the tolerance wins")
+{
+    // A fine sphere asked for edges of 0.6: their chords would stray 0.045 from it, eight times
+    // the default tolerance (0.0016 of the diagonal). The size then only bounds the edges from
+    // above; the curvature sets them, and the output keeps the tolerance both ways.
+    const SurfaceMesh input = sphere(5);
+    const double tolerance = 0.0016 * bounding_box_diagonal(input);
+    auto remeshed = [&](double tolerance_wins_area_fraction) {
+        SurfaceMesh mesh = input;
+        SurfaceRemeshSettings settings;
+        settings.sizing.hsiz = 0.6;
+        settings.tolerance_wins_area_fraction = tolerance_wins_area_fraction;
+        remesh_surface(mesh, settings);
+        check_manifold(mesh);
+        CHECK(fixtures::euler(mesh) == 2);
+        double farthest = 0.0;
+        for (const Vec3d& p : fixtures::points_of(input))
+            farthest = std::max(farthest, fixtures::distance_to_mesh(mesh, p));
+        return std::make_pair(mesh.n_faces(), farthest);
+    };
+    const auto [faces, farthest] = remeshed(0.05);
+    CHECK(faces < input.n_faces() / 2);  // it still coarsens
+    CHECK(farthest <= tolerance);
+    // Where the size wins (the budget of short edges), the chords stray beyond it.
+    const auto [coarse_faces, coarse_farthest] = remeshed(1.0);
+    CHECK(coarse_faces < faces);
+    CHECK(coarse_farthest > tolerance);
+}

@@ -22,7 +22,6 @@ namespace hdimesh::volume
 namespace
 {
 using detail::Front;
-using detail::sorted_triple;
 
 constexpr double kTwoThirdsRoot = 0.816496580927726;  // sqrt(2/3): a regular tet's height / edge
 constexpr double kMinSizeFactor = 0.6;                // d never below this times the face's edge
@@ -332,6 +331,8 @@ bool FrontMesher::setup(std::string& failure)
     const double expected = std::abs(volume) / std::max(regular_volume, 1e-300);
     iteration_budget_ = static_cast<long>(
         std::min(4e9, 20.0 * std::min(expected, 1e8) + 200.0 * input_faces_.size() + 10000));
+    if (options_.max_attempts > 0)
+        iteration_budget_ = std::min(iteration_budget_, options_.max_attempts);
     return true;
 }
 

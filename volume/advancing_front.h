@@ -31,6 +31,10 @@ struct AdvancingFrontOptions
     int max_leftover_points = 32;
     /// No new point closer than this fraction of the local size to a front vertex.
     double min_point_distance = 0.65;
+    /// > 0: face attempts at most, over all retreat rounds (else enough for every tet the
+    /// sizes ask for, many times over). A caller that may refuse (a mirrored surface operation)
+    /// caps it: a cavity whose shortest face edge is tiny would otherwise get a huge budget.
+    long max_attempts = 0;
 };
 
 struct FrontReport

@@ -32,13 +32,6 @@ namespace
 
 using Key = std::array<int, 3>;
 
-Key sorted_key(const Triangle& t)
-{
-    Key k = t;
-    std::sort(k.begin(), k.end());
-    return k;
-}
-
 /// Empty when the faces are a closed, consistently oriented surface (every directed edge once,
 /// its reverse once); else why not.
 std::string closedness_defect(const std::vector<Triangle>& faces)
@@ -411,8 +404,8 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
                     if (mesh.neighbors[n][g] == t) back = g;
                 const auto& lf = tet::kFaceVertices[f];
                 hull.push_back(
-                    {sorted_key({mesh.tets[t][lf[0]], mesh.tets[t][lf[1]], mesh.tets[t][lf[2]]}), n,
-                     back});
+                    {sorted_triple({mesh.tets[t][lf[0]], mesh.tets[t][lf[1]], mesh.tets[t][lf[2]]}),
+                     n, back});
             }
     std::sort(hull.begin(), hull.end());
 
@@ -440,6 +433,9 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
     for (std::size_t k = fill.tets.size(); k < slots.size(); ++k)
         mesh.neighbors[slots[k]] = {kNoTet, kNoTet, kNoTet, kNoTet};
 
+    // A hull face no new tet covers is boundary now (a coupled change exposed it as a surface
+    // triangle): its outside tet must not keep the link to the removed slot.
+    for (const HullLink& h : hull) mesh.neighbors[h.outside_tet][h.outside_face] = kNoTet;
     // pair the new faces among themselves (sorted keys), then the unpaired ones with the hull
     struct FaceRecord
     {
@@ -458,7 +454,7 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
         {
             const auto& lf = tet::kFaceVertices[f];
             const auto& tv = mesh.tets[id];
-            records.push_back({sorted_key({tv[lf[0]], tv[lf[1]], tv[lf[2]]}), id, f});
+            records.push_back({sorted_triple({tv[lf[0]], tv[lf[1]], tv[lf[2]]}), id, f});
         }
     std::sort(records.begin(), records.end());
     for (std::size_t i = 0; i < records.size();)

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/classification.h"
@@ -43,6 +44,16 @@ inline constexpr int kDeadTet = -1;  ///< tets[t][0] of a killed tet
 
 using TetVertices = std::array<int, 4>;
 using Triangle = std::array<int, 3>;
+
+/// A triangle's vertices in increasing order: the key of a face whatever its orientation.
+inline Triangle sorted_triple(const Triangle& t)
+{
+    Triangle s = t;
+    if (s[0] > s[1]) std::swap(s[0], s[1]);
+    if (s[1] > s[2]) std::swap(s[1], s[2]);
+    if (s[0] > s[1]) std::swap(s[0], s[1]);
+    return s;
+}
 using Edge = std::array<int, 2>;
 
 /// Old-to-new index maps returned by TetMesh::compact(); removed entities map to -1.

@@ -16,15 +16,6 @@
 namespace hdimesh::volume::detail
 {
 
-inline Triangle sorted_triple(const Triangle& t)
-{
-    Triangle s = t;
-    if (s[0] > s[1]) std::swap(s[0], s[1]);
-    if (s[1] > s[2]) std::swap(s[1], s[2]);
-    if (s[0] > s[1]) std::swap(s[0], s[1]);
-    return s;
-}
-
 /// True when u lists the vertices of t in the same cyclic order (same orientation).
 inline bool same_orientation(const Triangle& t, const Triangle& u)
 {

@@ -1,0 +1,112 @@
+#!/usr/bin/python3
+"""The coupled adaptation's table (issue 16): adapt on Gmsh tet meshes of real surfaces, beside
+surfremesh on the same surfaces, refining (1 % of the diagonal) and coarsening (4 %).
+
+  bench/bench_coupled.py --volumes DIR --surfaces DIR [--build build] [--models fandisk,...]
+                         [--fractions 0.01,0.04] [--extra "--nosurf"]
+
+For each model X, DIR/X.msh is the tet mesh and DIR/X.obj its input surface. Boundary columns
+come from scripts/surfstat.py against the input surface, volume columns from
+scripts/meshstat.py --hsiz h; CPU is adapt's own "cpu: total" (parse, read and write excluded).
+"""
+import argparse, json, os, re, subprocess, sys, tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PY = '/usr/bin/python3'  # Debian's, with numpy and scipy
+
+
+def boundary_obj(mesh_path, obj_path):
+    """The Triangles section of a Medit ASCII mesh, as an OBJ."""
+    tokens = open(mesh_path).read().split()
+    i, points, tris = 0, [], []
+    while i < len(tokens):
+        key = tokens[i]
+        if key == 'Vertices':
+            n = int(tokens[i + 1]); i += 2
+            points = [tokens[i + 4 * k:i + 4 * k + 3] for k in range(n)]; i += 4 * n
+        elif key == 'Triangles':
+            n = int(tokens[i + 1]); i += 2
+            tris = [tokens[i + 4 * k:i + 4 * k + 3] for k in range(n)]; i += 4 * n
+        elif key in ('Tetrahedra',):
+            n = int(tokens[i + 1]); i += 2 + 5 * n
+        elif key in ('Edges',):
+            n = int(tokens[i + 1]); i += 2 + 3 * n
+        elif key in ('Ridges', 'Corners', 'RequiredVertices', 'RequiredEdges'):
+            n = int(tokens[i + 1]); i += 2 + n
+        else:
+            i += 1
+    with open(obj_path, 'w') as out:
+        for p in points: out.write('v %s %s %s\n' % tuple(p))
+        for t in tris: out.write('f %s %s %s\n' % tuple(t))
+
+
+def surfstat(obj, ref, h):
+    out = subprocess.run([PY, os.path.join(ROOT, 'scripts/surfstat.py'), obj, '--ref', ref,
+                          '--hsiz', repr(h), '--json'], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def meshstat(mesh, h):
+    out = subprocess.run([PY, os.path.join(ROOT, 'scripts/meshstat.py'), mesh, '--hsiz', repr(h),
+                          '--json'], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def cpu_of(stdout):
+    m = re.search(r'^cpu:\s+total\s+([0-9.]+)', stdout, re.M)
+    return float(m.group(1)) if m else float('nan')
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--volumes', required=True)
+    ap.add_argument('--surfaces', required=True)
+    ap.add_argument('--build', default=os.path.join(ROOT, 'build'))
+    ap.add_argument('--models', default='fandisk,rocker-arm,spot,cheburashka')
+    ap.add_argument('--fractions', default='0.01,0.04')
+    ap.add_argument('--extra', default='', help='more adapt flags')
+    ap.add_argument('--no-surfremesh', action='store_true')
+    ap.add_argument('--keep', help='directory to keep the outputs in')
+    a = ap.parse_args()
+    work = a.keep or tempfile.mkdtemp(prefix='bench_coupled_')
+    os.makedirs(work, exist_ok=True)
+    print('| run | tets | min Qe | % Qe >= 0.5 | % Qt >= 0.66 | bd triangles | bd min angle | '
+          'bd % Qe >= 0.7 | bd % Qt >= 0.66 | Hausdorff / diag | CPU |')
+    print('|---|---|---|---|---|---|---|---|---|---|---|')
+    for model in a.models.split(','):
+        vol = os.path.join(a.volumes, model + '.msh')
+        ref = os.path.join(a.surfaces, model + '.obj')
+        ref_stat = surfstat(ref, ref, 1.0)
+        diag = ref_stat['bbox_diag']
+        for frac in [float(f) for f in a.fractions.split(',')]:
+            h = frac * diag
+            tag = '%s %g %%' % (model, 100 * frac)
+            out = os.path.join(work, '%s_%g.mesh' % (model, frac))
+            run = subprocess.run([os.path.join(a.build, 'apps/adapt'), vol, '--hsiz', repr(h),
+                                  '-o', out] + a.extra.split(), capture_output=True, text=True)
+            if run.returncode != 0:
+                print('| adapt %s | failed: %s |' % (tag, run.stderr.strip()[-200:]))
+                continue
+            obj = out[:-5] + '_boundary.obj'
+            boundary_obj(out, obj)
+            v, s = meshstat(out, h), surfstat(obj, ref, h)
+            print('| adapt %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s |' % (
+                tag, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'],
+                s['n_faces'], s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'],
+                s['hausdorff_rel'], cpu_of(run.stdout)), flush=True)
+            if s['euler'] != s['ref_topology']['euler'] or s['components'] != s['ref_topology']['components']:
+                print('|  | topology changed: euler %d, components %d |' % (s['euler'], s['components']))
+            if a.no_surfremesh: continue
+            sobj = os.path.join(work, '%s_%g_surfremesh.obj' % (model, frac))
+            srun = subprocess.run(['bash', '-c', 'TIMEFORMAT=%U+%S; time ' + ' '.join(
+                [os.path.join(a.build, 'apps/surfremesh'), ref, '--hsiz', repr(h), '-o', sobj])],
+                capture_output=True, text=True)
+            cpu = sum(float(x) for x in srun.stderr.strip().splitlines()[-1].split('+'))
+            s = surfstat(sobj, ref, h)
+            print('| surfremesh %s | — | — | — | — | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s |' % (
+                tag, s['n_faces'], s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'],
+                s['hausdorff_rel'], cpu), flush=True)
+
+
+if __name__ == '__main__':
+    sys.exit(main())

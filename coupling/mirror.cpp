@@ -1,0 +1,559 @@
+#include "coupling/mirror.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstdio>
+#include <memory>
+#include <unordered_map>
+
+#include "volume/tet_tables.h"
+#include "volume/tet_topology.h"
+
+namespace hdimesh::coupling
+{
+
+using namespace volume;
+using surface::EdgeHandle;
+using surface::FaceHandle;
+using surface::HalfedgeHandle;
+using surface::SurfaceMesh;
+using surface::VertexHandle;
+
+namespace
+{
+
+using Key = std::array<int, 3>;
+
+struct KeyHash
+{
+    std::size_t operator()(const Key& k) const
+    {
+        std::size_t h = static_cast<std::size_t>(k[0]);
+        h = h * 0x9E3779B97F4A7C15ull + static_cast<std::size_t>(k[1]);
+        return h * 0x9E3779B97F4A7C15ull + static_cast<std::size_t>(k[2]);
+    }
+};
+
+/// A surface triangle in tet-vertex ids, with its ref.
+struct RefTriangle
+{
+    Triangle vertices;
+    int ref = 0;
+};
+
+/// A surface change as the tets see it: the tets it destroys, the surface triangles it takes
+/// away and those it puts in their place.
+struct CavityChange
+{
+    std::vector<int> tets;
+    std::vector<RefTriangle> removed, added;
+};
+
+class Mirror
+{
+public:
+    Mirror(TetMesh& mesh, BoundaryMap& map, const MirrorOptions& options, MirrorStatistics* stats)
+        : mesh_(mesh), map_(map), options_(options), stats_(stats)
+    {
+        if (!mesh_.has_adjacency()) mesh_.build_adjacency();
+        vertex_tet_ = vertex_to_tet(mesh_);
+        for (std::size_t i = 0; i < mesh_.triangles.size(); ++i)
+            triangle_index_[sorted_triple(mesh_.triangles[i])] = static_cast<int>(i);
+        if (!map_.surface.get_property_handle(face_ref_, surface::property_names::face_ref))
+            face_ref_.invalidate();
+        const surface::SurfaceProperties props(map_.surface);
+        vertex_class_ = props.vertex_class;
+    }
+
+    surface::SurfaceHooks hooks(const std::shared_ptr<Mirror>& self) const
+    {
+        surface::SurfaceHooks h;
+        h.allow_move = [self](const SurfaceMesh&, VertexHandle v, const surface::Vec3d& p) {
+            return self->count(MirrorStatistics::Move, self->allow_move(v, p));
+        };
+        h.on_move = [self](const SurfaceMesh& s, VertexHandle v, const surface::Vec3d&) {
+            self->commit_move(v, s.point(v));
+        };
+        h.allow_split = [self](const SurfaceMesh& s, EdgeHandle e, const surface::Vec3d& p) {
+            return self->count(MirrorStatistics::Split, self->allow_split(s, e, p));
+        };
+        h.on_split = [self](const SurfaceMesh&, VertexHandle a, VertexHandle b,
+                            VertexHandle inserted) { self->commit_split(a, b, inserted); };
+        h.allow_collapse = [self](const SurfaceMesh& s, HalfedgeHandle he) {
+            return self->count(MirrorStatistics::Collapse, self->allow_collapse(s, he));
+        };
+        h.on_collapse = [self](const SurfaceMesh&, VertexHandle removed, VertexHandle kept) {
+            self->commit_pending(MirrorStatistics::Collapse,
+                                 {self->tet(removed), self->tet(kept), -1});
+        };
+        h.allow_flip = [self](const SurfaceMesh& s, EdgeHandle e) {
+            return self->count(MirrorStatistics::Flip, self->allow_flip(s, e));
+        };
+        h.on_flip = [self](const SurfaceMesh&, VertexHandle a, VertexHandle b, VertexHandle,
+                           VertexHandle) {
+            self->commit_pending(MirrorStatistics::Flip, {self->tet(a), self->tet(b), -1});
+        };
+        h.allow_remove_vertex = [self](const SurfaceMesh& s, VertexHandle v,
+                                       const std::vector<std::array<VertexHandle, 3>>& planned) {
+            return self->count(MirrorStatistics::Remove, self->allow_remove(s, v, planned));
+        };
+        h.on_remove_vertex = [self](const SurfaceMesh&, VertexHandle removed,
+                                    const std::vector<FaceHandle>&) {
+            self->commit_pending(MirrorStatistics::Remove, {self->tet(removed), -1, -1});
+        };
+        return h;
+    }
+
+private:
+    // What allow_* found, for the on_* that follows it.
+    struct Pending
+    {
+        int operation = -1;
+        std::array<int, 3> key{};  // the operation's tet vertices
+        CavityFill fill;
+        std::vector<int> cavity_vertices;
+        std::vector<RefTriangle> removed, added;
+        bool adds_vertex = false;
+        Vec3 new_point = Vec3::Zero();
+    };
+
+    int tet(VertexHandle v) const { return map_.tet_vertex_of(v); }
+
+    bool count(int operation, bool allowed)
+    {
+        if (!allowed && stats_) ++stats_->refused[operation];
+        return allowed;
+    }
+
+    int face_ref(const SurfaceMesh& s, FaceHandle f) const
+    {
+        return face_ref_.is_valid() ? s.property(face_ref_, f) : 0;
+    }
+
+    RefTriangle surface_triangle(const SurfaceMesh& s, FaceHandle f) const
+    {
+        RefTriangle t;
+        int k = 0;
+        for (auto v : s.fv_range(f)) t.vertices[k++] = tet(v);
+        t.ref = face_ref(s, f);
+        return t;
+    }
+
+    void ball(int v, std::vector<int>& out) const { vertex_ball(mesh_, vertex_tet_[v], v, out); }
+
+    /// A live tet holding both a and b, or -1.
+    int tet_with_edge(int a, int b) const
+    {
+        ball(a, scratch_);
+        for (int t : scratch_)
+            if (local_index(mesh_, t, b) >= 0) return t;
+        return -1;
+    }
+
+    // --- move: no cavity, only the ball's shapes
+    bool allow_move(VertexHandle sv, const surface::Vec3d& p)
+    {
+        const int v = tet(sv);
+        const Vec3 to(p[0], p[1], p[2]);
+        ball(v, scratch_);
+        double worst_before = 1.0, worst_after = 1.0;
+        for (int t : scratch_)
+        {
+            std::array<Vec3, 4> x;
+            for (int k = 0; k < 4; ++k) x[k] = mesh_.points[mesh_.tets[t][k]];
+            worst_before = std::min(worst_before, tet_quality(x[0], x[1], x[2], x[3]));
+            x[local_index(mesh_, t, v)] = to;
+            if (!(signed_volume6(x[0], x[1], x[2], x[3]) > 0.0)) return false;
+            worst_after = std::min(worst_after, tet_quality(x[0], x[1], x[2], x[3]));
+        }
+        return worst_after >= std::min(options_.min_quality, worst_before);
+    }
+
+    void commit_move(VertexHandle sv, const surface::Vec3d& p)
+    {
+        mesh_.points[tet(sv)] = Vec3(p[0], p[1], p[2]);
+        if (stats_) ++stats_->done[MirrorStatistics::Move];
+    }
+
+    // --- the cavity operations
+    bool allow_split(const SurfaceMesh& s, EdgeHandle e, const surface::Vec3d& p)
+    {
+        const HalfedgeHandle h = s.halfedge_handle(e, 0);
+        const int a = tet(s.from_vertex_handle(h)), b = tet(s.to_vertex_handle(h));
+        const int seed = tet_with_edge(a, b);
+        if (seed < 0) return false;
+        EdgeShell shell;
+        if (!edge_shell(mesh_, seed, a, b, shell)) return false;
+
+        Pending next;
+        next.operation = MirrorStatistics::Split;
+        next.key = {a, b, -1};
+        next.adds_vertex = true;
+        next.new_point = Vec3(p[0], p[1], p[2]);
+        // The new vertex is the mesh's next id while the fill is computed (the filler reads
+        // points only), and is taken out again until the commit.
+        const int m = mesh_.add_vertex(next.new_point, 0, VertexClass::Surface);
+        CavityChange change;
+        change.tets = shell.tets;
+        for (const HalfedgeHandle side : {h, s.opposite_halfedge_handle(h)})
+        {
+            const FaceHandle f = s.face_handle(side);
+            if (!f.is_valid()) continue;
+            const RefTriangle old = surface_triangle(s, f);
+            change.removed.push_back(old);
+            for (int end : {a, b})
+            {
+                RefTriangle half = old;
+                std::replace(half.vertices.begin(), half.vertices.end(), end, m);
+                change.added.push_back(half);
+            }
+        }
+        const bool ok = simulate(change, next);
+        mesh_.points.pop_back();
+        mesh_.vertex_refs.pop_back();
+        mesh_.vertex_classes.pop_back();
+        if (ok) pending_ = std::move(next);
+        return ok;
+    }
+
+    void commit_split(VertexHandle a, VertexHandle b, VertexHandle inserted)
+    {
+        assert(pending_.operation == MirrorStatistics::Split && pending_.key[0] == tet(a) &&
+               pending_.key[1] == tet(b));
+        (void)a;
+        (void)b;
+        // the class the surface gave it (its edge's: smooth, or the edge's curve)
+        const auto cls = map_.surface.property(vertex_class_, inserted);
+        const int m = mesh_.add_vertex(pending_.new_point, 0,
+                                       to_vertex_class(surface::to_classification(cls)));
+        map_.surface.property(map_.tet_vertex, inserted) = m;
+        commit(MirrorStatistics::Split);
+    }
+
+    bool allow_collapse(const SurfaceMesh& s, HalfedgeHandle h)
+    {
+        const VertexHandle sfrom = s.from_vertex_handle(h), sto = s.to_vertex_handle(h);
+        const int from = tet(sfrom), to = tet(sto);
+        Pending next;
+        next.operation = MirrorStatistics::Collapse;
+        next.key = {from, to, -1};
+        CavityChange change;
+        ball(from, change.tets);
+        for (auto f : s.vf_range(sfrom))
+        {
+            const RefTriangle old = surface_triangle(s, f);
+            change.removed.push_back(old);
+            if (std::find(old.vertices.begin(), old.vertices.end(), to) != old.vertices.end())
+                continue;  // one of the two triangles of the edge: it goes away
+            RefTriangle moved = old;
+            std::replace(moved.vertices.begin(), moved.vertices.end(), from, to);
+            change.added.push_back(moved);
+        }
+        if (!simulate(change, next)) return false;
+        pending_ = std::move(next);
+        return true;
+    }
+
+    bool allow_flip(const SurfaceMesh& s, EdgeHandle e)
+    {
+        // (a, b, c) and (b, a, d) become (c, a, d) and (d, b, c)
+        const HalfedgeHandle h = s.halfedge_handle(e, 0), o = s.opposite_halfedge_handle(h);
+        const FaceHandle f0 = s.face_handle(h), f1 = s.face_handle(o);
+        if (!f0.is_valid() || !f1.is_valid()) return false;
+        const int a = tet(s.from_vertex_handle(h)), b = tet(s.to_vertex_handle(h));
+        const int c = tet(s.to_vertex_handle(s.next_halfedge_handle(h)));
+        const int d = tet(s.to_vertex_handle(s.next_halfedge_handle(o)));
+        const int seed = tet_with_edge(a, b);
+        if (seed < 0) return false;
+        EdgeShell shell;
+        if (!edge_shell(mesh_, seed, a, b, shell)) return false;
+        Pending next;
+        next.operation = MirrorStatistics::Flip;
+        next.key = {a, b, -1};
+        CavityChange change;
+        change.tets = shell.tets;
+        const RefTriangle t0 = surface_triangle(s, f0), t1 = surface_triangle(s, f1);
+        change.removed = {t0, t1};
+        change.added = {{{c, a, d}, t0.ref}, {{d, b, c}, t1.ref}};
+        if (!simulate(change, next)) return false;
+        pending_ = std::move(next);
+        return true;
+    }
+
+    bool allow_remove(const SurfaceMesh& s, VertexHandle sv,
+                      const std::vector<std::array<VertexHandle, 3>>& planned)
+    {
+        const int v = tet(sv);
+        Pending next;
+        next.operation = MirrorStatistics::Remove;
+        next.key = {v, -1, -1};
+        CavityChange change;
+        ball(v, change.tets);
+        int ref = 0;
+        for (auto f : s.vf_range(sv))
+        {
+            change.removed.push_back(surface_triangle(s, f));
+            ref = change.removed.back().ref;
+        }
+        for (const auto& t : planned)
+            change.added.push_back({{tet(t[0]), tet(t[1]), tet(t[2])}, ref});
+        if (!simulate(change, next)) return false;
+        pending_ = std::move(next);
+        return true;
+    }
+
+    /// The cavity's faces, its fill and the checks of the fill; `out` gets the fill. False when
+    /// the tets cannot follow the change.
+    bool simulate(const CavityChange& change, Pending& out) const
+    {
+        std::vector<int> cavity = change.tets;
+        std::sort(cavity.begin(), cavity.end());
+        auto in_cavity = [&](int t) { return std::binary_search(cavity.begin(), cavity.end(), t); };
+        const int ref = mesh_.tet_refs[cavity.front()];
+        double worst_before = 1.0;
+        for (int t : cavity)
+        {
+            if (mesh_.tet_refs[t] != ref) return false;
+            worst_before = std::min(worst_before, mesh_.quality(t));
+        }
+
+        std::vector<Key> removed_keys;
+        for (const auto& r : change.removed) removed_keys.push_back(sorted_triple(r.vertices));
+        std::sort(removed_keys.begin(), removed_keys.end());
+        std::size_t removed_seen = 0;
+        std::vector<Triangle> faces;
+        for (int t : cavity)
+            for (int f = 0; f < 4; ++f)
+            {
+                const int n = mesh_.neighbors[t][f];
+                if (n != kNoTet && in_cavity(n)) continue;
+                const auto& lf = tet::kFaceVertices[f];
+                const Triangle tri{mesh_.tets[t][lf[0]], mesh_.tets[t][lf[1]],
+                                   mesh_.tets[t][lf[2]]};
+                if (n == kNoTet && std::binary_search(removed_keys.begin(), removed_keys.end(),
+                                                      sorted_triple(tri)))
+                {
+                    ++removed_seen;
+                    continue;
+                }
+                faces.push_back(tri);
+            }
+        if (removed_seen != removed_keys.size()) return false;  // a triangle the cavity misses
+        for (const auto& a : change.added) faces.push_back(a.vertices);
+        if (!cancel_opposite_faces(faces)) return false;
+        if (!new_edges_are_new(change, cavity)) return false;
+
+        CavityFill fill;
+        if (faces.empty())
+        {
+            fill.filled = true;  // the change only takes tets away (a flip over one tet)
+            fill.first_new_vertex = mesh_.num_vertices();
+            fill.worst_quality = 1.0;
+        }
+        else
+        {
+            fill = fill_cavity(mesh_, faces, nullptr, options_.cavity);
+            if (!fill.filled) return false;
+            if (fill.worst_quality < std::min(options_.min_quality, worst_before)) return false;
+        }
+        fill.removed_tets = change.tets;
+        fill.ref = ref;
+        out.fill = std::move(fill);
+        out.removed = change.removed;
+        out.added = change.added;
+        out.cavity_vertices.clear();
+        for (int t : cavity)
+            for (int v : mesh_.tets[t]) out.cavity_vertices.push_back(v);
+        std::sort(out.cavity_vertices.begin(), out.cavity_vertices.end());
+        out.cavity_vertices.erase(
+            std::unique(out.cavity_vertices.begin(), out.cavity_vertices.end()),
+            out.cavity_vertices.end());
+        return true;
+    }
+
+    /// Drops each face met twice with opposite orientations (a tet face the change exposes as
+    /// a new surface triangle). False when a face repeats any other way (the cavity folds).
+    static bool cancel_opposite_faces(std::vector<Triangle>& faces)
+    {
+        std::vector<std::pair<Key, int>> keyed;
+        keyed.reserve(faces.size());
+        for (std::size_t i = 0; i < faces.size(); ++i)
+            keyed.emplace_back(sorted_triple(faces[i]), static_cast<int>(i));
+        std::sort(keyed.begin(), keyed.end());
+        std::vector<char> drop(faces.size(), 0);
+        for (std::size_t i = 0; i < keyed.size();)
+        {
+            std::size_t j = i;
+            while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+            if (j - i > 2) return false;
+            if (j - i == 2)
+            {
+                const Triangle& p = faces[keyed[i].second];
+                const Triangle& q = faces[keyed[i + 1].second];
+                // opposite: q is p reversed up to rotation
+                const bool opposite = (q[0] == p[0] && q[1] == p[2] && q[2] == p[1]) ||
+                                      (q[0] == p[1] && q[1] == p[0] && q[2] == p[2]) ||
+                                      (q[0] == p[2] && q[1] == p[1] && q[2] == p[0]);
+                if (!opposite) return false;
+                drop[keyed[i].second] = drop[keyed[i + 1].second] = 1;
+            }
+            i = j;
+        }
+        std::size_t k = 0;
+        for (std::size_t i = 0; i < faces.size(); ++i)
+            if (!drop[i]) faces[k++] = faces[i];
+        faces.resize(k);
+        return true;
+    }
+
+    /// An edge of the new triangles that the old ones do not have must not be an edge of a tet
+    /// kept outside the cavity: the boundary would pinch there (advancing_front.md §(d)).
+    bool new_edges_are_new(const CavityChange& change, const std::vector<int>& cavity) const
+    {
+        std::vector<std::array<int, 2>> old_edges;
+        for (const auto& r : change.removed)
+            for (int s = 0; s < 3; ++s)
+                old_edges.push_back({std::min(r.vertices[s], r.vertices[(s + 1) % 3]),
+                                     std::max(r.vertices[s], r.vertices[(s + 1) % 3])});
+        std::sort(old_edges.begin(), old_edges.end());
+        const int known = static_cast<int>(vertex_tet_.size());
+        for (const auto& a : change.added)
+            for (int s = 0; s < 3; ++s)
+            {
+                const int u = std::min(a.vertices[s], a.vertices[(s + 1) % 3]);
+                const int w = std::max(a.vertices[s], a.vertices[(s + 1) % 3]);
+                if (w >= known) continue;  // the split's new vertex: all its edges are new
+                if (std::binary_search(old_edges.begin(), old_edges.end(),
+                                       std::array<int, 2>{u, w}))
+                    continue;
+                ball(u, scratch_);
+                for (int t : scratch_)
+                    if (local_index(mesh_, t, w) >= 0 &&
+                        !std::binary_search(cavity.begin(), cavity.end(), t))
+                        return false;
+            }
+        return true;
+    }
+
+    void commit_pending(int operation, const std::array<int, 3>& key)
+    {
+        assert(pending_.operation == operation && pending_.key == key);
+        (void)operation;
+        (void)key;
+        commit(operation);
+    }
+
+    void commit(int operation)
+    {
+        Pending p = std::move(pending_);
+        pending_ = Pending{};
+        const std::vector<int> ids = commit_cavity(mesh_, p.fill);
+        if (stats_)
+        {
+            ++stats_->done[operation];
+            if (!p.fill.tets.empty()) stats_->fills.add(p.fill);
+        }
+        vertex_tet_.resize(mesh_.num_vertices(), -1);
+        for (int v : p.cavity_vertices) vertex_tet_[v] = -1;
+        for (int id : ids)
+            for (int v : mesh_.tets[id]) vertex_tet_[v] = id;
+        // the vertex a collapse or removal takes away is in no tet any more
+        const bool takes_vertex =
+            operation == MirrorStatistics::Collapse || operation == MirrorStatistics::Remove;
+        for (int v : p.cavity_vertices)
+            if (vertex_tet_[v] < 0 && !(takes_vertex && v == p.key[0]))
+                repair_vertex_tet(v, p.cavity_vertices);
+        for (const auto& r : p.removed) remove_triangle(r.vertices);
+        for (const auto& a : p.added) add_triangle(a);
+    }
+
+    /// A vertex of the cavity in none of the new tets (a flip over one tet, or the removed
+    /// vertex): a live tet from a neighbour's ball that still holds it, else any, else none.
+    void repair_vertex_tet(int v, const std::vector<int>& around)
+    {
+        for (int u : around)
+        {
+            if (u == v || vertex_tet_[u] < 0) continue;
+            ball(u, scratch_);
+            for (int t : scratch_)
+                if (local_index(mesh_, t, v) >= 0)
+                {
+                    vertex_tet_[v] = t;
+                    return;
+                }
+        }
+        // No neighbour's ball reaches it (its cavity neighbours left too): any live tet.
+        for (int t = 0; t < mesh_.num_tet_slots(); ++t)
+            if (!mesh_.is_dead(t) && local_index(mesh_, t, v) >= 0)
+            {
+                vertex_tet_[v] = t;
+                return;
+            }
+    }
+
+    void remove_triangle(const Triangle& t)
+    {
+        const auto it = triangle_index_.find(sorted_triple(t));
+        if (it == triangle_index_.end()) return;
+        const int i = it->second, last = static_cast<int>(mesh_.triangles.size()) - 1;
+        triangle_index_.erase(it);
+        if (i != last)
+        {
+            mesh_.triangles[i] = mesh_.triangles[last];
+            mesh_.triangle_refs[i] = mesh_.triangle_refs[last];
+            triangle_index_[sorted_triple(mesh_.triangles[i])] = i;
+        }
+        mesh_.triangles.pop_back();
+        mesh_.triangle_refs.pop_back();
+    }
+
+    void add_triangle(const RefTriangle& t)
+    {
+        triangle_index_[sorted_triple(t.vertices)] = static_cast<int>(mesh_.triangles.size());
+        mesh_.triangles.push_back(t.vertices);
+        mesh_.triangle_refs.push_back(t.ref);
+    }
+
+    TetMesh& mesh_;
+    BoundaryMap& map_;
+    MirrorOptions options_;
+    MirrorStatistics* stats_;
+    std::vector<int> vertex_tet_;
+    std::unordered_map<Key, int, KeyHash> triangle_index_;
+    OpenMesh::FPropHandleT<int> face_ref_;
+    OpenMesh::VPropHandleT<surface::VertexClass> vertex_class_;
+    Pending pending_;
+    mutable std::vector<int> scratch_;
+};
+
+}  // namespace
+
+volume::CavityOptions mirror_cavity_options()
+{
+    volume::CavityOptions options;
+    options.front.max_attempts = 500;
+    options.front.max_retreat_rounds = 1;
+    return options;
+}
+
+std::string MirrorStatistics::format() const
+{
+    static const char* names[kOperations] = {"move", "split", "collapse", "flip", "remove"};
+    std::string out = "mirror:";
+    char part[96];
+    for (int k = 0; k < kOperations; ++k)
+    {
+        std::snprintf(part, sizeof part, " %s %ld (refused %ld)", names[k], done[k], refused[k]);
+        out += part;
+    }
+    return out + "\n" + fills.format() + "\n";
+}
+
+surface::SurfaceHooks make_hooks(TetMesh& mesh, BoundaryMap& map, const MirrorOptions& options,
+                                 MirrorStatistics* stats)
+{
+    auto mirror = std::make_shared<Mirror>(mesh, map, options, stats);
+    return mirror->hooks(mirror);
+}
+
+}  // namespace hdimesh::coupling

@@ -1,0 +1,187 @@
+// The boundary map and the mirror: the surface of a tet mesh, changed by the surface
+// operators, stays the tets' boundary (check_consistency) and the tets stay valid (check_mesh)
+// after every operation.
+
+#include <doctest/doctest.h>
+
+#include <random>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include "coupling/boundary_map.h"
+#include "coupling/consistency.h"
+#include "coupling/mirror.h"
+#include "fixtures.h"
+#include "surface/features.h"
+#include "surface/local_ops.h"
+#include "surface/surface_model.h"
+#include "volume/check.h"
+#include "volume/tet_io.h"
+#pragma GCC diagnostic pop
+
+using namespace hdimesh;
+using namespace hdimesh::coupling;
+using volume::TetMesh;
+
+namespace
+{
+
+/// The tets with the surface's edges, ridges, corners and classes written back, checked.
+std::string tet_violations(const BoundaryMap& map, const TetMesh& mesh)
+{
+    TetMesh copy = mesh;
+    write_back(map, copy);
+    copy.compact();
+    const auto violations = volume::check_mesh(copy);
+    return violations.empty() ? std::string() : volume::format_violations(violations, 5);
+}
+
+std::string consistency(const BoundaryMap& map, const TetMesh& mesh)
+{
+    std::string out;
+    for (const auto& line : check_consistency(map, mesh)) out += line + "\n";
+    return out;
+}
+
+/// The surface of `mesh` classified by the feature detector, its classes given to the tets.
+BoundaryMap classified_boundary(TetMesh& mesh)
+{
+    BoundaryMap map = extract_boundary(mesh);
+    surface::detect_features(map.surface);
+    write_back(map, mesh);
+    return map;
+}
+
+/// Random surface operations (split, collapse, flip, shift, vertex removal) on the surface of
+/// `mesh`, mirrored; both checks after every operation done. Returns the count done per kind.
+MirrorStatistics fuzz(TetMesh& mesh, int operations, std::uint32_t seed, double max_length)
+{
+    BoundaryMap map = classified_boundary(mesh);
+    const surface::SurfaceMesh input = map.surface;
+    const surface::SurfaceModel model(input);
+    MirrorStatistics stats;
+    surface::OperatorContext ctx(map.surface, model, make_hooks(mesh, map, {}, &stats));
+    std::mt19937 rng(seed);
+    auto& s = map.surface;
+    for (int i = 0; i < operations; ++i)
+    {
+        const int kind = static_cast<int>(rng() % 5);
+        surface::OpResult result;
+        if (kind == 0 || kind == 1 || kind == 2)
+        {
+            const auto e = s.edge_handle(static_cast<int>(rng() % s.n_edges()));
+            if (s.status(e).deleted()) continue;
+            if (kind == 0) result = surface::try_split(ctx, e);
+            if (kind == 1)
+                result = surface::try_collapse(ctx, s.halfedge_handle(e, rng() % 2), max_length);
+            if (kind == 2) result = surface::try_flip(ctx, e, surface::FlipGoal::Quality);
+        }
+        else
+        {
+            const auto v = s.vertex_handle(static_cast<int>(rng() % s.n_vertices()));
+            if (s.status(v).deleted()) continue;
+            result = kind == 3 ? surface::shift_vertex(ctx, v) : surface::try_remove_vertex(ctx, v);
+        }
+        if (!result.done()) continue;
+        INFO("operation ", i, " of kind ", kind);
+        REQUIRE(consistency(map, mesh) == "");
+        REQUIRE(tet_violations(map, mesh) == "");
+    }
+    return stats;
+}
+
+}  // namespace
+
+TEST_CASE("the boundary of a tet mesh maps onto a surface and back, vertex for vertex")
+{
+    //   a 2×2×2 cube of Kuhn tets: 8 boundary squares a side, 48 boundary triangles, one
+    //   interior vertex (the centre) left off the surface
+    TetMesh mesh = fixtures::box_mesh(2);
+    const std::size_t listed = mesh.triangles.size();
+    CHECK(coupled_surface_refusal(mesh) == "");
+    BoundaryMap map = classified_boundary(mesh);
+    CHECK(map.surface.n_faces() == listed);
+    CHECK(map.surface.n_vertices() == 26);
+    CHECK(consistency(map, mesh) == "");
+    CHECK(tet_violations(map, mesh) == "");
+    const auto back = map.tet_to_surface(mesh.num_vertices());
+    CHECK(!back[13].is_valid());  // the centre (1,1,1)
+    CHECK(mesh.corners.size() == 8);
+}
+
+TEST_CASE("two tet refs sharing a face make an interface the coupled pass refuses")
+{
+    TetMesh mesh = fixtures::box_mesh(2);
+    mesh.tet_refs[0] = 7;
+    CHECK(coupled_surface_refusal(mesh) == "interfaces between tet refs");
+}
+
+TEST_CASE("a split, a collapse and a flip on a cube face are mirrored into the tets")
+{
+    //   face z = 0 of the 2×2×2 cube, seen from below (outward):
+    //
+    //   (0,2)--(1,2)--(2,2)        split the centre's diagonal, collapse the new vertex back
+    //     | \    | \    |          onto the centre, flip a diagonal of the face: after each,
+    //     |   \  |   \  |          the surface is the tets' boundary and the tets are valid
+    //   (0,1)--(1,1)--(2,1)
+    //     | \    | \    |
+    //     |   \  |   \  |
+    //   (0,0)--(1,0)--(2,0)
+    TetMesh mesh = fixtures::box_mesh(2);
+    const double volume = mesh.total_volume();
+    BoundaryMap map = classified_boundary(mesh);
+    const surface::SurfaceMesh input = map.surface;
+    const surface::SurfaceModel model(input);
+    MirrorStatistics stats;
+    surface::OperatorContext ctx(map.surface, model, make_hooks(mesh, map, {}, &stats));
+    auto& s = map.surface;
+    surface::VertexHandle centre;
+    for (auto v : s.vertices())
+        if ((s.point(v) - surface::Vec3d(0.5, 0.5, 0)).norm() < 1e-12) centre = v;
+    REQUIRE(centre.is_valid());
+    surface::EdgeHandle diagonal;
+    for (auto h : s.voh_range(centre))
+    {
+        const auto p = s.point(s.to_vertex_handle(h));
+        if (std::abs(p[2]) < 1e-12 && std::abs(p[0] - 0.5) > 0.1 && std::abs(p[1] - 0.5) > 0.1)
+            diagonal = s.edge_handle(h);
+    }
+    REQUIRE(diagonal.is_valid());
+
+    const auto split = surface::try_split(ctx, diagonal);
+    REQUIRE(split.done());
+    CHECK(consistency(map, mesh) == "");
+    CHECK(tet_violations(map, mesh) == "");
+    CHECK(mesh.total_volume() == doctest::Approx(volume));
+
+    const auto back = s.find_halfedge(split.vertex, centre);
+    REQUIRE(back.is_valid());
+    REQUIRE(surface::try_collapse(ctx, back, 1.0).done());
+    CHECK(consistency(map, mesh) == "");
+    CHECK(tet_violations(map, mesh) == "");
+    CHECK(mesh.total_volume() == doctest::Approx(volume));
+    CHECK(stats.done[MirrorStatistics::Split] == 1);
+    CHECK(stats.done[MirrorStatistics::Collapse] == 1);
+}
+
+TEST_CASE("random surface operations on the sphere480 boundary keep both meshes consistent")
+{
+    TetMesh mesh = volume::read_mesh(fixtures::data_path("sphere480.mesh"));
+    mesh.build_adjacency();
+    const MirrorStatistics stats = fuzz(mesh, 1500, 11, 0.5);
+    MESSAGE(stats.format());
+    for (int k = 0; k < MirrorStatistics::kOperations; ++k)
+        if (k != MirrorStatistics::Remove) CHECK(stats.done[k] > 0);
+}
+
+TEST_CASE("random surface operations on a box keep its ridges, corners and both meshes")
+{
+    TetMesh mesh = fixtures::box_mesh(4, 0.2, 3);
+    const double volume = mesh.total_volume();
+    const MirrorStatistics stats = fuzz(mesh, 1500, 5, 0.4);
+    MESSAGE(stats.format());
+    CHECK(stats.done[MirrorStatistics::Split] > 0);
+    CHECK(stats.done[MirrorStatistics::Collapse] > 0);
+    // faces stay planar and corners fixed: the volume is the cube's
+    CHECK(mesh.total_volume() == doctest::Approx(volume));
+}
