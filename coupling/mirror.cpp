@@ -150,6 +150,17 @@ private:
         return -1;
     }
 
+    /// The tets around edge (a, b) into `tets`; false when no tet holds it (or the walk fails).
+    bool shell_of(int a, int b, std::vector<int>& tets) const
+    {
+        const int seed = tet_with_edge(a, b);
+        if (seed < 0) return false;
+        EdgeShell shell;
+        if (!edge_shell(mesh_, seed, a, b, shell)) return false;
+        tets = std::move(shell.tets);
+        return true;
+    }
+
     // --- move: no cavity, only the ball's shapes
     bool allow_move(VertexHandle sv, const surface::Vec3d& p)
     {
@@ -180,10 +191,8 @@ private:
     {
         const HalfedgeHandle h = s.halfedge_handle(e, 0);
         const int a = tet(s.from_vertex_handle(h)), b = tet(s.to_vertex_handle(h));
-        const int seed = tet_with_edge(a, b);
-        if (seed < 0) return false;
-        EdgeShell shell;
-        if (!edge_shell(mesh_, seed, a, b, shell)) return false;
+        CavityChange change;
+        if (!shell_of(a, b, change.tets)) return false;
 
         Pending next;
         next.operation = MirrorStatistics::Split;
@@ -193,8 +202,6 @@ private:
         // The new vertex is the mesh's next id while the fill is computed (the filler reads
         // points only), and is taken out again until the commit.
         const int m = mesh_.add_vertex(next.new_point, 0, VertexClass::Surface);
-        CavityChange change;
-        change.tets = shell.tets;
         for (const HalfedgeHandle side : {h, s.opposite_halfedge_handle(h)})
         {
             const FaceHandle f = s.face_handle(side);
@@ -263,15 +270,11 @@ private:
         const int a = tet(s.from_vertex_handle(h)), b = tet(s.to_vertex_handle(h));
         const int c = tet(s.to_vertex_handle(s.next_halfedge_handle(h)));
         const int d = tet(s.to_vertex_handle(s.next_halfedge_handle(o)));
-        const int seed = tet_with_edge(a, b);
-        if (seed < 0) return false;
-        EdgeShell shell;
-        if (!edge_shell(mesh_, seed, a, b, shell)) return false;
+        CavityChange change;
+        if (!shell_of(a, b, change.tets)) return false;
         Pending next;
         next.operation = MirrorStatistics::Flip;
         next.key = {a, b, -1};
-        CavityChange change;
-        change.tets = shell.tets;
         const RefTriangle t0 = surface_triangle(s, f0), t1 = surface_triangle(s, f1);
         change.removed = {t0, t1};
         change.added = {{{c, a, d}, t0.ref}, {{d, b, c}, t1.ref}};

@@ -178,7 +178,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         // narrower than h would otherwise be cut by chords (the Hausdorff target).
         SizingOptions capped = settings.sizing;
         capped.hmax = settings.sizing.hsiz;
-        if (!(capped.hausd > 0.0)) capped.hausd = settings.uniform_hausd_fraction * result.diagonal;
+        capped.hausd = distance_tolerance(settings, result.diagonal);
         std::vector<double> local = curvature_sizes(input, model, capped);
         // Where the tolerance needs edges too short for the size on a few places, the size
         // wins (a short-edge budget); on much of the surface, the tolerance does (Mmg's hausd
@@ -281,16 +281,16 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         // is farthest from the output between its vertices. With a uniform size too: the
         // short-edge budget then goes to those creases (docs/tuning.md). Not on a smooth
         // model: a chord's midpoint is off it.
-        for (auto e : input.edges())
-        {
-            if (model.has_smooth_projection()) break;
-            const auto h = input.halfedge_handle(e, 0);
-            const Vec3d mid = 0.5 * (input.point(input.from_vertex_handle(h)) +
-                                     input.point(input.to_vertex_handle(h)));
-            options.tolerance.model_points.push_back(mid);
-            options.tolerance.model_point_smooth.push_back(
-                input.property(input_curve, e) == kNoCurve && !input.is_boundary(e));
-        }
+        if (!model.has_smooth_projection())
+            for (auto e : input.edges())
+            {
+                const auto h = input.halfedge_handle(e, 0);
+                const Vec3d mid = 0.5 * (input.point(input.from_vertex_handle(h)) +
+                                         input.point(input.to_vertex_handle(h)));
+                options.tolerance.model_points.push_back(mid);
+                options.tolerance.model_point_smooth.push_back(
+                    input.property(input_curve, e) == kNoCurve && !input.is_boundary(e));
+            }
     }
     if (!settings.refine_to_tolerance) options.tolerance.tolerance = 0.0;
     options.tolerance.reference_size = coarse ? 0.0 : settings.sizing.hsiz;
