@@ -162,8 +162,9 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
             // A few splits a pass that no longer decrease: the long edges left are where a split
             // does not shorten them (beside a kept triangle longer than the size); more passes only
             // stack slivers there.
+            // (this call's passes only: the second call follows a surface pass, not these)
             const int n = static_cast<int>(report.passes.size());
-            if (n > kStallPasses &&
+            if (n - first + 1 > kStallPasses &&
                 row.edges_split <= kStallFraction * static_cast<double>(mesh.num_live_tets()) &&
                 row.edges_split >= report.passes[n - 1 - kStallPasses].edges_split)
             {
