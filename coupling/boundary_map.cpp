@@ -9,6 +9,7 @@
 
 #include "common/errors.h"
 #include "volume/boundary.h"
+#include "volume/surface_check.h"
 
 namespace hdimesh::coupling
 {
@@ -49,23 +50,12 @@ std::string coupled_surface_refusal(const TetMesh& mesh)
     for (const auto& t : mesh.triangles)
         if (!std::binary_search(keys.begin(), keys.end(), sorted_triple(t)))
             return "triangles inside the volume";
-    // each boundary edge in exactly two boundary faces
-    std::vector<std::array<int, 2>> edges;
-    edges.reserve(3 * faces.size());
-    for (const auto& f : faces)
-        for (int s = 0; s < 3; ++s)
-            edges.push_back({std::min(f[s], f[(s + 1) % 3]), std::max(f[s], f[(s + 1) % 3])});
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 0; i < edges.size();)
-    {
-        std::size_t j = i;
-        while (j < edges.size() && edges[j] == edges[i]) ++j;
-        if (j - i != 2)
-            return "a boundary edge (" + std::to_string(edges[i][0] + 1) + ", " +
-                   std::to_string(edges[i][1] + 1) + ") in " + std::to_string(j - i) +
-                   " boundary faces";
-        i = j;
-    }
+    // a closed 2-manifold: every edge in two faces, no pinched vertex (OpenMesh takes neither)
+    SurfaceCheckOptions topology_only;
+    topology_only.check_self_intersections = false;  // the faces of valid tets do not cross
+    const std::vector<SurfaceDefect> defects =
+        check_closed_surface(mesh.points, faces, topology_only);
+    if (!defects.empty()) return format_surface_defects(defects, "the tets' boundary", 1);
     return {};
 }
 

@@ -116,6 +116,21 @@ TEST_CASE("two tet refs sharing a face make an interface the coupled pass refuse
     CHECK(coupled_surface_refusal(mesh) == "interfaces between tet refs");
 }
 
+TEST_CASE("two tets touching at one vertex pinch the boundary: the coupled pass refuses them")
+{
+    //        2   5
+    //       /|\ /|\        tets (0,1,2,3) and (3,4,5,6) share vertex 3 only: its boundary
+    //      0-+-3-+-6       faces make two fans there, which no manifold surface holds
+    //       \|/ \|/
+    //        1   4
+    // (vertices 2 and 5 lifted to z = 1, so both tets have volume; listed positive)
+    const std::vector<volume::Vec3> points = {{0, 0, 0},  {1, -1, 0}, {1, 1, 1}, {2, 0, 0},
+                                              {3, -1, 0}, {3, 1, 1},  {4, 0, 0}};
+    TetMesh mesh = fixtures::mesh_from_tets(points, {{1, 0, 2, 3}, {4, 3, 5, 6}});
+    const std::string refusal = coupled_surface_refusal(mesh);
+    CHECK(refusal.find("vertex 4") != std::string::npos);  // named 1-based
+}
+
 TEST_CASE("a split, a collapse and a flip on a cube face are mirrored into the tets")
 {
     //   face z = 0 of the 2×2×2 cube, seen from below (outward):
