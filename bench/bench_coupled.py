@@ -7,7 +7,8 @@ surfremesh on the same surfaces, refining (1 % of the diagonal) and coarsening (
 
 For each model X, DIR/X.msh is the tet mesh and DIR/X.obj its input surface. Boundary columns
 come from scripts/surfstat.py against the input surface, volume columns from
-scripts/meshstat.py --hsiz h; CPU is adapt's own "cpu: total" (parse, read and write excluded).
+scripts/meshstat.py --hsiz h; CPU is adapt's own "cpu: total" (parse, read and write excluded);
+the checker column is adapt --check's verdict on its output (volume/check.h).
 """
 import argparse, json, os, re, subprocess, sys, tempfile
 
@@ -71,8 +72,8 @@ def main():
     work = a.keep or tempfile.mkdtemp(prefix='bench_coupled_')
     os.makedirs(work, exist_ok=True)
     print('| run | tets | min Qe | % Qe >= 0.5 | % Qt >= 0.66 | bd triangles | bd min angle | '
-          'bd % Qe >= 0.7 | bd % Qt >= 0.66 | Hausdorff / diag | CPU |')
-    print('|---|---|---|---|---|---|---|---|---|---|---|')
+          'bd % Qe >= 0.7 | bd % Qt >= 0.66 | Hausdorff / diag | CPU | checker |')
+    print('|---|---|---|---|---|---|---|---|---|---|---|---|')
     for model in a.models.split(','):
         vol = os.path.join(a.volumes, model + '.msh')
         ref = os.path.join(a.surfaces, model + '.obj')
@@ -83,17 +84,19 @@ def main():
             tag = '%s %g %%' % (model, 100 * frac)
             out = os.path.join(work, '%s_%g.mesh' % (model, frac))
             run = subprocess.run([os.path.join(a.build, 'apps/adapt'), vol, '--hsiz', repr(h),
-                                  '-o', out] + a.extra.split(), capture_output=True, text=True)
+                                  '-o', out, '--check'] + a.extra.split(),
+                                 capture_output=True, text=True)
             if run.returncode != 0:
                 print('| adapt %s | failed: %s |' % (tag, run.stderr.strip()[-200:]))
                 continue
             obj = out[:-5] + '_boundary.obj'
             boundary_obj(out, obj)
             v, s = meshstat(out, h), surfstat(obj, ref, h)
-            print('| adapt %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s |' % (
+            checker = 'clean' if 'check output: clean' in run.stdout else 'VIOLATIONS'
+            print('| adapt %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | %s |' % (
                 tag, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'],
                 s['n_faces'], s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'],
-                s['hausdorff_rel'], cpu_of(run.stdout)), flush=True)
+                s['hausdorff_rel'], cpu_of(run.stdout), checker), flush=True)
             if s['euler'] != s['ref_topology']['euler'] or s['components'] != s['ref_topology']['components']:
                 print('|  | topology changed: euler %d, components %d |' % (s['euler'], s['components']))
             if a.no_surfremesh: continue
@@ -103,7 +106,7 @@ def main():
                 capture_output=True, text=True)
             cpu = sum(float(x) for x in srun.stderr.strip().splitlines()[-1].split('+'))
             s = surfstat(sobj, ref, h)
-            print('| surfremesh %s | — | — | — | — | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s |' % (
+            print('| surfremesh %s | — | — | — | — | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | — |' % (
                 tag, s['n_faces'], s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'],
                 s['hausdorff_rel'], cpu), flush=True)
 
