@@ -14,6 +14,8 @@
 #include "common/stage_timer.h"
 #include "coupling/boundary_map.h"
 #include "surface/features.h"
+#include "surface/hdi_projection.h"
+#include "surface/surface_model.h"
 #include "surface/surface_quality.h"
 #include "volume/reorder.h"
 #include "volume/size_fields.h"
@@ -180,6 +182,8 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
 
     // The surface pass on the input's model, once the tets are at the field's size near the
     // boundary: the tets follow every change (the mirror).
+    std::optional<surface::SurfaceModel> surface_model;  // the surface pass's, kept for the
+                                                         // splits after it
     std::unique_ptr<BackgroundMeshSize> graded;
     const SizeField* volume_field = &field;
     if (input)
@@ -193,13 +197,23 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
         // One model on both sides: smooth vertices go onto the projection's HDI surface where
         // the input's facets are too coarse for the tolerance, trusted as far from their chords
         // as those are from the smooth surface; elsewhere the facets are the finer model.
-        settings.hdi_model = &projector->model();
-        settings.hdi_projection.max_deviation_edge_fraction = 0.25;
-        settings.hdi_projection.coarse_facet_tolerance =
+        surface_model.emplace(input->surface);
+        surface::HdiProjectionOptions hdi = settings.hdi_projection;
+        hdi.max_deviation_edge_fraction = 0.25;
+        hdi.coarse_facet_tolerance =
             surface::distance_tolerance(settings, surface::bounding_box_diagonal(input->surface));
+        surface::attach_hdi_projection(*surface_model, projector->model(), hdi);
+        settings.model = &*surface_model;
         const surface::SurfaceHooks hooks =
             make_hooks(mesh, boundary, options.mirror, &report.mirror);
         surface::remesh_surface(boundary.surface, settings, hooks);
+        // The splits the refinement still makes on the boundary land on the same model.
+        projector->set_surface_target([&model = *surface_model](const Vec3& p) {
+            const surface::ProjectedPoint q = model.project(
+                surface::Vec3d(p[0], p[1], p[2]), surface::VertexClass::Smooth, surface::kNoCurve);
+            return q.ok ? std::optional<Vec3>(Vec3(q.point[0], q.point[1], q.point[2]))
+                        : std::nullopt;
+        });
         write_back(boundary, mesh);
         // The sizes the surface reached (the field's, or finer where the tolerance asked),
         // by tet vertex across the compaction.

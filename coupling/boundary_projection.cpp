@@ -96,11 +96,23 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
         if (seeds[v] < 0) continue;  // a vertex no tet uses has nothing to keep valid
         vertex_ball(mesh, seeds[v], v, ball);
         const Vec3 from = mesh.points[v];
-        const hdi::Projection target =
-            cls == VertexClass::Ridge ? model_->project_to_ridge(from) : model_->project(from);
+        hdi::Projection target;
+        const bool exact = cls == VertexClass::Surface && static_cast<bool>(surface_target_);
+        if (exact)
+        {
+            const std::optional<Vec3> to = surface_target_(from);
+            target.point = to.value_or(from);
+            target.status = to ? hdi::ProjectionStatus::Ok : hdi::ProjectionStatus::Failed;
+        }
+        else
+        {
+            target =
+                cls == VertexClass::Ridge ? model_->project_to_ridge(from) : model_->project(from);
+        }
+        // (the far-move test guards against a fit gone wrong, not the target's exact foot)
         if (target.status == hdi::ProjectionStatus::Failed ||
-            (target.point - from).norm() >
-                options_.max_move_fraction * shortest_edge(mesh, ball, v))
+            (!exact && (target.point - from).norm() >
+                           options_.max_move_fraction * shortest_edge(mesh, ball, v)))
         {
             ++report.failed;
             continue;

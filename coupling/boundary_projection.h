@@ -3,7 +3,9 @@
 // the model is built once from the input's boundary triangles; after every refinement pass
 // the new boundary vertices are projected onto it, never inverting a tet.
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "hdi/features.h"
@@ -54,9 +56,17 @@ public:
 
     const hdi::HdiSurface& model() const { return *model_; }
 
+    /// Where a Surface vertex goes instead of the HDI model (empty optional: nowhere): the
+    /// model a surface pass placed the others on, once it has run (its facets where they are
+    /// finer than the HDI fit), so that later splits land on the same geometry. Its feet are
+    /// taken however far (max_move_fraction guards the fit only); the tets still shorten them.
+    using SurfaceTarget = std::function<std::optional<volume::Vec3>(const volume::Vec3&)>;
+    void set_surface_target(SurfaceTarget target) { surface_target_ = std::move(target); }
+
 private:
     ProjectionOptions options_;
     std::unique_ptr<hdi::HdiSurface> model_;
+    SurfaceTarget surface_target_;
 };
 
 }  // namespace hdimesh::coupling

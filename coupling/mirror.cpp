@@ -24,6 +24,9 @@ namespace
 
 using Key = std::array<int, 3>;
 
+constexpr int kMaxGrowRounds = 4;   // a refused cavity grows at most this many times
+constexpr int kMaxGrownTets = 400;  // and to at most this many tets
+
 struct KeyHash
 {
     std::size_t operator()(const Key& k) const
@@ -47,6 +50,9 @@ struct CavityChange
 {
     std::vector<int> tets;
     std::vector<RefTriangle> removed, added;
+    /// The worst Qe of the tets before the change, when their points no longer show it (a
+    /// move, simulated at the new place); < 0: from the tets.
+    double quality_before = -1.0;
 };
 
 class Mirror
@@ -68,8 +74,8 @@ public:
     surface::SurfaceHooks hooks(const std::shared_ptr<Mirror>& self) const
     {
         surface::SurfaceHooks h;
-        h.allow_move = [self](const SurfaceMesh&, VertexHandle v, const surface::Vec3d& p) {
-            return self->count(MirrorStatistics::Move, self->allow_move(v, p));
+        h.allow_move = [self](const SurfaceMesh& s, VertexHandle v, const surface::Vec3d& p) {
+            return self->count(MirrorStatistics::Move, self->allow_move(s, v, p));
         };
         h.on_move = [self](const SurfaceMesh& s, VertexHandle v, const surface::Vec3d&) {
             self->commit_move(v, s.point(v));
@@ -112,6 +118,7 @@ private:
         std::array<int, 3> key{};  // the operation's tet vertices
         CavityFill fill;
         std::vector<int> cavity_vertices;
+        std::vector<int> swallowed;  // interior vertices a grown cavity takes away
         std::vector<RefTriangle> removed, added;
         bool adds_vertex = false;
         Vec3 new_point = Vec3::Zero();
@@ -119,9 +126,20 @@ private:
 
     int tet(VertexHandle v) const { return map_.tet_vertex_of(v); }
 
+    /// Records why the operation being simulated is refused; returns false for `return`.
+    bool refuse(MirrorStatistics::Refusal why) const
+    {
+        refusal_ = why;
+        return false;
+    }
+
     bool count(int operation, bool allowed)
     {
-        if (!allowed && stats_) ++stats_->refused[operation];
+        if (!allowed && stats_)
+        {
+            ++stats_->refused[operation];
+            ++stats_->refusals[refusal_];
+        }
         return allowed;
     }
 
@@ -154,36 +172,64 @@ private:
     bool shell_of(int a, int b, std::vector<int>& tets) const
     {
         const int seed = tet_with_edge(a, b);
-        if (seed < 0) return false;
+        if (seed < 0) return refuse(MirrorStatistics::NoShell);
         EdgeShell shell;
-        if (!edge_shell(mesh_, seed, a, b, shell)) return false;
+        if (!edge_shell(mesh_, seed, a, b, shell)) return refuse(MirrorStatistics::NoShell);
         tets = std::move(shell.tets);
         return true;
     }
 
-    // --- move: no cavity, only the ball's shapes
-    bool allow_move(VertexHandle sv, const surface::Vec3d& p)
+    // --- move: the ball's shapes, else its cavity refilled around the vertex's new place
+    bool allow_move(const SurfaceMesh& s, VertexHandle sv, const surface::Vec3d& p)
     {
         const int v = tet(sv);
         const Vec3 to(p[0], p[1], p[2]);
+        pending_ = Pending{};
         ball(v, scratch_);
         double worst_before = 1.0, worst_after = 1.0;
+        bool inverted = false;
         for (int t : scratch_)
         {
             std::array<Vec3, 4> x;
             for (int k = 0; k < 4; ++k) x[k] = mesh_.points[mesh_.tets[t][k]];
             worst_before = std::min(worst_before, tet_quality(x[0], x[1], x[2], x[3]));
             x[local_index(mesh_, t, v)] = to;
-            if (!(signed_volume6(x[0], x[1], x[2], x[3]) > 0.0)) return false;
+            if (!(signed_volume6(x[0], x[1], x[2], x[3]) > 0.0)) inverted = true;
             worst_after = std::min(worst_after, tet_quality(x[0], x[1], x[2], x[3]));
         }
-        return worst_after >= std::min(options_.min_quality, worst_before);
+        if (!inverted && worst_after >= std::min(options_.min_quality, worst_before)) return true;
+        // The ball cannot follow: its tets are taken out and the cavity, its surface triangles
+        // at the new place, refilled (a coarse layer of tets under a surface being smoothed).
+        Pending next;
+        next.operation = MirrorStatistics::Move;
+        next.key = {v, -1, -1};
+        CavityChange change;
+        change.tets = scratch_;
+        change.quality_before = worst_before;
+        for (auto f : s.vf_range(sv)) change.removed.push_back(surface_triangle(s, f));
+        change.added = change.removed;
+        const Vec3 from = mesh_.points[v];
+        mesh_.points[v] = to;  // the filler reads points only
+        const bool ok = simulate(change, next);
+        mesh_.points[v] = from;
+        if (!ok)
+            return refuse(inverted ? MirrorStatistics::Inverted : MirrorStatistics::UnderFloor);
+        pending_ = std::move(next);
+        return true;
     }
 
     void commit_move(VertexHandle sv, const surface::Vec3d& p)
     {
         mesh_.points[tet(sv)] = Vec3(p[0], p[1], p[2]);
-        if (stats_) ++stats_->done[MirrorStatistics::Move];
+        if (pending_.operation == MirrorStatistics::Move)
+        {
+            assert(pending_.key[0] == tet(sv));
+            commit(MirrorStatistics::Move);  // the refilled ball
+        }
+        else if (stats_)
+        {
+            ++stats_->done[MirrorStatistics::Move];
+        }
     }
 
     // --- the cavity operations
@@ -266,7 +312,7 @@ private:
         // (a, b, c) and (b, a, d) become (c, a, d) and (d, b, c)
         const HalfedgeHandle h = s.halfedge_handle(e, 0), o = s.opposite_halfedge_handle(h);
         const FaceHandle f0 = s.face_handle(h), f1 = s.face_handle(o);
-        if (!f0.is_valid() || !f1.is_valid()) return false;
+        if (!f0.is_valid() || !f1.is_valid()) return refuse(MirrorStatistics::NoShell);
         const int a = tet(s.from_vertex_handle(h)), b = tet(s.to_vertex_handle(h));
         const int c = tet(s.to_vertex_handle(s.next_halfedge_handle(h)));
         const int d = tet(s.to_vertex_handle(s.next_halfedge_handle(o)));
@@ -305,26 +351,49 @@ private:
         return true;
     }
 
-    /// The cavity's faces, its fill and the checks of the fill; `out` gets the fill. False when
-    /// the tets cannot follow the change.
+    /// The cavity's fill and its checks; `out` gets the fill. False when the tets cannot follow
+    /// the change. A cavity whose fill fails, or whose new surface edge is an edge of a kept
+    /// tet, grows by the tets in the way (a layer across its inner faces, or that edge's
+    /// shell) and is tried again: the tets right under a coarse boundary are often too few.
     bool simulate(const CavityChange& change, Pending& out) const
     {
         std::vector<int> cavity = change.tets;
         std::sort(cavity.begin(), cavity.end());
+        cavity.erase(std::unique(cavity.begin(), cavity.end()), cavity.end());
+        std::vector<int> grow;
+        for (int round = 0;; ++round)
+        {
+            grow.clear();
+            if (try_cavity(change, cavity, out, grow)) return true;
+            if (round == kMaxGrowRounds || grow.empty()) return false;
+            cavity.insert(cavity.end(), grow.begin(), grow.end());
+            std::sort(cavity.begin(), cavity.end());
+            cavity.erase(std::unique(cavity.begin(), cavity.end()), cavity.end());
+            if (static_cast<int>(cavity.size()) > kMaxGrownTets) return false;
+        }
+    }
+
+    /// One try of simulate() on `cavity` (sorted). On a refusal that more tets may cure, `grow`
+    /// gets them.
+    bool try_cavity(const CavityChange& change, const std::vector<int>& cavity, Pending& out,
+                    std::vector<int>& grow) const
+    {
         auto in_cavity = [&](int t) { return std::binary_search(cavity.begin(), cavity.end(), t); };
         const int ref = mesh_.tet_refs[cavity.front()];
         double worst_before = 1.0;
         for (int t : cavity)
         {
-            if (mesh_.tet_refs[t] != ref) return false;
+            if (mesh_.tet_refs[t] != ref) return refuse(MirrorStatistics::MixedRefs);
             worst_before = std::min(worst_before, mesh_.quality(t));
         }
+        if (change.quality_before >= 0.0) worst_before = change.quality_before;
 
         std::vector<Key> removed_keys;
         for (const auto& r : change.removed) removed_keys.push_back(sorted_triple(r.vertices));
         std::sort(removed_keys.begin(), removed_keys.end());
         std::size_t removed_seen = 0;
         std::vector<Triangle> faces;
+        std::vector<int> across;  // kept tets across the cavity's inner faces
         for (int t : cavity)
             for (int f = 0; f < 4; ++f)
             {
@@ -339,12 +408,38 @@ private:
                     ++removed_seen;
                     continue;
                 }
+                if (n != kNoTet) across.push_back(n);
                 faces.push_back(tri);
             }
-        if (removed_seen != removed_keys.size()) return false;  // a triangle the cavity misses
+        if (removed_seen != removed_keys.size()) return refuse(MirrorStatistics::MissedTriangle);
         for (const auto& a : change.added) faces.push_back(a.vertices);
-        if (!cancel_opposite_faces(faces)) return false;
-        if (!new_edges_are_new(change, cavity)) return false;
+        if (!cancel_opposite_faces(faces)) return refuse(MirrorStatistics::Folds);
+        if (!new_edges_are_new(change, cavity, grow)) return refuse(MirrorStatistics::EdgeInside);
+
+        // A grown cavity may swallow an interior vertex (its ball inside): the fill drops it.
+        // Any other vertex must stay on the cavity's faces.
+        std::vector<int> swallowed;
+        if (cavity.size() > change.tets.size())
+        {
+            std::vector<int> on_faces;
+            for (const auto& f : faces) on_faces.insert(on_faces.end(), f.begin(), f.end());
+            std::sort(on_faces.begin(), on_faces.end());
+            std::vector<int> vertices;
+            for (int t : cavity)
+                vertices.insert(vertices.end(), mesh_.tets[t].begin(), mesh_.tets[t].end());
+            std::sort(vertices.begin(), vertices.end());
+            vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+            for (int v : vertices)
+            {
+                if (std::binary_search(on_faces.begin(), on_faces.end(), v)) continue;
+                if (std::find(out.key.begin(), out.key.end(), v) != out.key.end()) continue;
+                ball(v, scratch_);
+                const bool inside = std::all_of(scratch_.begin(), scratch_.end(), in_cavity);
+                if (!inside || mesh_.vertex_classes[v] != VertexClass::Interior)
+                    return refuse(MirrorStatistics::NoFill);
+                swallowed.push_back(v);
+            }
+        }
 
         CavityFill fill;
         if (faces.empty())
@@ -356,14 +451,23 @@ private:
         else
         {
             fill = fill_cavity(mesh_, faces, nullptr, options_.cavity);
-            if (!fill.filled) return false;
-            if (fill.worst_quality < std::min(options_.min_quality, worst_before)) return false;
+            if (!fill.filled)
+            {
+                grow = std::move(across);
+                return refuse(MirrorStatistics::NoFill);
+            }
+            if (fill.worst_quality < std::min(options_.min_quality, worst_before))
+            {
+                grow = std::move(across);
+                return refuse(MirrorStatistics::UnderFloor);
+            }
         }
-        fill.removed_tets = change.tets;
+        fill.removed_tets = cavity;
         fill.ref = ref;
         out.fill = std::move(fill);
         out.removed = change.removed;
         out.added = change.added;
+        out.swallowed = std::move(swallowed);
         out.cavity_vertices.clear();
         for (int t : cavity)
             for (int v : mesh_.tets[t]) out.cavity_vertices.push_back(v);
@@ -411,7 +515,9 @@ private:
 
     /// An edge of the new triangles that the old ones do not have must not be an edge of a tet
     /// kept outside the cavity: the boundary would pinch there (advancing_front.md §(d)).
-    bool new_edges_are_new(const CavityChange& change, const std::vector<int>& cavity) const
+    /// Else `grow` gets the kept tets that hold such an edge.
+    bool new_edges_are_new(const CavityChange& change, const std::vector<int>& cavity,
+                           std::vector<int>& grow) const
     {
         std::vector<std::array<int, 2>> old_edges;
         for (const auto& r : change.removed)
@@ -433,9 +539,9 @@ private:
                 for (int t : scratch_)
                     if (local_index(mesh_, t, w) >= 0 &&
                         !std::binary_search(cavity.begin(), cavity.end(), t))
-                        return false;
+                        grow.push_back(t);
             }
-        return true;
+        return grow.empty();
     }
 
     void commit_pending(int operation, const std::array<int, 3>& key)
@@ -464,7 +570,8 @@ private:
         const bool takes_vertex =
             operation == MirrorStatistics::Collapse || operation == MirrorStatistics::Remove;
         for (int v : p.cavity_vertices)
-            if (vertex_tet_[v] < 0 && !(takes_vertex && v == p.key[0]))
+            if (vertex_tet_[v] < 0 && !(takes_vertex && v == p.key[0]) &&
+                !std::binary_search(p.swallowed.begin(), p.swallowed.end(), v))
                 repair_vertex_tet(v, p.cavity_vertices);
         for (const auto& r : p.removed) remove_triangle(r.vertices);
         for (const auto& a : p.added) add_triangle(a);
@@ -526,6 +633,7 @@ private:
     OpenMesh::FPropHandleT<int> face_ref_;
     OpenMesh::VPropHandleT<surface::VertexClass> vertex_class_;
     Pending pending_;
+    mutable MirrorStatistics::Refusal refusal_ = MirrorStatistics::NoFill;
     mutable std::vector<int> scratch_;
 };
 
@@ -549,6 +657,16 @@ std::string MirrorStatistics::format() const
         std::snprintf(part, sizeof part, " %s %ld (refused %ld)", names[k], done[k], refused[k]);
         out += part;
     }
+    static const char* why[kRefusals] = {"no shell",    "mixed refs",  "missed triangle",
+                                         "folds",       "edge inside", "no fill",
+                                         "under floor", "inverted"};
+    out += "\nrefused:";
+    for (int k = 0; k < kRefusals; ++k)
+        if (refusals[k] > 0)
+        {
+            std::snprintf(part, sizeof part, " %s %ld", why[k], refusals[k]);
+            out += part;
+        }
     return out + "\n" + fills.format() + "\n";
 }
 

@@ -2,15 +2,19 @@
 // The mirror: surface hooks that keep a tet mesh in step with every operator of the surface
 // remesher, so that the surface stays the tets' boundary (the paper's coupling, §6).
 //
-//   move      the vertex's ball stays positive, its worst Qe above the floor; then it moves
+//   move      the vertex's ball stays positive, its worst Qe above the floor; then it moves.
+//             Else the ball is a cavity, refilled around the vertex's new place:
 //   split     the edge's shell, the new vertex added:  ┐
 //   collapse  the removed vertex's ball                 │ cavity = those tets; its faces are
 //   flip      the edge's shell                          │ their outer faces with the changed
 //   remove    the removed vertex's ball                 ┘ surface triangles swapped for the new
 //                                                         ones; fill_cavity refills it
 //
+// A cavity that cannot be filled, or whose new surface edge is already an edge of a kept tet,
+// grows by the tets in the way (a layer across its inner faces, or that edge's shell; interior
+// vertices it swallows go) and is tried again, a few times.
 // allow_* simulates (the fill is computed, nothing changes); on_* commits what allow_* found.
-// A refusal (no fill, a new surface edge already inside the volume, a fill under the floor)
+// A refusal (no fill, a new surface edge still inside the volume, a fill under the floor)
 // vetoes the surface operation, and neither mesh changes. mesh.triangles and their refs follow
 // every change; edges, ridges, corners and classes are written back at the end (write_back).
 
@@ -48,7 +52,21 @@ struct MirrorStatistics
         Remove,
         kOperations
     };
+    /// Why an operation was refused (a refused move is Inverted or UnderFloor).
+    enum Refusal
+    {
+        NoShell,         ///< the tets hold no such edge (or its shell walk failed)
+        MixedRefs,       ///< the cavity would span two tet refs
+        MissedTriangle,  ///< a changed surface triangle is not a face of the cavity
+        Folds,           ///< the cavity's faces repeat other than as opposite pairs
+        EdgeInside,      ///< a new surface edge is already an edge of a kept tet
+        NoFill,          ///< the filler found no tets for the cavity
+        UnderFloor,      ///< the fill (or the moved ball) is worse than min_quality allows
+        Inverted,        ///< the move inverts a tet of the ball
+        kRefusals
+    };
     std::array<long, kOperations> done{}, refused{};
+    std::array<long, kRefusals> refusals{};
     volume::FillStatistics fills;
     std::string format() const;
 };

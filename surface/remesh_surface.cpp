@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "common/errors.h"
@@ -163,11 +164,20 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     // a refined boundary stays on the input's geometry).
     const SurfaceMesh& input = settings.model_surface ? *settings.model_surface : mesh;
     result.diagonal = bounding_box_diagonal(input);
-    SurfaceModel model(input);
-    if (settings.hdi_model)
-        attach_hdi_projection(model, *settings.hdi_model, settings.hdi_projection);
-    else if (settings.use_hdi)
-        attach_hdi_projection(model, input, settings.hdi_projection);
+    std::optional<SurfaceModel> own_model;
+    if (!settings.model)
+    {
+        own_model.emplace(input);
+        if (settings.hdi_model)
+            attach_hdi_projection(*own_model, *settings.hdi_model, settings.hdi_projection);
+        else if (settings.use_hdi)
+            attach_hdi_projection(*own_model, input, settings.hdi_projection);
+    }
+    else if (!settings.model_surface)
+    {
+        throw InputError("remesh_surface: a model without the surface it was built on");
+    }
+    const SurfaceModel& model = settings.model ? *settings.model : *own_model;
     report_setup("model");
 
     SizeMap sizes = SizeMap::uniform(settings.sizing.hsiz);

@@ -104,6 +104,10 @@ struct SurfaceRemeshSettings
     /// surface (the input the mesh was derived from, e.g. before a refinement), whose curve ids
     /// the mesh's must match; input_sizes are then per vertex of it. It must outlive the call.
     const SurfaceMesh* model_surface = nullptr;
+    /// Set: the model itself, built by the caller on model_surface (which must then be set), so
+    /// that the caller places its own points on the same geometry; hdi_model and use_hdi are
+    /// then ignored (attach_hdi_projection is the caller's). It must outlive the call.
+    const SurfaceModel* model = nullptr;
     /// Set: smooth vertices go onto this HDI model of the model's surface (use_hdi with a model
     /// built already, e.g. the coupling's projection's), which must outlive the call.
     const hdi::HdiSurface* hdi_model = nullptr;

@@ -16,6 +16,7 @@
 #include "surface/local_ops.h"
 #include "surface/surface_model.h"
 #include "volume/check.h"
+#include "volume/geometry.h"
 #include "volume/tet_io.h"
 #pragma GCC diagnostic pop
 
@@ -199,4 +200,51 @@ TEST_CASE("random surface operations on a box keep its ridges, corners and both 
     CHECK(stats.done[MirrorStatistics::Collapse] > 0);
     // faces stay planar and corners fixed: the volume is the cube's
     CHECK(mesh.total_volume() == doctest::Approx(volume));
+}
+
+TEST_CASE("a boundary move its tets cannot follow refills its ball around the new place")
+{
+    //   the 2×2×2 cube, its centre i lowered to just under the face z = 0:
+    //
+    //     (0,0,0) ──────── c ──────── (1,0,0)     c = (0.5, 0.5, 0) slides along -x in the
+    //                      · i                    face; some tet (c, i, ...) turns inside out
+    //                                             long before the face's triangles do
+    //
+    //   the mirror then takes c's ball out and refills it with c at the new place
+    TetMesh mesh = fixtures::box_mesh(2);
+    mesh.points[13] = volume::Vec3(0.5, 0.5, 0.05);
+    REQUIRE(volume::check_mesh(mesh).empty());
+    const double volume = mesh.total_volume();
+    BoundaryMap map = classified_boundary(mesh);
+    MirrorStatistics stats;
+    const surface::SurfaceHooks hooks = make_hooks(mesh, map, {}, &stats);
+    auto& s = map.surface;
+    surface::VertexHandle c;
+    for (auto v : s.vertices())
+        if ((s.point(v) - surface::Vec3d(0.5, 0.5, 0)).norm() < 1e-12) c = v;
+    REQUIRE(c.is_valid());
+    const int tc = map.tet_vertex_of(c);
+
+    const surface::Vec3d to(0.2, 0.5, 0);
+    bool inverts = false;  // the ball alone could not follow
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        if (mesh.is_dead(t)) continue;
+        std::array<volume::Vec3, 4> x;
+        for (int k = 0; k < 4; ++k)
+            x[k] = mesh.tets[t][k] == tc ? volume::Vec3(to[0], to[1], to[2])
+                                         : mesh.points[mesh.tets[t][k]];
+        if (volume::signed_volume6(x[0], x[1], x[2], x[3]) <= 0.0) inverts = true;
+    }
+    REQUIRE(inverts);
+
+    REQUIRE(hooks.allow_move(s, c, to));
+    const surface::Vec3d from = s.point(c);
+    s.set_point(c, to);
+    hooks.on_move(s, c, from);
+    CHECK(stats.done[MirrorStatistics::Move] == 1);
+    CHECK(consistency(map, mesh) == "");
+    CHECK(tet_violations(map, mesh) == "");
+    CHECK(mesh.points[tc][0] == doctest::Approx(0.2));
+    CHECK(mesh.total_volume() == doctest::Approx(volume));  // the face stays planar
 }
