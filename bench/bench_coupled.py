@@ -3,7 +3,7 @@
 surfremesh on the same surfaces, refining (1 % of the diagonal) and coarsening (4 %).
 
   bench/bench_coupled.py --volumes DIR --surfaces DIR [--build build] [--models fandisk,...]
-                         [--fractions 0.01,0.04] [--extra "--nosurf"]
+                         [--fractions 0.01,0.04] [--extra "--nosurf"] [--round-trip 0.01,0.04]
 
 For each model X, DIR/X.msh is the tet mesh and DIR/X.obj its input surface. Boundary columns
 come from scripts/surfstat.py against the input surface, volume columns from
@@ -58,6 +58,26 @@ def cpu_of(stdout):
     return float(m.group(1)) if m else float('nan')
 
 
+def adapt_row(a, tag, vol, ref, h, out):
+    """Runs adapt on vol at size h into out and prints its row; False when it failed."""
+    run = subprocess.run([os.path.join(a.build, 'apps/adapt'), vol, '--hsiz', repr(h),
+                          '-o', out, '--check'] + a.extra.split(), capture_output=True, text=True)
+    if run.returncode != 0:
+        print('| adapt %s | failed: %s |' % (tag, run.stderr.strip()[-200:]))
+        return False
+    obj = out[:-5] + '_boundary.obj'
+    boundary_obj(out, obj)
+    v, s = meshstat(out, h), surfstat(obj, ref, h)
+    checker = 'clean' if 'check output: clean' in run.stdout else 'VIOLATIONS'
+    print('| adapt %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | %s |' % (
+        tag, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'],
+        s['n_faces'], s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'],
+        s['hausdorff_rel'], cpu_of(run.stdout), checker), flush=True)
+    if s['euler'] != s['ref_topology']['euler'] or s['components'] != s['ref_topology']['components']:
+        print('|  | topology changed: euler %d, components %d |' % (s['euler'], s['components']))
+    return True
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--volumes', required=True)
@@ -68,7 +88,11 @@ def main():
     ap.add_argument('--extra', default='', help='more adapt flags')
     ap.add_argument('--no-surfremesh', action='store_true')
     ap.add_argument('--keep', help='directory to keep the outputs in')
+    ap.add_argument('--round-trip', default='',
+                    help='F1,F2: also adapt the F1 output to F2 (e.g. 0.01,0.04; its Hausdorff '
+                         'is to the original input)')
     a = ap.parse_args()
+    trip = [float(f) for f in a.round_trip.split(',')] if a.round_trip else None
     work = a.keep or tempfile.mkdtemp(prefix='bench_coupled_')
     os.makedirs(work, exist_ok=True)
     print('| run | tets | min Qe | % Qe >= 0.5 | % Qt >= 0.66 | bd triangles | bd min angle | '
@@ -83,22 +107,11 @@ def main():
             h = frac * diag
             tag = '%s %g %%' % (model, 100 * frac)
             out = os.path.join(work, '%s_%g.mesh' % (model, frac))
-            run = subprocess.run([os.path.join(a.build, 'apps/adapt'), vol, '--hsiz', repr(h),
-                                  '-o', out, '--check'] + a.extra.split(),
-                                 capture_output=True, text=True)
-            if run.returncode != 0:
-                print('| adapt %s | failed: %s |' % (tag, run.stderr.strip()[-200:]))
-                continue
-            obj = out[:-5] + '_boundary.obj'
-            boundary_obj(out, obj)
-            v, s = meshstat(out, h), surfstat(obj, ref, h)
-            checker = 'clean' if 'check output: clean' in run.stdout else 'VIOLATIONS'
-            print('| adapt %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | %s |' % (
-                tag, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'],
-                s['n_faces'], s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'],
-                s['hausdorff_rel'], cpu_of(run.stdout), checker), flush=True)
-            if s['euler'] != s['ref_topology']['euler'] or s['components'] != s['ref_topology']['components']:
-                print('|  | topology changed: euler %d, components %d |' % (s['euler'], s['components']))
+            if not adapt_row(a, tag, vol, ref, h, out): continue
+            if trip and frac == trip[0]:
+                # the round trip: this output adapted again, to the second size
+                adapt_row(a, '%s %g %% -> %g %%' % (model, 100 * trip[0], 100 * trip[1]), out, ref,
+                          trip[1] * diag, os.path.join(work, '%s_%g_%g.mesh' % (model, *trip)))
             if a.no_surfremesh: continue
             sobj = os.path.join(work, '%s_%g_surfremesh.obj' % (model, frac))
             srun = subprocess.run(['bash', '-c', 'TIMEFORMAT=%U+%S; time ' + ' '.join(
