@@ -74,7 +74,8 @@ int main(int argc, char** argv)
         cmd.option("--ridge-angle", &ridge_angle, "ridge detection angle in degrees (default 45)");
         cmd.flags({
             {"--hdi", &use_hdi,
-             "smooth vertices on the HDI model instead of the input facets (experimental)"},
+             "smooth vertices on the HDI model instead of the input facets (a coarse input "
+             "gets it by default)"},
             {"--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)"},
         });
         cmd.option("--iterations", &iterations, "remeshing iterations (default 8)");

@@ -81,6 +81,10 @@ struct OperatorLimits
     /// A split whose new vertex, on the model, turns its triangles past the turn limit (a chord
     /// across a crease the features dropped) leaves no triangle with a smaller angle than this.
     double min_angle_across_crease_deg = 10.0;
+    /// Smooth shifts put George's ideal points in the model's tangent plane at the vertex (on
+    /// the HDI model, its diffuse plane: method.md §5) instead of the ball's own plane; one
+    /// projection more per shift.
+    bool shift_in_model_plane = false;
 };
 
 /// Everything an operator needs; the remesher builds one per call.

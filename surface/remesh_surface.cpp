@@ -24,6 +24,9 @@ namespace
 
 // The curvature-adaptive size refines to this fraction of hausd, to end within hausd.
 constexpr double kAdaptiveToleranceMargin = 0.8;
+// The HDI of a coarse input is trusted this fraction of the facet's shortest edge off it (the
+// sagitta of its chords on a surface of radius twice the edge).
+constexpr double kCoarseHdiEdgeFraction = 0.25;
 
 // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
 void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& keeper,
@@ -172,6 +175,14 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
             attach_hdi_projection(*own_model, *settings.hdi_model, settings.hdi_projection);
         else if (settings.use_hdi)
             attach_hdi_projection(*own_model, input, settings.hdi_projection);
+        else if (settings.hdi_for_coarse_input &&
+                 own_model->coarse_area_fraction(distance_tolerance(settings, result.diagonal)) >
+                     0.5)
+        {
+            HdiProjectionOptions coarse = settings.hdi_projection;
+            coarse.max_deviation_edge_fraction = kCoarseHdiEdgeFraction;
+            attach_hdi_projection(*own_model, input, coarse);
+        }
     }
     else if (!settings.model_surface)
     {
@@ -264,6 +275,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         }
     }
     options.loop.iterations = settings.iterations;
+    options.loop.limits.shift_in_model_plane = model.has_smooth_projection();
     options.loop.verbosity = settings.verbosity;
     if (settings.max_model_distance >= 0.0)
         options.loop.max_model_distance = settings.max_model_distance;

@@ -288,6 +288,16 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         for (const Ball::Face& face : ball.faces()) n += face.cross;
         if (!(n.norm() > 0.0)) return result;
         n.normalize();
+        if (ctx.limits.shift_in_model_plane)
+        {
+            const ProjectedPoint at =
+                ctx.model.project_near(p, VertexClass::Smooth, kNoCurve, ctx.model_face(v));
+            if (at.ok && at.normal.norm() > 0.0)
+            {
+                const Vec3d m = at.normal.normalized();
+                n = OpenMesh::dot(m, n) < 0.0 ? Vec3d(-m) : m;  // the ball's side
+            }
+        }
         if (!optimal_point_smooth(ball, n, optimal)) return refused(OpStatus::Geometry);
     }
     else if (!optimal_point_curve(ctx, v, optimal))

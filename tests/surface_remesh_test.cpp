@@ -420,3 +420,27 @@ TEST_CASE("a size too coarse for the tolerance on much of the surface: the toler
     CHECK(coarse_faces < faces);
     CHECK(coarse_farthest > tolerance);
 }
+
+TEST_CASE("a coarse input is remeshed on its HDI model by default: on the sphere, not its facets")
+{
+    //   sphere(2): 128 facets whose chords sag up to ~0.07 below the unit sphere they sample,
+    //   far beyond the tolerance (0.0016 of the diagonal, ~0.006): the facets are no model of
+    //   it, the HDI fit is. Remeshed to h = 0.15, the vertices land on the sphere.
+    auto worst_radius_error = [](bool hdi) {
+        SurfaceMesh mesh = sphere(2);
+        SurfaceRemeshSettings settings;
+        settings.sizing.hsiz = 0.15;
+        settings.hdi_for_coarse_input = hdi;
+        remesh_surface(mesh, settings);
+        CHECK(measure_topology(mesh).euler() == 2);
+        check_manifold(mesh);
+        double worst = 0.0;
+        for (auto v : mesh.vertices())
+            worst = std::max(worst, std::abs(mesh.point(v).norm() - 1.0));
+        return worst;
+    };
+    const double on_hdi = worst_radius_error(true), on_facets = worst_radius_error(false);
+    MESSAGE("worst |r - 1|: on the HDI model ", on_hdi, ", on the facets ", on_facets);
+    CHECK(on_hdi < 0.01);  // the fit's own accuracy on so few nodes
+    CHECK(on_facets > 0.03);
+}
