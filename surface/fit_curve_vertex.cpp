@@ -162,10 +162,11 @@ OpResult fit_curve_vertex(OperatorContext& ctx, VertexHandle v, const CurveFitOp
     const double gain = kMinGain * options.tolerance;
     for (const ProjectedPoint& c : candidates)
     {
+        if (!legal(c.point)) continue;  // the cheaper test first: the star alone
         const Excess e = excess(c.point);
         const bool better =
             e.worst < best.worst - gain || (e.worst <= best.worst && e.sum < best.sum - gain);
-        if (!better || !legal(c.point)) continue;
+        if (!better) continue;
         best = e;
         best_point = c;
     }

@@ -201,6 +201,10 @@ TetLocator::TetLocator(const TetMesh& mesh)
         centroids[t] = 0.25 * (points_[v[0]] + points_[v[1]] + points_[v[2]] + points_[v[3]]);
     }
     tet_grid_ = build_grid(centroids, 2.0);
+    // the centroids in cell order: a query scans its cell's without visiting the tets
+    cell_centroids_.resize(tet_grid_.items.size());
+    for (std::size_t n = 0; n < tet_grid_.items.size(); ++n)
+        cell_centroids_[n] = centroids[tet_grid_.items[n]];
 
     // boundary faces, their vertices (compact numbering) and the faces around each vertex
     std::vector<int> position(nv, -1);
@@ -255,15 +259,11 @@ int TetLocator::start_tet(const Vec3& p) const
             const int cell = tet_grid_.index({i, j, k});
             for (int n = tet_grid_.start[cell]; n < tet_grid_.start[cell + 1]; ++n)
             {
-                const int t = tet_grid_.items[n];
-                const auto& v = tets_[t];
-                const Vec3 centroid =
-                    0.25 * (points_[v[0]] + points_[v[1]] + points_[v[2]] + points_[v[3]]);
-                const double distance = (centroid - p).squaredNorm();
+                const double distance = (cell_centroids_[n] - p).squaredNorm();
                 if (distance < best_distance)
                 {
                     best_distance = distance;
-                    best = t;
+                    best = tet_grid_.items[n];
                 }
             }
         });

@@ -78,6 +78,7 @@ private:
     std::vector<TetVertices> neighbors_;  // in the renumbered ids
     std::vector<int> original_tet_;       // renumbered id -> id in the source mesh
     Grid tet_grid_;                       // tet centroids
+    std::vector<Vec3> cell_centroids_;    // the centroid of each of tet_grid_.items
     std::vector<Triangle> boundary_;      // outward boundary faces
     std::vector<int> boundary_vertices_;
     Grid boundary_vertex_grid_;                // items index boundary_vertices_
