@@ -11,7 +11,8 @@
 //   surface pass       the boundary remeshed on the input's model to the field (split,
 //                      collapse, flip, shift; coarsening too), every change mirrored into the
 //                      tets; the field then grades from the boundary's sizes where the
-//                      tolerance made them finer; refinement passes again for what it left long
+//                      tolerance made them finer; refinement passes again for what it left long,
+//                      their new boundary vertices onto the surface pass's model
 //   optimize_mesh      collapse too-short edges, swap and smooth to the end
 //   project_all        (no surface pass) finish the moves that were shortened, improve again
 
