@@ -198,11 +198,12 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
         // the input's facets are too coarse for the tolerance, trusted as far from their chords
         // as those are from the smooth surface; elsewhere the facets are the finer model.
         surface_model.emplace(input->surface);
-        surface::HdiProjectionOptions hdi = settings.hdi_projection;
-        hdi.max_deviation_edge_fraction = 0.25;
-        hdi.coarse_facet_tolerance =
-            surface::distance_tolerance(settings, surface::bounding_box_diagonal(input->surface));
-        surface::attach_hdi_projection(*surface_model, projector->model(), hdi);
+        surface::attach_hdi_projection(
+            *surface_model, projector->model(),
+            surface::coarse_input_options(
+                settings.hdi_projection,
+                surface::distance_tolerance(settings,
+                                            surface::bounding_box_diagonal(input->surface))));
         settings.model = &*surface_model;
         const surface::SurfaceHooks hooks =
             make_hooks(mesh, boundary, options.mirror, &report.mirror);

@@ -23,14 +23,21 @@ ProjectedPoint to_projected(const hdi::Projection& fit)
     return out;
 }
 
+// Most of the area: the facets are then no model of the smooth surface they sample.
+constexpr double kCoarseAreaFraction = 0.5;
+
+// Whether options ask for the HDI on `model` (coarse_facet_tolerance: only on coarse facets).
+bool wanted(const SurfaceModel& model, const HdiProjectionOptions& options)
+{
+    return !(options.coarse_facet_tolerance > 0.0) ||
+           model.coarse_area_fraction(options.coarse_facet_tolerance) > kCoarseAreaFraction;
+}
+
 // `surface` as model's smooth projection, trusted where it stays within the deviation bound
 // of the facets.
 void install(SurfaceModel& model, std::shared_ptr<const hdi::HdiSurface> surface,
              const HdiProjectionOptions& options)
 {
-    if (options.coarse_facet_tolerance > 0.0 &&
-        !(model.coarse_area_fraction(options.coarse_facet_tolerance) > 0.5))
-        return;
     const double max_deviation = options.max_deviation_fraction * model.diagonal();
     const double edge_fraction = options.max_deviation_edge_fraction;
     const SurfaceModel* facets = &model;
@@ -68,9 +75,17 @@ ProjectedPoint HdiProjector::project(const Vec3d& p, VertexClass cls, int) const
     return {};
 }
 
+HdiProjectionOptions coarse_input_options(HdiProjectionOptions base, double tolerance)
+{
+    base.coarse_facet_tolerance = tolerance;
+    base.max_deviation_edge_fraction = 0.25;
+    return base;
+}
+
 void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
                            const HdiProjectionOptions& options)
 {
+    if (!wanted(model, options)) return;  // before the model is built
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
     OpenMesh::EPropHandleT<int> edge_curve;
     const bool classified = input.get_property_handle(vertex_class, property_names::vertex_class) &&
@@ -117,6 +132,7 @@ void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
 void attach_hdi_projection(SurfaceModel& model, const hdi::HdiSurface& surface,
                            const HdiProjectionOptions& options)
 {
+    if (!wanted(model, options)) return;
     // Not owned: the caller's model outlives this one.
     install(model, std::shared_ptr<const hdi::HdiSurface>(&surface, [](const hdi::HdiSurface*) {}),
             options);

@@ -43,9 +43,16 @@ struct HdiProjectionOptions
     double coarse_facet_tolerance = 0.0;
 };
 
+/// The one rule for a coarse input (surfremesh's default, the coupling's surface pass): `base`
+/// with the HDI installed only where the input's facets are too coarse for `tolerance`
+/// (coarse_facet_tolerance), trusted a quarter of the facet's shortest edge off it (the sagitta
+/// of its chords on a surface of radius twice the edge).
+HdiProjectionOptions coarse_input_options(HdiProjectionOptions base, double tolerance);
+
 /// Builds the HDI model of `input` (classified by detect_features: its ridges, boundary curves
-/// and corners are handed to the model) and installs it as `model`'s smooth projection.
-/// The model keeps its own copy of the input; `model` must outlive nothing else.
+/// and corners are handed to the model) and installs it as `model`'s smooth projection; with
+/// options.coarse_facet_tolerance, only when the facets are too coarse (nothing is built
+/// otherwise). The model keeps its own copy of the input; `model` must outlive nothing else.
 void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
                            const HdiProjectionOptions& options = {});
 

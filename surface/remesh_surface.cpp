@@ -24,9 +24,6 @@ namespace
 
 // The curvature-adaptive size refines to this fraction of hausd, to end within hausd.
 constexpr double kAdaptiveToleranceMargin = 0.8;
-// The HDI of a coarse input is trusted this fraction of the facet's shortest edge off it (the
-// sagitta of its chords on a surface of radius twice the edge).
-constexpr double kCoarseHdiEdgeFraction = 0.25;
 
 // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
 void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& keeper,
@@ -175,14 +172,11 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
             attach_hdi_projection(*own_model, *settings.hdi_model, settings.hdi_projection);
         else if (settings.use_hdi)
             attach_hdi_projection(*own_model, input, settings.hdi_projection);
-        else if (settings.hdi_for_coarse_input &&
-                 own_model->coarse_area_fraction(distance_tolerance(settings, result.diagonal)) >
-                     0.5)
-        {
-            HdiProjectionOptions coarse = settings.hdi_projection;
-            coarse.max_deviation_edge_fraction = kCoarseHdiEdgeFraction;
-            attach_hdi_projection(*own_model, input, coarse);
-        }
+        else if (settings.hdi_for_coarse_input)
+            attach_hdi_projection(
+                *own_model, input,
+                coarse_input_options(settings.hdi_projection,
+                                     distance_tolerance(settings, result.diagonal)));
     }
     else if (!settings.model_surface)
     {

@@ -134,7 +134,7 @@ struct SurfaceRemeshSettings
     bool use_hdi = false;
     /// ... but on by default for a coarse input: when most of its area is on facets that may
     /// stray farther than the tolerance from the smooth surface they sample (the coupling's
-    /// rule, HdiProjectionOptions::coarse_facet_tolerance), trusted a quarter of an edge off.
+    /// rule: coarse_input_options), trusted a quarter of an edge off.
     bool hdi_for_coarse_input = true;
     double max_model_distance = -1.0;  // < 0: from hausd (or 0.002·diag for a uniform size)
     /// Split where the output strays from the input by more than hausd (or, for a uniform size,
