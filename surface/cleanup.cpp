@@ -21,6 +21,7 @@ namespace
 // the local size: one long edge costs less than a needle at a corner (docs/tuning.md).
 constexpr double kSlideMaxLength = 1.5;
 constexpr double kSlideMinLength = 0.3;
+constexpr int kRaiseRounds = 6;
 // Slide rounds: a slide on one side of a narrow corner lets the other side slide further
 // (docs/tuning.md).
 constexpr int kSlideRounds = 8;
@@ -357,6 +358,67 @@ bool Cleanup::improve_face(FaceHandle f, const ShiftOptions& smart, Keep keep)
             moved = true;
         }
     return moved;
+}
+
+std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
+{
+    std::size_t changes = 0;
+    for (int round = 0; round < kRaiseRounds; ++round)
+    {
+        const std::vector<char> poor = vertices_of_poor_triangles(quality);
+        std::size_t done = 0;
+        for (int index = 0; index < static_cast<int>(poor.size()); ++index)
+        {
+            const VertexHandle v(index);
+            if (!poor[index] || mesh_.status(v).deleted()) continue;
+            RelocateOptions relocate;
+            const double h =
+                std::max(mesh_.property(ctx_.props.vertex_size, v), tolerance_.reference_size);
+            relocate.goal = quality;
+            relocate.min_length = kSizeQualityThreshold * h;
+            relocate.max_length = h / kSizeQualityThreshold;
+            relocate.accept = [&](const Vec3d& after) {
+                return keeper_.move_keeps(v, after, keep);
+            };
+            if (!relocate_vertex(ctx_, v, relocate).done()) continue;
+            if (ctx_.vertex_class(v) != VertexClass::Smooth) run_.set_size(v);
+            ++report_.shifts;
+            ++done;
+        }
+        // Where no relocation lifts a triangle: a flip, or a collapse of its shortest edge
+        // (a row of vertices squeezed between a ridge and its neighbour).
+        const int face_count = static_cast<int>(mesh_.n_faces());
+        for (int index = 0; index < face_count; ++index)
+        {
+            const FaceHandle f(index);
+            if (mesh_.status(f).deleted() || detail::qe(detail::face_points(mesh_, f)) >= quality)
+                continue;
+            std::vector<EdgeHandle> edges;
+            for (auto e : mesh_.fe_range(f)) edges.push_back(e);
+            std::sort(edges.begin(), edges.end(), [&](EdgeHandle a, EdgeHandle b) {
+                return mesh_.calc_edge_length(a) < mesh_.calc_edge_length(b);
+            });
+            bool changed = false;
+            for (const EdgeHandle e : edges)
+                if (!changed && keeper_.flip_keeping_tolerance(e))
+                {
+                    ++report_.flips;
+                    changed = true;
+                }
+            for (int i = 0; i < 2 && !changed; ++i)
+                if (keeper_.collapse_keeping_tolerance(mesh_.halfedge_handle(edges[0], i)))
+                {
+                    ++report_.collapses;
+                    changed = true;
+                }
+            if (changed) ++done;
+        }
+        if (run_.options.verbosity > 0)
+            std::fprintf(stderr, "remesh: raise round %d: %zu changes\n", round + 1, done);
+        changes += done;
+        if (done == 0) break;
+    }
+    return changes;
 }
 
 // The triangles the last refinement left under the cleanup's angle: their vertices moved

@@ -208,15 +208,12 @@ bool ToleranceKeeper::collapse_keeping_tolerance(HalfedgeHandle h, CollapseFor p
 // before), the star's samples (edge midpoints, centroids) straying farther from the model
 // than before beyond the tolerance, and (ToleranceAndLengths) an edge of the star getting
 // short for the reference size.
-bool ToleranceKeeper::shift(VertexHandle v, const ShiftOptions& options, Keep keep)
+// The state before the move is gathered here, when a move is asked (the mesh is still as
+// before it).
+bool ToleranceKeeper::move_keeps(VertexHandle v, const Vec3d& after, Keep keep)
 {
-    if (keep == Keep::Nothing || !(options_.tolerance > 0.0))
-        return shift_vertex(ctx_, v, options).done();
-    const bool keep_lengths = keep == Keep::ToleranceAndLengths;
+    if (keep == Keep::Nothing || !(options_.tolerance > 0.0)) return true;
     const double bound = options_.tolerance;
-    auto worst_sample = [&](const Vec3d& at) {
-        return detail::star_samples_beyond(ctx_, v, at, bound);
-    };
     // The star's edges short for the reference size with v at `at`.
     auto short_star_edges = [&](const Vec3d& at) {
         int n = 0;
@@ -226,26 +223,35 @@ bool ToleranceKeeper::shift(VertexHandle v, const ShiftOptions& options, Keep ke
                 ++n;
         return n;
     };
+    const Vec3d before = mesh_.point(v);
+    if (keep == Keep::ToleranceAndLengths && short_star_edges(after) > short_star_edges(before))
+        return false;
+    const double samples_after = detail::star_samples_beyond(ctx_, v, after, bound);
+    if (samples_after > bound &&
+        samples_after > detail::star_samples_beyond(ctx_, v, before, bound))
+        return false;
+    // The 2-ring before and after (keeps_witness).
+    const detail::TwoRingPatch patch(mesh_, v);
+    std::vector<std::array<Vec3d, 3>> patch_after;
+    patch.triangles_at(&after, patch_after);
+    double reach = 0.0;
+    for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
+    for (const std::size_t k : model_point_grid().within(before, reach + bound))
+        if (!detail::keeps_witness(options_.model_points[k], patch.triangles, patch_after, bound,
+                                   1e-12 * reach))
+            return false;
+    return true;
+}
+
+bool ToleranceKeeper::shift(VertexHandle v, const ShiftOptions& options, Keep keep)
+{
+    if (keep == Keep::Nothing || !(options_.tolerance > 0.0))
+        return shift_vertex(ctx_, v, options).done();
     ShiftOptions keeping = options;
-    // The state before the move is gathered here, when a move is asked (the mesh is still
-    // as before it): most smart shifts stop at their quality test and never ask, and a shift
-    // that does not move needs no patch, witnesses or samples.
+    // Most smart shifts stop at their quality test and never ask, and a shift that does not
+    // move needs no patch, witnesses or samples.
     keeping.accept = [&](const Vec3d& after) {
-        const Vec3d before = mesh_.point(v);
-        if (keep_lengths && short_star_edges(after) > short_star_edges(before)) return false;
-        const double samples_after = worst_sample(after);
-        if (samples_after > bound && samples_after > worst_sample(before)) return false;
-        // The 2-ring before and after (keeps_witness).
-        const detail::TwoRingPatch patch(mesh_, v);
-        std::vector<std::array<Vec3d, 3>> patch_after;
-        patch.triangles_at(&after, patch_after);
-        double reach = 0.0;
-        for (auto h : mesh_.voh_range(v)) reach = std::max(reach, mesh_.calc_edge_length(h));
-        for (const std::size_t k : model_point_grid().within(before, reach + bound))
-            if (!detail::keeps_witness(options_.model_points[k], patch.triangles, patch_after,
-                                       bound, 1e-12 * reach))
-                return false;
-        return !options.accept || options.accept(after);
+        return move_keeps(v, after, keep) && (!options.accept || options.accept(after));
     };
     return shift_vertex(ctx_, v, keeping).done();
 }

@@ -234,6 +234,27 @@ struct SlideOptions
 /// corner between two curves that open up away from it.
 OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOptions& options = {});
 
+struct RelocateOptions
+{
+    /// Band of the star's edge lengths after the move, as SlideOptions's (≤ 0: no bound).
+    double min_length = 0.0, max_length = 0.0;
+    /// The star's faces under this Qe fall short by the difference: their summed shortfall
+    /// must fall by min_gain (the worst Qe rise by it when none falls short), the worst Qe
+    /// staying above min(its value, goal) - worst_slack.
+    double goal = 0.7;
+    double min_gain = 0.005;
+    double worst_slack = 0.05;
+    /// The caller's last layer (empty: none; the tolerance's witnesses), asked of the legal
+    /// trials from the best down until one passes (at most three are asked).
+    std::function<bool(const Vec3d& point)> accept;
+};
+/// Moves v to the trial point where the worst Qe of its star is largest: a smooth vertex tries
+/// the apex of the equilateral triangle on each outer edge of its ball and George's point
+/// (in the tangent plane, at three steps, projected onto the model), a curve vertex points
+/// along its curve toward both curve neighbours. The cure where George's weighted balance sits
+/// still: a right triangle beside a ridge whose opposite faces pull the other way.
+OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOptions& options = {});
+
 /// The limits of a vertex move judged against the model points around it (the snap and the
 /// curve fit of the refinement).
 struct WitnessedMoveOptions

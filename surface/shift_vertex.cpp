@@ -287,17 +287,7 @@ OpResult shift_vertex(OperatorContext& ctx, VertexHandle v, const ShiftOptions& 
         // already, so this is the plane of the local fit without another projection.
         for (const Ball::Face& face : ball.faces()) n += face.cross;
         if (!(n.norm() > 0.0)) return result;
-        n.normalize();
-        if (ctx.limits.shift_in_model_plane)
-        {
-            const ProjectedPoint at =
-                ctx.model.project_near(p, VertexClass::Smooth, kNoCurve, ctx.model_face(v));
-            if (at.ok && at.normal.norm() > 0.0)
-            {
-                const Vec3d m = at.normal.normalized();
-                n = OpenMesh::dot(m, n) < 0.0 ? Vec3d(-m) : m;  // the ball's side
-            }
-        }
+        n = detail::tangent_normal(ctx, v, n.normalized());
         if (!optimal_point_smooth(ball, n, optimal)) return refused(OpStatus::Geometry);
     }
     else if (!optimal_point_curve(ctx, v, optimal))

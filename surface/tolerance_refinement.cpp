@@ -444,6 +444,27 @@ std::size_t ToleranceRefinement::short_edges_now(bool first_round)
     return short_edge_count_;
 }
 
+// A split beside a chord whose own split the triangles refuse: the longest other edge of
+// either face at it, when not too short to split.
+OpResult ToleranceRefinement::split_beside(EdgeHandle e)
+{
+    OpResult result = refused(OpStatus::Geometry);
+    for (int side = 0; side < 2 && !result.done(); ++side)
+    {
+        const FaceHandle f = mesh_.face_handle(mesh_.halfedge_handle(e, side));
+        if (!f.is_valid()) continue;
+        EdgeHandle longest;
+        double best = 0.0;
+        for (auto other : mesh_.fe_range(f))
+            if (other != e && mesh_.calc_edge_length(other) > best)
+                best = mesh_.calc_edge_length(other), longest = other;
+        if (longest.is_valid() &&
+            best >= 2.0 * tolerance_.min_length_ratio * run_.edge_size(longest))
+            result = try_split(ctx_, longest);
+    }
+    return result;
+}
+
 // The tolerance, both ways (the two halves of the Hausdorff distance): triangles whose
 // centroid or edge midpoints leave the model, and triangles closest to a model point they
 // pass far from, get their longest edge split, farthest first, then the new vertices settle
@@ -747,8 +768,9 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
         std::size_t done = 0,
                     splits = 0;  // changes of the round (splits and distance flips), splits
         // The budget goes to the worst places first: a round splits only near the worst
-        // distance; the next round sees the result.
-        const double worst = candidates.empty() ? 0.0 : candidates.front().first;
+        // distance it could change (a refused split ahead of it does not hold the others
+        // back, round after round); the next round sees the result.
+        double worst = 0.0;
         std::size_t next = 0;
         for (; next < candidates.size(); ++next)
         {
@@ -775,6 +797,7 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
                     mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h)));
                 if (try_flip(ctx_, e, FlipGoal::Distance).done())
                 {
+                    if (done == 0) worst = error;
                     ++report_.flips;
                     split_vertices.push_back(c);
                     split_vertices.push_back(d);
@@ -786,6 +809,10 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             if (edge_target[e.idx()] > 0)
                 r = split_toward(e, tolerance_.model_points[edge_target[e.idx()] - 1], snap);
             if (!r.done()) r = try_split(ctx_, e);
+            // A chord whose split the triangles refuse (its midpoint far off them, across a
+            // bend): the longest other edge of a face beside it, so that the next round finds
+            // the chord's neighbourhood finer.
+            if (!r.done() && r.status == OpStatus::Geometry) r = split_beside(e);
             if (!r.done())
             {
                 if (run_.options.verbosity > 1)
@@ -798,6 +825,7 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
             }
             run_.set_size(r.vertex);
             split_vertices.push_back(r.vertex);
+            if (done == 0) worst = error;
             ++done;
             ++splits;
             // The two halves and the new edges across: the budget's count follows the split.

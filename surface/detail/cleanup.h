@@ -32,6 +32,10 @@ public:
     void slide_curve_vertices_of_needles();
     /// Small angles repaired by changes that keep the tolerance.
     std::size_t repair_small_angles();
+    /// The vertices of triangles under `quality` relocated (relocate_vertex), then such
+    /// triangles flipped or their shortest edge collapsed, each keeping what `keep` asks;
+    /// rounds until nothing changes. The number of changes.
+    std::size_t raise_poor_triangles(double quality, Keep keep);
 
 private:
     std::vector<char> vertices_of_poor_triangles(double quality) const;

@@ -63,6 +63,8 @@ public:
     bool flip_keeping_tolerance(EdgeHandle e);
     /// A collapse of h (try_collapse with the limits of `purpose`) that keeps the tolerance.
     bool collapse_keeping_tolerance(HalfedgeHandle h, CollapseFor purpose = CollapseFor::Repair);
+    /// Whether moving v to `after` keeps what `keep` asks.
+    bool move_keeps(VertexHandle v, const Vec3d& after, Keep keep);
     /// A shift of v (shift_vertex) that keeps what `keep` asks.
     bool shift(VertexHandle v, const ShiftOptions& options, Keep keep);
 

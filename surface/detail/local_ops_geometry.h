@@ -274,6 +274,18 @@ inline double star_samples_beyond(const OperatorContext& ctx, VertexHandle v, co
     return worst;
 }
 
+/// The plane a smooth vertex's trial points stay in: the ball's unit normal `ball`, or with
+/// OperatorLimits::shift_in_model_plane the model's normal at v turned to the ball's side.
+inline Vec3d tangent_normal(const OperatorContext& ctx, VertexHandle v, const Vec3d& ball)
+{
+    if (!ctx.limits.shift_in_model_plane) return ball;
+    const ProjectedPoint at =
+        ctx.model.project_near(ctx.mesh.point(v), VertexClass::Smooth, kNoCurve, ctx.model_face(v));
+    if (!at.ok || !(at.normal.norm() > 0.0)) return ball;
+    const Vec3d m = at.normal.normalized();
+    return OpenMesh::dot(m, ball) < 0.0 ? Vec3d(-m) : m;
+}
+
 /// How far a length is out of the band [lo, hi] (≤ 0 bounds: open), 0 inside.
 inline double out_of_band(double length, double lo, double hi)
 {

@@ -82,6 +82,7 @@ public:
 
 private:
     OpResult split_toward(EdgeHandle e, const Vec3d& target, bool part_of_the_way);
+    OpResult split_beside(EdgeHandle e);
     EdgeHandle nearest_curve_edge(FaceHandle f, std::size_t point) const;
     VertexHandle snap_toward(std::size_t point, FaceHandle face, bool smooth_point);
     VertexHandle snap_vertex_of_edge(EdgeHandle e, const Vec3d& target);

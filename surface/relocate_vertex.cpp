@@ -1,0 +1,177 @@
+// A vertex moved to the trial point where the worst Qe of its star is largest.
+//
+// George's weighted point balances the ball: beside a ridge, a row of vertices standing over
+// the ridge vertices (right triangles on the ridge edges) is such a balance, each right
+// triangle's pull toward its equilateral apex cancelled by the faces on the other side. A
+// trial at that apex itself, or part of the way, breaks the tie wherever the star's worst
+// triangle rises.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "surface/detail/local_ops_geometry.h"
+#include "surface/local_ops.h"
+
+namespace hdimesh::surface
+{
+namespace
+{
+
+struct Score
+{
+    double worst = 1.0;
+    double shortfall = 0.0;
+};
+
+struct Trial
+{
+    Score score;
+    ProjectedPoint point;
+};
+
+// The star of v collected once: trials only move v.
+struct RelocateStar
+{
+    std::vector<detail::StarFace> faces;
+    std::vector<Vec3d> neighbours;
+    Vec3d centre;
+
+    RelocateStar(const SurfaceMesh& mesh, VertexHandle v) : centre(mesh.point(v))
+    {
+        detail::collect_star(mesh, v, faces);
+        for (auto w : mesh.vv_range(v)) neighbours.push_back(mesh.point(w));
+    }
+
+    // Worst Qe and the faces' summed shortfall from `goal` with v at p; worst -1 when a face
+    // turns past the limit or degenerates.
+    Score score(const Vec3d& p, double min_cos, double goal) const
+    {
+        Score s;
+        for (const detail::StarFace& face : faces)
+        {
+            const std::array<Vec3d, 3> after = face.with_moved_at(p);
+            if (!detail::turn_ok_cos(face.normal, detail::normal(after), min_cos)) return {-1.0, 0.0};
+            const double q = detail::qe(after);
+            s.worst = std::min(s.worst, q);
+            s.shortfall += std::max(0.0, goal - q);
+        }
+        return s;
+    }
+
+    // No edge leaves the band, nor gets farther out of it than it is.
+    bool lengths_ok(const Vec3d& p, const RelocateOptions& options) const
+    {
+        for (const Vec3d& w : neighbours)
+        {
+            const double after = detail::out_of_band((w - p).norm(), options.min_length,
+                                                     options.max_length);
+            if (after > 0.0 && after > detail::out_of_band((w - centre).norm(),
+                                                           options.min_length,
+                                                           options.max_length))
+                return false;
+        }
+        return true;
+    }
+};
+
+// The smooth trials' targets: each face's equilateral apex on its outer edge, on v's side in
+// the plane of normal n, and their mean weighted by 1/Qe² (George's point).
+std::vector<Vec3d> smooth_targets(const RelocateStar& star, const Vec3d& n)
+{
+    std::vector<Vec3d> targets;
+    Vec3d sum(0, 0, 0);
+    double weight_sum = 0.0;
+    for (const detail::StarFace& face : star.faces)
+    {
+        // (v, a, b) in the face's turning order.
+        const Vec3d& pa = face.points[(face.moved + 1) % 3];
+        const Vec3d& pb = face.points[(face.moved + 2) % 3];
+        Vec3d side = OpenMesh::cross(n, pb - pa);
+        const double length = side.norm();
+        if (!(length > 0.0)) continue;
+        side /= length;
+        const Vec3d apex = 0.5 * (pa + pb) + (std::sqrt(3.0) / 2.0) * (pb - pa).norm() * side;
+        targets.push_back(apex);
+        const double q = std::max(detail::qe(face.points), 0.05);
+        sum += apex / (q * q);
+        weight_sum += 1.0 / (q * q);
+    }
+    if (weight_sum > 0.0) targets.push_back(sum / weight_sum);
+    return targets;
+}
+
+}  // namespace
+
+OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOptions& options)
+{
+    SurfaceMesh& mesh = ctx.mesh;
+    const VertexClass cls = ctx.vertex_class(v);
+    if (cls == VertexClass::Corner || mesh.is_isolated(v)) return refused(OpStatus::Class);
+    if (cls == VertexClass::Smooth && mesh.is_boundary(v)) return refused(OpStatus::Class);
+    const Vec3d p = mesh.point(v);
+    const RelocateStar star(mesh, v);
+    const double min_cos = detail::cos_deg(ctx.limits.max_normal_turn_deg);
+    const Score before = star.score(p, -1.0, options.goal);
+    // The worst may fall a little for a smaller shortfall, never under this.
+    const double floor =
+        std::max(ctx.limits.min_new_quality, std::min(before.worst, options.goal) - options.worst_slack);
+
+    // The trial points, before projection.
+    std::vector<Vec3d> trials;
+    if (cls == VertexClass::Smooth)
+    {
+        Vec3d n(0, 0, 0);
+        for (const detail::StarFace& face : star.faces)
+            n += OpenMesh::cross(face.points[1] - face.points[0], face.points[2] - face.points[0]);
+        if (!(n.norm() > 0.0)) return refused(OpStatus::Geometry);
+        n = detail::tangent_normal(ctx, v, n.normalized());
+        for (const Vec3d& target : smooth_targets(star, n))
+            for (const double step : {1.0, 0.6, 0.3})
+            {
+                Vec3d q = p + step * (target - p);
+                trials.push_back(q - OpenMesh::dot(q - p, n) * n);
+            }
+    }
+    else
+    {
+        std::vector<Vec3d> curve_ends;
+        for (auto h : mesh.voh_range(v))
+            if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v))
+                curve_ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
+        if (curve_ends.size() != 2) return refused(OpStatus::Class);
+        // Up to half the way: the neighbour's other edges are not looked at here.
+        for (const Vec3d& end : curve_ends)
+            for (int i = 1; i <= 8; ++i) trials.push_back(p + (0.0625 * i) * (end - p));
+    }
+
+    // Through the layers (band, turn, quality), the legal ones best first.
+    std::vector<Trial> legal;
+    for (const Vec3d& t : trials)
+    {
+        const ProjectedPoint q =
+            ctx.model.project_near(t, cls, ctx.vertex_curve(v), ctx.model_face(v));
+        if (!q.ok || !star.lengths_ok(q.point, options)) continue;
+        const Score after = star.score(q.point, min_cos, options.goal);
+        if (after.worst < floor) continue;
+        const bool better = before.shortfall > 0.0
+                                ? after.shortfall < before.shortfall - options.min_gain
+                                : after.worst > before.worst + options.min_gain;
+        if (better) legal.push_back({after, q});
+    }
+    if (legal.empty()) return refused(OpStatus::Quality);
+    std::sort(legal.begin(), legal.end(),
+              [](const Trial& a, const Trial& b) {
+                  return a.score.shortfall != b.score.shortfall
+                             ? a.score.shortfall < b.score.shortfall
+                             : a.score.worst > b.score.worst;
+              });
+    const std::size_t asked = std::min<std::size_t>(legal.size(), 3);
+    for (std::size_t i = 0; i < asked; ++i)
+        if (!options.accept || options.accept(legal[i].point.point))
+            return commit_move(ctx, v, legal[i].point.point, legal[i].point.face);
+    return refused(OpStatus::Geometry);
+}
+
+}  // namespace hdimesh::surface
