@@ -4,13 +4,16 @@ surfremesh on the same surfaces, refining (1 % of the diagonal) and coarsening (
 
   bench/bench_coupled.py --volumes DIR --surfaces DIR [--build build] [--models fandisk,...]
                          [--fractions 0.01,0.04] [--extra "--nosurf"] [--round-trip 0.01,0.04]
+                         [--mmg PATH/mmg3d]
 
 For each model X, DIR/X.msh is the tet mesh and DIR/X.obj its input surface. Boundary columns
 come from scripts/surfstat.py against the input surface, volume columns from
 scripts/meshstat.py --hsiz h; CPU is adapt's own "cpu: total" (parse, read and write excluded);
-the checker column is adapt --check's verdict on its output (volume/check.h).
+the checker column is adapt --check's verdict on its output (volume/check.h). With --mmg, Mmg
+runs on the same tet mesh (converted to Medit by meshconvert) with -hsiz h, its defaults
+otherwise; its CPU is the whole process's (user + system, reading and writing included).
 """
-import argparse, json, os, re, subprocess, sys, tempfile
+import argparse, json, os, re, resource, subprocess, sys, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PY = '/usr/bin/python3'  # Debian's, with numpy and scipy
@@ -78,6 +81,34 @@ def adapt_row(a, tag, vol, ref, h, out):
     return True
 
 
+def children_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def mmg_row(a, tag, vol, ref, h, work, stem):
+    """Runs Mmg (a.mmg) on vol at size h and prints its row in adapt's columns."""
+    medit = os.path.join(work, stem + '_input.mesh')
+    if not os.path.exists(medit):
+        subprocess.run([os.path.join(a.build, 'apps/meshconvert'), vol, medit],
+                       capture_output=True, check=True)
+    out = os.path.join(work, stem + '_mmg.mesh')
+    before = children_cpu()
+    run = subprocess.run([a.mmg, medit, '-out', out, '-hsiz', repr(h)], capture_output=True,
+                         text=True)
+    cpu = children_cpu() - before
+    if run.returncode != 0:
+        print('| mmg %s | failed: %s |' % (tag, run.stdout.strip()[-200:]))
+        return
+    obj = out[:-5] + '_boundary.obj'
+    boundary_obj(out, obj)
+    v, s = meshstat(out, h), surfstat(obj, ref, h)
+    print('| Mmg %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | — |' % (
+        tag, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'], s['n_faces'],
+        s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'], s['hausdorff_rel'], cpu),
+        flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--volumes', required=True)
@@ -88,6 +119,7 @@ def main():
     ap.add_argument('--extra', default='', help='more adapt flags')
     ap.add_argument('--no-surfremesh', action='store_true')
     ap.add_argument('--keep', help='directory to keep the outputs in')
+    ap.add_argument('--mmg', help='an mmg3d executable: its rows beside adapt\'s')
     ap.add_argument('--round-trip', default='',
                     help='F1,F2: also adapt the F1 output to F2 (e.g. 0.01,0.04; its Hausdorff '
                          'is to the original input)')
@@ -107,6 +139,7 @@ def main():
             h = frac * diag
             tag = '%s %g %%' % (model, 100 * frac)
             out = os.path.join(work, '%s_%g.mesh' % (model, frac))
+            if a.mmg: mmg_row(a, tag, vol, ref, h, work, '%s_%g' % (model, frac))
             if not adapt_row(a, tag, vol, ref, h, out): continue
             if trip and frac == trip[0]:
                 # the round trip: this output adapted again, to the second size

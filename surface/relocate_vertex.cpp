@@ -52,7 +52,8 @@ struct RelocateStar
         for (const detail::StarFace& face : faces)
         {
             const std::array<Vec3d, 3> after = face.with_moved_at(p);
-            if (!detail::turn_ok_cos(face.normal, detail::normal(after), min_cos)) return {-1.0, 0.0};
+            if (!detail::turn_ok_cos(face.normal, detail::normal(after), min_cos))
+                return {-1.0, 0.0};
             const double q = detail::qe(after);
             s.worst = std::min(s.worst, q);
             s.shortfall += std::max(0.0, goal - q);
@@ -65,10 +66,9 @@ struct RelocateStar
     {
         for (const Vec3d& w : neighbours)
         {
-            const double after = detail::out_of_band((w - p).norm(), options.min_length,
-                                                     options.max_length);
-            if (after > 0.0 && after > detail::out_of_band((w - centre).norm(),
-                                                           options.min_length,
+            const double after =
+                detail::out_of_band((w - p).norm(), options.min_length, options.max_length);
+            if (after > 0.0 && after > detail::out_of_band((w - centre).norm(), options.min_length,
                                                            options.max_length))
                 return false;
         }
@@ -115,8 +115,8 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
     const double min_cos = detail::cos_deg(ctx.limits.max_normal_turn_deg);
     const Score before = star.score(p, -1.0, options.goal);
     // The worst may fall a little for a smaller shortfall, never under this.
-    const double floor =
-        std::max(ctx.limits.min_new_quality, std::min(before.worst, options.goal) - options.worst_slack);
+    const double floor = std::max(ctx.limits.min_new_quality,
+                                  std::min(before.worst, options.goal) - options.worst_slack);
 
     // The trial points, before projection.
     std::vector<Vec3d> trials;
@@ -161,12 +161,10 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
         if (better) legal.push_back({after, q});
     }
     if (legal.empty()) return refused(OpStatus::Quality);
-    std::sort(legal.begin(), legal.end(),
-              [](const Trial& a, const Trial& b) {
-                  return a.score.shortfall != b.score.shortfall
-                             ? a.score.shortfall < b.score.shortfall
-                             : a.score.worst > b.score.worst;
-              });
+    std::sort(legal.begin(), legal.end(), [](const Trial& a, const Trial& b) {
+        return a.score.shortfall != b.score.shortfall ? a.score.shortfall < b.score.shortfall
+                                                      : a.score.worst > b.score.worst;
+    });
     const std::size_t asked = std::min<std::size_t>(legal.size(), 3);
     for (std::size_t i = 0; i < asked; ++i)
         if (!options.accept || options.accept(legal[i].point.point))

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <random>
 #include <thread>
 #include <vector>
@@ -235,6 +236,21 @@ TEST_CASE("background mesh: independent of the mesh it was built from")
     mesh.points.assign(mesh.points.size(), Vec3(5, 5, 5));
     mesh.tets.clear();
     CHECK(field.size({0.3, 0.2, 0.1}) == doctest::Approx(linear({0.3, 0.2, 0.1})).epsilon(1e-12));
+}
+
+TEST_CASE("background mesh: a field built where another was answers with its own sizes")
+{
+    // size() remembers recent answers per thread, keyed by the field: a new field in the same
+    // storage, asked the same point, must not get the old field's answer.
+    const TetMesh mesh = fixtures::box_mesh(2);
+    const Vec3 p(0.3, 0.2, 0.1);
+    std::optional<BackgroundMeshSize> field;
+    field.emplace(mesh, linear_sizes(mesh));
+    const double first = field->size(p);
+    CHECK(field->size(p) == first);  // asked again: the remembered answer, the same value
+    field.reset();
+    field.emplace(mesh, std::vector<double>(mesh.num_vertices(), 2.0));
+    CHECK(field->size(p) == doctest::Approx(2.0).epsilon(1e-12));
 }
 
 TEST_CASE("background mesh: bad input is an InputError naming what is wrong")

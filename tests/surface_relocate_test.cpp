@@ -45,11 +45,13 @@ struct Hexagon
         centre = mesh.add_vertex(at);
         std::vector<VertexHandle> ring;
         for (int k = 0; k < 6; ++k)
-            ring.push_back(mesh.add_vertex(Vec3d(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0)));
+            ring.push_back(
+                mesh.add_vertex(Vec3d(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0)));
         for (int k = 0; k < 6; ++k) mesh.add_face(centre, ring[k], ring[(k + 1) % 6]);
         fixtures::mark_all_smooth(mesh);
         SurfaceProperties props(mesh);
-        for (const VertexHandle v : ring) mesh.property(props.vertex_class, v) = VertexClass::Corner;
+        for (const VertexHandle v : ring)
+            mesh.property(props.vertex_class, v) = VertexClass::Corner;
     }
 };
 
@@ -79,7 +81,8 @@ struct SqueezedRidge
         mesh.add_face(q, r, u);
         fixtures::mark_all_smooth(mesh);
         SurfaceProperties props(mesh);
-        for (VertexHandle v : {p, r, t, u}) mesh.property(props.vertex_class, v) = VertexClass::Corner;
+        for (VertexHandle v : {p, r, t, u})
+            mesh.property(props.vertex_class, v) = VertexClass::Corner;
         mesh.property(props.vertex_class, q) = VertexClass::Ridge;
         mesh.property(props.vertex_curve, q) = 0;
         for (auto [a, b] : {std::pair{p, q}, std::pair{q, r}})

@@ -391,14 +391,15 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
         bool operator<(const HullLink& o) const { return key < o.key; }
     };
     std::vector<HullLink> hull;
-    std::vector<char> removed(mesh.tets.size(), 0);
-    for (int t : fill.removed_tets) removed[t] = 1;
+    // (a sorted list, not a flag per tet slot: a cavity is small, the mesh is not)
+    std::vector<int> slots = fill.removed_tets;
+    std::sort(slots.begin(), slots.end());
     if (linked)
         for (int t : fill.removed_tets)
             for (int f = 0; f < 4; ++f)
             {
                 const int n = mesh.neighbors[t][f];
-                if (n == kNoTet || removed[n]) continue;
+                if (n == kNoTet || std::binary_search(slots.begin(), slots.end(), n)) continue;
                 int back = -1;
                 for (int g = 0; g < 4; ++g)
                     if (mesh.neighbors[n][g] == t) back = g;
@@ -409,8 +410,6 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
             }
     std::sort(hull.begin(), hull.end());
 
-    std::vector<int> slots = fill.removed_tets;
-    std::sort(slots.begin(), slots.end());
     for (int t : slots) mesh.kill_tet(t);
     std::vector<int> ids;
     ids.reserve(fill.tets.size());

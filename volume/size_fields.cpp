@@ -1,8 +1,11 @@
 #include "volume/size_fields.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -90,12 +93,59 @@ double BenchmarkSize::size(const Vec3& p) const
     return h;
 }
 
+namespace
+{
+
+std::uint64_t next_field_id()
+{
+    static std::atomic<std::uint64_t> next{1};
+    return next++;
+}
+
+// A point's exact bits, mixed into a table slot.
+std::size_t point_slot(const Vec3& p, std::size_t slots)
+{
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (int i = 0; i < 3; ++i)
+    {
+        std::uint64_t bits;
+        std::memcpy(&bits, &p[i], sizeof bits);
+        h = (h ^ bits) * 0xff51afd7ed558ccdull;
+        h ^= h >> 33;
+    }
+    return static_cast<std::size_t>(h) & (slots - 1);
+}
+
+}  // namespace
+
 BackgroundMeshSize::BackgroundMeshSize(const TetMesh& mesh, std::vector<double> vertex_sizes)
-    : locator_((validate_vertex_sizes(mesh, vertex_sizes), mesh)), sizes_(std::move(vertex_sizes))
+    : locator_((validate_vertex_sizes(mesh, vertex_sizes), mesh)), sizes_(std::move(vertex_sizes)),
+      id_(next_field_id())
 {
 }
 
 double BackgroundMeshSize::size(const Vec3& p) const
+{
+    // An edge's midpoint is asked again by every operator that looks at the edge: the answers
+    // of late are kept per thread, keyed by this field and the point's exact bits (the same
+    // value the location gives, which depends on the point alone).
+    struct Remembered
+    {
+        std::uint64_t field = 0;
+        Vec3 point;
+        double size = 0.0;
+    };
+    constexpr std::size_t kSlots = 4096;
+    thread_local std::vector<Remembered> remembered(kSlots);
+    Remembered& slot = remembered[point_slot(p, kSlots)];
+    if (slot.field == id_ && slot.point == p) return slot.size;
+    slot.field = id_;
+    slot.point = p;
+    slot.size = locate_size(p);
+    return slot.size;
+}
+
+double BackgroundMeshSize::locate_size(const Vec3& p) const
 {
     if (const auto inside = locator_.locate(p))
     {

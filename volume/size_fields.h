@@ -3,6 +3,7 @@
 // Mmg-style treatments of a field given at mesh vertices: --hmin/--hmax clamping and --hgrad
 // gradation.
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -63,8 +64,11 @@ public:
     const TetLocator& locator() const { return locator_; }
 
 private:
+    double locate_size(const Vec3& p) const;
+
     TetLocator locator_;
     std::vector<double> sizes_;
+    std::uint64_t id_;  // keys this field's answers in the per-thread table of size()
 };
 
 /// Another field clamped into [hmin, hmax] (--hmin, --hmax).

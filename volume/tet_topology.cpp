@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "volume/tet_tables.h"
@@ -44,9 +45,20 @@ std::array<int, N> sorted(std::array<int, N> a)
 void vertex_ball(const TetMesh& mesh, int seed, int v, std::vector<int>& ball)
 {
     ball.clear();
+    // Breadth-first over the faces through v. Which tets are in the ball: a stamp per tet slot,
+    // one stamp per call (a linear search of the ball per neighbour cost as much as the rest of
+    // a collapse); per thread, so that const callers on several threads stay safe.
+    thread_local std::vector<std::uint32_t> stamp;
+    thread_local std::uint32_t current = 0;
+    if (stamp.size() < static_cast<std::size_t>(mesh.num_tet_slots()))
+        stamp.resize(mesh.num_tet_slots() + mesh.num_tet_slots() / 4 + 16, 0);
+    if (++current == 0)  // wrapped: every old stamp could match again
+    {
+        std::fill(stamp.begin(), stamp.end(), 0);
+        current = 1;
+    }
     ball.push_back(seed);
-    // Breadth-first over the faces through v; balls are small, so a linear "seen" test is
-    // cheaper than any set.
+    stamp[seed] = current;
     for (std::size_t head = 0; head < ball.size(); ++head)
     {
         const int t = ball[head];
@@ -57,8 +69,9 @@ void vertex_ball(const TetMesh& mesh, int seed, int v, std::vector<int>& ball)
         {
             if (f == lv) continue;
             const int n = mesh.neighbors[t][f];
-            if (n == kNoTet) continue;
-            if (std::find(ball.begin(), ball.end(), n) == ball.end()) ball.push_back(n);
+            if (n == kNoTet || stamp[n] == current) continue;
+            stamp[n] = current;
+            ball.push_back(n);
         }
     }
 }
