@@ -4,6 +4,7 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -297,29 +298,91 @@ TriangleSoup read_with_openmesh(const std::string& path)
     return soup;
 }
 
+// The triangles at each edge of a soup: every (edge, triangle) use sorted by edge, then by
+// triangle, in runs of one edge (a sorted vector: a map of vectors cost a tenth of reading a
+// large scan).
+class EdgeFaces
+{
+public:
+    explicit EdgeFaces(const TriangleSoup& soup) : run_of_(soup.triangles.size())
+    {
+        const std::size_t nf = soup.triangles.size();
+        uses_.reserve(3 * nf);
+        for (std::size_t f = 0; f < nf; ++f)
+            for (int k = 0; k < 3; ++k)
+            {
+                const int a = soup.triangles[f][k], b = soup.triangles[f][(k + 1) % 3];
+                uses_.push_back({key(a, b), static_cast<int>(f), k});
+            }
+        std::sort(uses_.begin(), uses_.end());
+        for (std::size_t i = 0; i < uses_.size(); ++i)
+        {
+            if (i == 0 || uses_[i].key != uses_[i - 1].key) first_.push_back(static_cast<int>(i));
+            run_of_[uses_[i].face][uses_[i].side] = static_cast<int>(first_.size()) - 1;
+        }
+        first_.push_back(static_cast<int>(uses_.size()));
+    }
+
+    int runs() const { return static_cast<int>(first_.size()) - 1; }
+    /// Run r's edge (its smaller vertex, its larger) and its triangles.
+    std::pair<int, int> edge(int r) const
+    {
+        const std::uint64_t k = uses_[first_[r]].key;
+        return {static_cast<int>(k >> 32), static_cast<int>(k & 0xffffffffu)};
+    }
+    int size(int r) const { return first_[r + 1] - first_[r]; }
+    int face(int r, int i) const { return uses_[first_[r] + i].face; }
+    /// The run of triangle f's edge k (from its vertex k to k + 1), as the soup was given.
+    int run_of(int f, int k) const { return run_of_[f][k]; }
+
+private:
+    struct Use
+    {
+        std::uint64_t key;
+        int face, side;
+        bool operator<(const Use& o) const
+        {
+            return key != o.key ? key < o.key : face != o.face ? face < o.face : side < o.side;
+        }
+    };
+    static std::uint64_t key(int a, int b)
+    {
+        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
+               static_cast<std::uint32_t>(std::max(a, b));
+    }
+    std::vector<Use> uses_;
+    std::vector<int> first_;
+    std::vector<std::array<int, 3>> run_of_;
+};
+
 // Consistent orientation per component by a breadth-first walk over shared edges; then a
 // closed component with negative signed volume is turned outward.
 std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& components)
 {
     const std::size_t nf = soup.triangles.size();
-    std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
-    for (std::size_t f = 0; f < nf; ++f)
-        for (int k = 0; k < 3; ++k)
-        {
-            const int a = soup.triangles[f][k], b = soup.triangles[f][(k + 1) % 3];
-            faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
-        }
-    for (const auto& [edge, faces] : faces_of_edge)
-        if (faces.size() > 2)
+    const EdgeFaces edges(soup);  // (a flip keeps each triangle's edges: the runs hold)
+    for (int r = 0; r < edges.runs(); ++r)
+        if (edges.size(r) > 2)
             throw InputError(source + ": non-manifold edge between vertices " +
-                             std::to_string(edge.first + 1) + " and " +
-                             std::to_string(edge.second + 1) + " (" + std::to_string(faces.size()) +
-                             " triangles share it)");
+                             std::to_string(edges.edge(r).first + 1) + " and " +
+                             std::to_string(edges.edge(r).second + 1) + " (" +
+                             std::to_string(edges.size(r)) + " triangles share it)");
     auto has_directed = [&](int f, int a, int b) {
         const auto& t = soup.triangles[f];
         for (int k = 0; k < 3; ++k)
             if (t[k] == a && t[(k + 1) % 3] == b) return true;
         return false;
+    };
+    // The run of f's edge (a, b) now: a flip swaps two of f's vertices, so its edge k may be
+    // another of the runs it had.
+    auto run_at = [&](int f, int a, int b) {
+        for (int k = 0; k < 3; ++k)
+        {
+            const int r = edges.run_of(f, k);
+            const auto e = edges.edge(r);
+            if (e.first == std::min(a, b) && e.second == std::max(a, b)) return r;
+        }
+        return -1;
     };
     std::vector<int> component(nf, -1);
     std::size_t flipped = 0;
@@ -338,8 +401,10 @@ std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& c
             for (int k = 0; k < 3; ++k)
             {
                 const int a = soup.triangles[f][k], b = soup.triangles[f][(k + 1) % 3];
-                for (int g : faces_of_edge[{std::min(a, b), std::max(a, b)}])
+                const int r = run_at(f, a, b);
+                for (int i = 0; i < edges.size(r); ++i)
                 {
+                    const int g = edges.face(r, i);
                     if (g == f) continue;
                     const bool same_direction = has_directed(g, a, b);
                     if (component[g] >= 0)
@@ -366,10 +431,7 @@ std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& c
         {
             const auto& t = soup.triangles[f];
             for (int k = 0; k < 3 && closed; ++k)
-            {
-                const int a = t[k], b = t[(k + 1) % 3];
-                if (faces_of_edge[{std::min(a, b), std::max(a, b)}].size() != 2) closed = false;
-            }
+                if (edges.size(edges.run_of(f, k)) != 2) closed = false;
             volume += OpenMesh::dot(soup.points[t[0]],
                                     OpenMesh::cross(soup.points[t[1]], soup.points[t[2]]));
         }
