@@ -21,7 +21,6 @@ namespace
 // the local size: one long edge costs less than a needle at a corner (docs/tuning.md).
 constexpr double kSlideMaxLength = 1.5;
 constexpr double kSlideMinLength = 0.3;
-constexpr int kRaiseRounds = 6;
 // Slide rounds: a slide on one side of a narrow corner lets the other side slide further
 // (docs/tuning.md).
 constexpr int kSlideRounds = 8;
@@ -363,14 +362,27 @@ bool Cleanup::improve_face(FaceHandle f, const ShiftOptions& smart, Keep keep)
 std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
 {
     std::size_t changes = 0;
-    for (int round = 0; round < kRaiseRounds; ++round)
+    // After the first round, only where the round before changed something (a vertex moved or
+    // a face made, and their neighbours): elsewhere every trial would be refused again.
+    std::vector<char> near_change;
+    auto note_change = [&](VertexHandle v) {
+        if (near_change.size() < mesh_.n_vertices()) near_change.resize(mesh_.n_vertices(), 0);
+        near_change[v.idx()] = 1;
+        for (auto w : mesh_.vv_range(v)) near_change[w.idx()] = 1;
+    };
+    for (int round = 0; round < options_.raise_rounds; ++round)
     {
+        const std::vector<char> seen = std::move(near_change);
+        near_change.assign(mesh_.n_vertices(), 0);
+        auto wanted = [&](VertexHandle v) {
+            return round == 0 || (v.idx() < static_cast<int>(seen.size()) && seen[v.idx()]);
+        };
         const std::vector<char> poor = vertices_of_poor_triangles(quality);
         std::size_t done = 0;
         for (int index = 0; index < static_cast<int>(poor.size()); ++index)
         {
             const VertexHandle v(index);
-            if (!poor[index] || mesh_.status(v).deleted()) continue;
+            if (!poor[index] || mesh_.status(v).deleted() || !wanted(v)) continue;
             RelocateOptions relocate;
             const double h =
                 std::max(mesh_.property(ctx_.props.vertex_size, v), tolerance_.reference_size);
@@ -382,6 +394,7 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
             };
             if (!relocate_vertex(ctx_, v, relocate).done()) continue;
             if (ctx_.vertex_class(v) != VertexClass::Smooth) run_.set_size(v);
+            note_change(v);
             ++report_.shifts;
             ++done;
         }
@@ -393,6 +406,8 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
             const FaceHandle f(index);
             if (mesh_.status(f).deleted() || detail::qe(detail::face_points(mesh_, f)) >= quality)
                 continue;
+            const auto fv = detail::face_vertices(mesh_, f);
+            if (!wanted(fv[0]) && !wanted(fv[1]) && !wanted(fv[2])) continue;
             std::vector<EdgeHandle> edges;
             for (auto e : mesh_.fe_range(f)) edges.push_back(e);
             std::sort(edges.begin(), edges.end(), [&](EdgeHandle a, EdgeHandle b) {
@@ -403,14 +418,22 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
                 if (!changed && keeper_.flip_keeping_tolerance(e))
                 {
                     ++report_.flips;
+                    // (the flipped edge's ends and the two opposite vertices)
+                    for (int side = 0; side < 2; ++side)
+                        note_change(mesh_.to_vertex_handle(mesh_.halfedge_handle(e, side)));
                     changed = true;
                 }
             for (int i = 0; i < 2 && !changed; ++i)
-                if (keeper_.collapse_keeping_tolerance(mesh_.halfedge_handle(edges[0], i)))
+            {
+                const HalfedgeHandle h = mesh_.halfedge_handle(edges[0], i);
+                const VertexHandle kept = mesh_.to_vertex_handle(h);
+                if (keeper_.collapse_keeping_tolerance(h))
                 {
                     ++report_.collapses;
+                    note_change(kept);
                     changed = true;
                 }
+            }
             if (changed) ++done;
         }
         if (run_.options.verbosity > 0)

@@ -122,7 +122,9 @@ RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& optio
     // Again after the last splits, whose chords may cut the next zig.
     cleanup.fit_curves();
     stage_done("final refinement");
-    // Right triangles beside ridges, which George's balance keeps: the worst Qe of each star.
+    // Right triangles beside ridges, which George's balance keeps: the worst Qe of each star,
+    // first toward a higher goal (the fair triangles beside a poor one make room for it).
+    cleanup.raise_poor_triangles(options.cleanup.room_quality, detail::Keep::Tolerance);
     cleanup.raise_poor_triangles(options.polish.below_quality, detail::Keep::Tolerance);
     stage_done("quality raise");
     mesh.garbage_collection();

@@ -73,6 +73,10 @@ struct CleanupOptions
     /// They work on triangles with a smaller angle than this.
     double angle_deg = 27.0;
     int rounds = 8;
+    /// The last stage raises the triangles under this Qe before those under the polish's goal,
+    /// in at most raise_rounds rounds each (0: no such stage).
+    double room_quality = 0.8;
+    int raise_rounds = 6;
 };
 
 /// Every stage's settings, for remesh_surface on a given model.

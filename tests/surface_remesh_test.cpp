@@ -355,6 +355,7 @@ TEST_CASE(
         options.loop.iterations = 0;
         options.polish.passes = 1;
         options.cleanup.rounds = 0;
+        options.cleanup.raise_rounds = 0;
         options.polish.below_quality = below_quality;
         return remesh_surface(mesh, options, plane);
     };
