@@ -61,6 +61,14 @@ def cpu_of(stdout):
     return float(m.group(1)) if m else float('nan')
 
 
+def print_volume_row(name, v, s, cpu, checker):
+    """One row of a tet mesh: v from meshstat, s from surfstat of its boundary."""
+    print('| %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | %s |' % (
+        name, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'], s['n_faces'],
+        s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'], s['hausdorff_rel'], cpu, checker),
+        flush=True)
+
+
 def adapt_row(a, tag, vol, ref, h, out):
     """Runs adapt on vol at size h into out and prints its row; False when it failed."""
     run = subprocess.run([os.path.join(a.build, 'apps/adapt'), vol, '--hsiz', repr(h),
@@ -72,10 +80,7 @@ def adapt_row(a, tag, vol, ref, h, out):
     boundary_obj(out, obj)
     v, s = meshstat(out, h), surfstat(obj, ref, h)
     checker = 'clean' if 'check output: clean' in run.stdout else 'VIOLATIONS'
-    print('| adapt %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | %s |' % (
-        tag, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'],
-        s['n_faces'], s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'],
-        s['hausdorff_rel'], cpu_of(run.stdout), checker), flush=True)
+    print_volume_row('adapt ' + tag, v, s, cpu_of(run.stdout), checker)
     if s['euler'] != s['ref_topology']['euler'] or s['components'] != s['ref_topology']['components']:
         print('|  | topology changed: euler %d, components %d |' % (s['euler'], s['components']))
     return True
@@ -102,11 +107,7 @@ def mmg_row(a, tag, vol, ref, h, work, stem):
         return
     obj = out[:-5] + '_boundary.obj'
     boundary_obj(out, obj)
-    v, s = meshstat(out, h), surfstat(obj, ref, h)
-    print('| Mmg %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | — |' % (
-        tag, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'], s['n_faces'],
-        s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'], s['hausdorff_rel'], cpu),
-        flush=True)
+    print_volume_row('Mmg ' + tag, meshstat(out, h), surfstat(obj, ref, h), cpu, '—')
 
 
 def main():

@@ -365,8 +365,7 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
     // After the first round, only where the round before changed something (a vertex moved or
     // a face made, and their neighbours): elsewhere every trial would be refused again.
     std::vector<char> near_change;
-    auto note_change = [&](VertexHandle v) {
-        if (near_change.size() < mesh_.n_vertices()) near_change.resize(mesh_.n_vertices(), 0);
+    auto note_change = [&](VertexHandle v) {  // (no stage here adds a vertex)
         near_change[v.idx()] = 1;
         for (auto w : mesh_.vv_range(v)) near_change[w.idx()] = 1;
     };
@@ -418,7 +417,7 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
                 if (!changed && keeper_.flip_keeping_tolerance(e))
                 {
                     ++report_.flips;
-                    // (the flipped edge's ends and the two opposite vertices)
+                    // (the new edge's ends, with their neighbours the old edge's)
                     for (int side = 0; side < 2; ++side)
                         note_change(mesh_.to_vertex_handle(mesh_.halfedge_handle(e, side)));
                     changed = true;

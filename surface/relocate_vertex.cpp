@@ -1,4 +1,4 @@
-// A vertex moved to the trial point where the worst Qe of its star is largest.
+// A vertex moved to the trial point where its star's triangles fall least short of a Qe goal.
 //
 // George's weighted point balances the ball: beside a ridge, a row of vertices standing over
 // the ridge vertices (right triangles on the ridge edges) is such a balance, each right
@@ -31,18 +31,10 @@ struct Trial
     ProjectedPoint point;
 };
 
-// The star of v collected once: trials only move v.
-struct RelocateStar
+// The star of v with the relocation's measure.
+struct RelocateStar : detail::TrialStar
 {
-    std::vector<detail::StarFace> faces;
-    std::vector<Vec3d> neighbours;
-    Vec3d centre;
-
-    RelocateStar(const SurfaceMesh& mesh, VertexHandle v) : centre(mesh.point(v))
-    {
-        detail::collect_star(mesh, v, faces);
-        for (auto w : mesh.vv_range(v)) neighbours.push_back(mesh.point(w));
-    }
+    using TrialStar::TrialStar;
 
     // Worst Qe and the faces' summed shortfall from `goal` with v at p; worst -1 when a face
     // turns past the limit or degenerates.
@@ -60,20 +52,6 @@ struct RelocateStar
         }
         return s;
     }
-
-    // No edge leaves the band, nor gets farther out of it than it is.
-    bool lengths_ok(const Vec3d& p, const RelocateOptions& options) const
-    {
-        for (const Vec3d& w : neighbours)
-        {
-            const double after =
-                detail::out_of_band((w - p).norm(), options.min_length, options.max_length);
-            if (after > 0.0 && after > detail::out_of_band((w - centre).norm(), options.min_length,
-                                                           options.max_length))
-                return false;
-        }
-        return true;
-    }
 };
 
 // The smooth trials' targets: each face's equilateral apex on its outer edge, on v's side in
@@ -88,11 +66,8 @@ std::vector<Vec3d> smooth_targets(const RelocateStar& star, const Vec3d& n)
         // (v, a, b) in the face's turning order.
         const Vec3d& pa = face.points[(face.moved + 1) % 3];
         const Vec3d& pb = face.points[(face.moved + 2) % 3];
-        Vec3d side = OpenMesh::cross(n, pb - pa);
-        const double length = side.norm();
-        if (!(length > 0.0)) continue;
-        side /= length;
-        const Vec3d apex = 0.5 * (pa + pb) + (std::sqrt(3.0) / 2.0) * (pb - pa).norm() * side;
+        Vec3d apex;
+        if (!detail::equilateral_apex(pa, pb, (pb - pa).norm(), n, apex)) continue;
         targets.push_back(apex);
         const double q = std::max(detail::qe(face.points), 0.05);
         sum += apex / (q * q);
@@ -136,10 +111,7 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
     }
     else
     {
-        std::vector<Vec3d> curve_ends;
-        for (auto h : mesh.voh_range(v))
-            if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v))
-                curve_ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
+        const std::vector<Vec3d> curve_ends = detail::curve_neighbour_points(ctx, v);
         if (curve_ends.size() != 2) return refused(OpStatus::Class);
         // Up to half the way: the neighbour's other edges are not looked at here.
         for (const Vec3d& end : curve_ends)
@@ -152,7 +124,7 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
     {
         const ProjectedPoint q =
             ctx.model.project_near(t, cls, ctx.vertex_curve(v), ctx.model_face(v));
-        if (!q.ok || !star.lengths_ok(q.point, options)) continue;
+        if (!q.ok || !star.lengths_ok(q.point, options.min_length, options.max_length)) continue;
         const Score after = star.score(q.point, min_cos, options.goal);
         if (after.worst < floor) continue;
         const bool better = before.shortfall > 0.0

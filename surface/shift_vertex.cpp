@@ -14,11 +14,7 @@ namespace
 // A curve vertex moves toward the point of its curve that balances its two curve edges.
 bool optimal_point_curve(const OperatorContext& ctx, VertexHandle v, Vec3d& optimal)
 {
-    const SurfaceMesh& mesh = ctx.mesh;
-    std::vector<Vec3d> ends;
-    for (auto h : mesh.voh_range(v))
-        if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v))
-            ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
+    const std::vector<Vec3d> ends = detail::curve_neighbour_points(ctx, v);
     if (ends.size() != 2) return false;
     optimal = 0.5 * (ends[0] + ends[1]);
     return true;
@@ -247,11 +243,8 @@ bool optimal_point_smooth(const Ball& ball, const Vec3d& n, Vec3d& optimal)
     {
         const Vec3d& pa = ball.spoke(face.a).point;
         const Vec3d& pb = ball.spoke(face.b).point;
-        Vec3d side = OpenMesh::cross(n, pb - pa);  // (a, b, v) is counter-clockwise about n
-        const double len = side.norm();
-        if (!(len > 0.0)) return false;
-        side /= len;
-        const Vec3d ideal = 0.5 * (pa + pb) + (std::sqrt(3.0) / 2.0) * face.outer_length * side;
+        Vec3d ideal;  // (a, b, v) is counter-clockwise about n
+        if (!detail::equilateral_apex(pa, pb, face.outer_length, n, ideal)) return false;
         // Qe of (v, a, b): the face's own when v comes first in it.
         const double cross_norm =
             face.moved == 0 ? face.cross_norm : OpenMesh::cross(pa - pv, pb - pv).norm();

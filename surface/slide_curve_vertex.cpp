@@ -19,19 +19,10 @@ namespace hdimesh::surface
 namespace
 {
 
-// The faces around v (points in face order, index of v, normal before the move) and the other
-// ends of its edges, collected once: trial positions only move v.
-struct SlideStar
+// The star of v with the slide's measures.
+struct SlideStar : detail::TrialStar
 {
-    std::vector<detail::StarFace> faces;
-    std::vector<Vec3d> neighbours;
-    Vec3d centre;  // v before the move
-
-    SlideStar(const SurfaceMesh& mesh, VertexHandle v) : centre(mesh.point(v))
-    {
-        detail::collect_star(mesh, v, faces);
-        for (auto w : mesh.vv_range(v)) neighbours.push_back(mesh.point(w));
-    }
+    using TrialStar::TrialStar;
 
     // Worst angle (degrees) with v at p, no legality test: the present state.
     double worst_angle(const Vec3d& p) const
@@ -45,21 +36,7 @@ struct SlideStar
         return worst;
     }
 
-    // Layer 1, the band: no edge leaves it, nor gets farther out of it than it is.
-    bool lengths_ok(const Vec3d& p, const SlideOptions& options) const
-    {
-        for (const Vec3d& w : neighbours)
-        {
-            const double length = (w - p).norm(), now = (w - centre).norm();
-            if (options.max_length > 0.0 && length > options.max_length && length > now)
-                return false;
-            if (options.min_length > 0.0 && length < options.min_length && length < now)
-                return false;
-        }
-        return true;
-    }
-
-    // Layer 2, the turn of every face.
+    // Layer 2 (after the band, TrialStar::lengths_ok), the turn of every face.
     bool turns_ok(const Vec3d& p, double min_cos) const
     {
         for (const detail::StarFace& face : faces)
@@ -92,10 +69,7 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
     // never moves).
     const VertexClass cls = ctx.vertex_class(v);
     if (cls != VertexClass::Ridge && cls != VertexClass::Boundary) return refused(OpStatus::Class);
-    std::vector<Vec3d> curve_ends;
-    for (auto h : mesh.voh_range(v))
-        if (ctx.edge_curve(mesh.edge_handle(h)) == ctx.vertex_curve(v))
-            curve_ends.push_back(mesh.point(mesh.to_vertex_handle(h)));
+    const std::vector<Vec3d> curve_ends = detail::curve_neighbour_points(ctx, v);
     if (curve_ends.size() != 2) return refused(OpStatus::Class);
 
     const Vec3d p = mesh.point(v);
@@ -122,7 +96,8 @@ OpResult slide_curve_vertex(OperatorContext& ctx, VertexHandle v, const SlideOpt
             if (!q.ok) continue;
             const double angle = star.worst_angle(q.point);
             if (!(angle > best) || !(angle > before + options.min_gain_deg)) continue;
-            if (!star.lengths_ok(q.point, options) || !star.turns_ok(q.point, min_cos))
+            if (!star.lengths_ok(q.point, options.min_length, options.max_length) ||
+                !star.turns_ok(q.point, min_cos))
             {
                 refusal = OpStatus::Geometry;
                 continue;

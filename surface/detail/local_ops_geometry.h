@@ -207,6 +207,58 @@ inline void collect_star(const SurfaceMesh& mesh, VertexHandle v, std::vector<St
     } while (h != start);
 }
 
+/// The star of v for trials that move v only, collected once: its faces (collect_star), the
+/// other ends of its edges and v's place before the move.
+struct TrialStar
+{
+    std::vector<StarFace> faces;
+    std::vector<Vec3d> neighbours;
+    Vec3d centre;
+
+    TrialStar(const SurfaceMesh& mesh, VertexHandle v) : centre(mesh.point(v))
+    {
+        collect_star(mesh, v, faces);
+        for (auto w : mesh.vv_range(v)) neighbours.push_back(mesh.point(w));
+    }
+
+    /// The band [min_length, max_length] (≤ 0: open) with v at p: no edge leaves it, nor gets
+    /// farther out of it than it is (a long edge no longer, a short one no shorter).
+    bool lengths_ok(const Vec3d& p, double min_length, double max_length) const
+    {
+        for (const Vec3d& w : neighbours)
+        {
+            const double length = (w - p).norm(), now = (w - centre).norm();
+            if (max_length > 0.0 && length > max_length && length > now) return false;
+            if (min_length > 0.0 && length < min_length && length < now) return false;
+        }
+        return true;
+    }
+};
+
+/// The points of v's neighbours along its own curve (two for a vertex inside a curve).
+inline std::vector<Vec3d> curve_neighbour_points(const OperatorContext& ctx, VertexHandle v)
+{
+    std::vector<Vec3d> ends;
+    for (auto h : ctx.mesh.voh_range(v))
+        if (ctx.edge_curve(ctx.mesh.edge_handle(h)) == ctx.vertex_curve(v))
+            ends.push_back(ctx.mesh.point(ctx.mesh.to_vertex_handle(h)));
+    return ends;
+}
+
+/// The apex of the equilateral triangle on (a, b), of side `length` = |b - a|, in the plane of
+/// unit normal n, on the side where (a, b, apex) turns counter-clockwise about n; false when
+/// b - a is parallel to n.
+inline bool equilateral_apex(const Vec3d& a, const Vec3d& b, double length, const Vec3d& n,
+                             Vec3d& apex)
+{
+    Vec3d side = OpenMesh::cross(n, b - a);
+    const double norm = side.norm();
+    if (!(norm > 0.0)) return false;
+    side /= norm;
+    apex = 0.5 * (a + b) + (std::sqrt(3.0) / 2.0) * length * side;
+    return true;
+}
+
 /// The triangles of the 2-ring of v (every face touching a neighbour of v, which includes every
 /// face of v), sorted by handle, with the index of v in each (-1: not one of its vertices): the
 /// output near a star, to measure distances before and after a move of v.
