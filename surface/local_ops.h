@@ -244,6 +244,8 @@ struct RelocateOptions
     double goal = 0.7;
     double min_gain = 0.005;
     double worst_slack = 0.05;
+    /// Halvings of the compass search that refines the best trial of a smooth vertex (0: none).
+    int search_steps = 4;
     /// The caller's last layer (empty: none; the tolerance's witnesses), asked of the legal
     /// trials from the best down until one passes (at most three are asked).
     std::function<bool(const Vec3d& point)> accept;

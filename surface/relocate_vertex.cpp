@@ -95,9 +95,9 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
 
     // The trial points, before projection.
     std::vector<Vec3d> trials;
+    Vec3d n(0, 0, 0);  // a smooth vertex's tangent plane
     if (cls == VertexClass::Smooth)
     {
-        Vec3d n(0, 0, 0);
         for (const detail::StarFace& face : star.faces)
             n += OpenMesh::cross(face.points[1] - face.points[0], face.points[2] - face.points[0]);
         if (!(n.norm() > 0.0)) return refused(OpStatus::Geometry);
@@ -118,13 +118,20 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
             for (int i = 1; i <= 8; ++i) trials.push_back(p + (0.0625 * i) * (end - p));
     }
 
+    // In a zone the tolerance refined below the size, every edge is short: one may shorten
+    // down to the star's shortest (no new shortest edge), which the band alone would forbid.
+    double shortest = 0.0;
+    for (const Vec3d& w : star.neighbours)
+        shortest = shortest > 0.0 ? std::min(shortest, (w - p).norm()) : (w - p).norm();
+    const double min_length = std::min(options.min_length, shortest);
+
     // Through the layers (band, turn, quality), the legal ones best first.
     std::vector<Trial> legal;
     for (const Vec3d& t : trials)
     {
         const ProjectedPoint q =
             ctx.model.project_near(t, cls, ctx.vertex_curve(v), ctx.model_face(v));
-        if (!q.ok || !star.lengths_ok(q.point, options.min_length, options.max_length)) continue;
+        if (!q.ok || !star.lengths_ok(q.point, min_length, options.max_length)) continue;
         const Score after = star.score(q.point, min_cos, options.goal);
         if (after.worst < floor) continue;
         const bool better = before.shortfall > 0.0
@@ -132,11 +139,57 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
                                 : after.worst > before.worst + options.min_gain;
         if (better) legal.push_back({after, q});
     }
+    auto ahead = [](const Score& a, const Score& b) {
+        return a.shortfall != b.shortfall ? a.shortfall < b.shortfall : a.worst > b.worst;
+    };
+    std::sort(legal.begin(), legal.end(),
+              [&](const Trial& a, const Trial& b) { return ahead(a.score, b.score); });
+    // The discrete trials land near an optimum, rarely on it: a compass search in the tangent
+    // plane from the best of them (or from v) takes the last part of the way.
+    if (cls == VertexClass::Smooth && options.search_steps > 0)
+    {
+        auto improves = [](const Score& a, const Score& b) {
+            return a.shortfall < b.shortfall - 1e-6 ||
+                   (a.shortfall <= b.shortfall && a.worst > b.worst + 1e-6);
+        };
+        Trial centre{before, {}};
+        centre.point.point = p;
+        centre.point.face = ctx.model_face(v);
+        if (!legal.empty()) centre = legal.front();
+        Vec3d u = OpenMesh::cross(n, Vec3d(1, 0, 0));
+        if (u.norm() < 0.5) u = OpenMesh::cross(n, Vec3d(0, 1, 0));
+        u.normalize();
+        const Vec3d w = OpenMesh::cross(n, u);
+        double step = 0.125 * shortest;
+        bool moved = false;
+        for (int level = 0, evaluations = 0; level < options.search_steps && evaluations < 64;)
+        {
+            bool improved = false;
+            for (int k = 0; k < 8 && !improved; ++k, ++evaluations)
+            {
+                const double angle = k * (M_PI / 4.0);
+                const Vec3d t =
+                    centre.point.point + step * (std::cos(angle) * u + std::sin(angle) * w);
+                const ProjectedPoint q =
+                    ctx.model.project_near(t, cls, ctx.vertex_curve(v), centre.point.face);
+                if (!q.ok || !star.lengths_ok(q.point, min_length, options.max_length)) continue;
+                const Score after = star.score(q.point, min_cos, options.goal);
+                if (after.worst < floor || !improves(after, centre.score)) continue;
+                centre = {after, q};
+                improved = moved = true;
+            }
+            if (!improved)
+            {
+                step *= 0.5;
+                ++level;
+            }
+        }
+        const bool better = before.shortfall > 0.0
+                                ? centre.score.shortfall < before.shortfall - options.min_gain
+                                : centre.score.worst > before.worst + options.min_gain;
+        if (moved && better) legal.insert(legal.begin(), centre);
+    }
     if (legal.empty()) return refused(OpStatus::Quality);
-    std::sort(legal.begin(), legal.end(), [](const Trial& a, const Trial& b) {
-        return a.score.shortfall != b.score.shortfall ? a.score.shortfall < b.score.shortfall
-                                                      : a.score.worst > b.score.worst;
-    });
     const std::size_t asked = std::min<std::size_t>(legal.size(), 3);
     for (std::size_t i = 0; i < asked; ++i)
         if (!options.accept || options.accept(legal[i].point.point))

@@ -142,3 +142,65 @@ TEST_CASE("a caller's veto leaves the relocation undone")
     CHECK(asked == 3);  // the three best legal trials
     CHECK(fixtures::points_of(ridge.mesh) == points);
 }
+
+// A tolerance-refined zone: every edge of the star is shorter than the band's floor. A move may
+// still shorten an edge, down to the star's shortest (here V-H0), as long as none gets shorter.
+TEST_CASE("a star below the band's floor may move while no edge gets shorter than its shortest")
+{
+    Hexagon hexagon(Vec3d(0.45, 0.2, 0));
+    const fixtures::PlaneProjector plane;
+    OperatorContext ctx(hexagon.mesh, plane, {});
+    double shortest = 10.0;
+    for (auto w : hexagon.mesh.vv_range(hexagon.centre))
+        shortest =
+            std::min(shortest, (hexagon.mesh.point(w) - hexagon.mesh.point(hexagon.centre)).norm());
+    RelocateOptions options;
+    options.min_length = 2.0;  // above every edge of the star
+    const double before = worst_qe_around(hexagon.mesh, hexagon.centre);
+    REQUIRE(relocate_vertex(ctx, hexagon.centre, options).done());
+    CHECK(worst_qe_around(hexagon.mesh, hexagon.centre) > before + 0.1);
+    for (auto w : hexagon.mesh.vv_range(hexagon.centre))
+        CHECK((hexagon.mesh.point(w) - hexagon.mesh.point(hexagon.centre)).norm() >=
+              shortest - 1e-12);
+}
+
+// An irregular ring, flat in z = 0: no equilateral apex nor George's point is the optimum, so
+// the compass search after them gets the star's triangles closer to the goal.
+TEST_CASE("the compass search takes the best trial closer to the goal")
+{
+    auto build = [](SurfaceMesh& mesh) {
+        const VertexHandle centre = mesh.add_vertex(Vec3d(0.3, -0.2, 0));
+        const double radius[6] = {1.0, 0.75, 1.25, 0.9, 1.15, 0.7};
+        const double angle[6] = {0.0, 0.9, 2.0, 3.1, 4.1, 5.3};
+        std::vector<VertexHandle> ring;
+        for (int k = 0; k < 6; ++k)
+            ring.push_back(mesh.add_vertex(
+                Vec3d(radius[k] * std::cos(angle[k]), radius[k] * std::sin(angle[k]), 0)));
+        for (int k = 0; k < 6; ++k) mesh.add_face(centre, ring[k], ring[(k + 1) % 6]);
+        fixtures::mark_all_smooth(mesh);
+        SurfaceProperties props(mesh);
+        for (const VertexHandle v : ring)
+            mesh.property(props.vertex_class, v) = VertexClass::Corner;
+        return centre;
+    };
+    const fixtures::PlaneProjector plane;
+    auto shortfall_after = [&](int search_steps) {
+        SurfaceMesh mesh;
+        const VertexHandle centre = build(mesh);
+        OperatorContext ctx(mesh, plane, {});
+        RelocateOptions options;
+        options.goal = 1.0;  // every face falls short: the sum is the measure
+        options.search_steps = search_steps;
+        REQUIRE(relocate_vertex(ctx, centre, options).done());
+        double sum = 0.0;
+        for (auto f : mesh.vf_range(centre))
+        {
+            std::vector<Vec3d> p;
+            for (auto x : mesh.fv_range(f)) p.push_back(mesh.point(x));
+            sum += 1.0 - triangle_qe(p[0], p[1], p[2]);
+        }
+        return sum;
+    };
+    const double trials_only = shortfall_after(0);
+    CHECK(shortfall_after(4) < trials_only - 1e-3);
+}
