@@ -24,6 +24,9 @@ namespace
 
 // The curvature-adaptive size refines to this fraction of hausd, to end within hausd.
 constexpr double kAdaptiveToleranceMargin = 0.8;
+// Where the tolerance is the contract (no size to keep, or a size the curvature overrules):
+// the refinement's edges down to this fraction of the local size (ToleranceOptions).
+constexpr double kContractMinLengthRatio = 0.15;
 
 // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
 void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& keeper,
@@ -316,6 +319,9 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     if (!settings.refine_to_tolerance) options.tolerance.tolerance = 0.0;
     options.tolerance.reference_size = coarse ? 0.0 : settings.sizing.hsiz;
     options.refinement.short_edge_budget = coarse ? 1.0 : settings.refine_short_edge_budget;
+    // Where the tolerance wins over the size, it is the contract: the refinement's splits may
+    // go below the size's floor, as in the curvature-adaptive mode.
+    if (coarse) options.tolerance.min_length_ratio = kContractMinLengthRatio;
     options.refinement.final_short_edge_budget =
         std::max(settings.refine_final_short_edge_budget, options.refinement.short_edge_budget);
     if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty() && !settings.size_function)
@@ -325,7 +331,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         options.tolerance.tolerance *= kAdaptiveToleranceMargin;
         options.refinement.short_edge_budget = 1.0;
         options.refinement.final_short_edge_budget = 1.0;
-        options.tolerance.min_length_ratio = 0.15;
+        options.tolerance.min_length_ratio = kContractMinLengthRatio;
         options.refinement.rounds = 20;
     }
     options.project_first = settings.model_surface != nullptr;
