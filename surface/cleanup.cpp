@@ -398,7 +398,8 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
             ++done;
         }
         // Where no relocation lifts a triangle: a flip, or a collapse of its shortest edge
-        // (a row of vertices squeezed between a ridge and its neighbour).
+        // (a row of vertices squeezed between a ridge and its neighbour; a curve edge too, of
+        // a triangle squeezed between two curves).
         const int face_count = static_cast<int>(mesh_.n_faces());
         for (int index = 0; index < face_count; ++index)
         {
@@ -426,7 +427,7 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
             {
                 const HalfedgeHandle h = mesh_.halfedge_handle(edges[0], i);
                 const VertexHandle kept = mesh_.to_vertex_handle(h);
-                if (keeper_.collapse_keeping_tolerance(h))
+                if (keeper_.collapse_keeping_tolerance(h, CollapseFor::Raise))
                 {
                     ++report_.collapses;
                     note_change(kept);

@@ -148,7 +148,9 @@ bool ToleranceKeeper::collapse_keeping_tolerance(HalfedgeHandle h, CollapseFor p
 {
     const double bound = options_.tolerance;
     const VertexHandle a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-    if (ctx_.vertex_class(a) != VertexClass::Smooth || mesh_.is_boundary(a)) return false;
+    const bool curve_too = purpose == CollapseFor::Raise;
+    if (!curve_too && (ctx_.vertex_class(a) != VertexClass::Smooth || mesh_.is_boundary(a)))
+        return false;
     // The collapse's own layers first: the tolerance checks below are the expensive part,
     // and most candidates fail the layers.
     const double size = options_.reference_size > 0.0 ? options_.reference_size

@@ -77,3 +77,82 @@ TEST_CASE("the same flip within a wide tolerance is done, and the model point st
     CHECK(fixtures::distance_to_mesh(tent.mesh, Vec3d(0, 0, 0)) <= 1.0);
     CHECK(fixtures::manifold_and_nondegenerate(tent.mesh));
 }
+
+namespace
+{
+
+// A flat strip between two curves (an open boundary on each side), z = 0; P1-P2 is a short
+// curve edge, so P1 P2 Q1 is squeezed between the curves.
+//
+//   Q0 -------- Q1 -------- Q2 ----- Q3        y = 1 (curve 1)
+//    |  \       | \  \        \  \    |
+//    |    \     |  \    \       \  \  |
+//   P0 -------- P1-P2 ---- P3 ------ P4        y = 0 (curve 0); P0, P4, Q0, Q3 corners
+struct Strip
+{
+    SurfaceMesh mesh;
+    VertexHandle p1, p2, p3;
+    Strip()
+    {
+        const double px[5] = {0, 1, 1.3, 2.3, 3.3}, qx[4] = {0, 1.2, 2.4, 3.3};
+        std::vector<VertexHandle> p, q;
+        for (double x : px) p.push_back(mesh.add_vertex(Vec3d(x, 0, 0)));
+        for (double x : qx) q.push_back(mesh.add_vertex(Vec3d(x, 1, 0)));
+        p1 = p[1], p2 = p[2], p3 = p[3];
+        mesh.add_face(p[0], p[1], q[0]);
+        mesh.add_face(p[1], q[1], q[0]);
+        mesh.add_face(p[1], p[2], q[1]);
+        mesh.add_face(p[2], p[3], q[1]);
+        mesh.add_face(p[3], q[2], q[1]);
+        mesh.add_face(p[3], p[4], q[2]);
+        mesh.add_face(p[4], q[3], q[2]);
+        fixtures::mark_all_smooth(mesh);
+        SurfaceProperties props(mesh);
+        auto curve = [&](const std::vector<VertexHandle>& chain, int id) {
+            for (std::size_t i = 0; i < chain.size(); ++i)
+            {
+                const bool end = i == 0 || i + 1 == chain.size();
+                mesh.property(props.vertex_class, chain[i]) =
+                    end ? VertexClass::Corner : VertexClass::Boundary;
+                mesh.property(props.vertex_curve, chain[i]) = end ? kNoCurve : id;
+                if (i > 0)
+                    mesh.property(props.edge_curve,
+                                  mesh.edge_handle(mesh.find_halfedge(chain[i - 1], chain[i]))) =
+                        id;
+            }
+        };
+        curve(p, 0);
+        curve(q, 1);
+    }
+};
+
+bool collapse_p2_with(Strip& strip, detail::CollapseFor purpose)
+{
+    const fixtures::PlaneProjector plane;
+    RemeshOptions loop;
+    loop.size = [](const Vec3d&) { return 1.0; };
+    detail::RemeshRun run(strip.mesh, loop, plane, {});
+    ToleranceOptions keep;
+    keep.tolerance = 0.01;
+    keep.model_points = fixtures::points_of(strip.mesh);  // the plane, under every vertex
+    keep.reference_size = 1.0;
+    detail::ToleranceKeeper keeper(run, keep);
+    return keeper.collapse_keeping_tolerance(strip.mesh.find_halfedge(strip.p2, strip.p1), purpose);
+}
+
+}  // namespace
+
+TEST_CASE("a triangle squeezed between two curves: its short curve edge collapses for the raise")
+{
+    Strip repair;
+    CHECK_FALSE(collapse_p2_with(repair, detail::CollapseFor::Repair));  // smooth vertices only
+    Strip raise;
+    REQUIRE(collapse_p2_with(raise, detail::CollapseFor::Raise));
+    raise.mesh.garbage_collection();
+    CHECK(raise.mesh.n_faces() == 6);
+    CHECK(fixtures::manifold_and_nondegenerate(raise.mesh));
+    bool p1_to_p3 = false;  // the curve goes on from P1 straight to P3
+    for (auto w : raise.mesh.vv_range(raise.p1))
+        p1_to_p3 |= raise.mesh.point(w) == Vec3d(2.3, 0, 0);
+    CHECK(p1_to_p3);
+}

@@ -37,6 +37,8 @@ enum class CollapseFor
     Repair,  // of a needle: the worst Qe around must rise, new edges within the Qt band
     Budget,  // of a short edge: new edges up to kReferenceCollapseLength of the reference size,
              // no angle under kReferenceCollapseMinAngle, no quality gain asked
+    Raise,   // as Repair, and a curve vertex along its own curve too (a triangle squeezed
+             // between two curves, on a short curve edge)
 };
 
 class ToleranceKeeper
