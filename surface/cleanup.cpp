@@ -423,9 +423,16 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
                         note_change(mesh_.to_vertex_handle(mesh_.halfedge_handle(e, side)));
                     changed = true;
                 }
-            for (int i = 0; i < 2 && !changed; ++i)
+            std::vector<HalfedgeHandle> collapses = {mesh_.halfedge_handle(edges[0], 0),
+                                                     mesh_.halfedge_handle(edges[0], 1)};
+            // A vertex of valence 3 or 4 (no relocation balances so few triangles): removed,
+            // onto whichever neighbour the collapse allows.
+            for (const VertexHandle v : fv)
+                if (mesh_.valence(v) <= 4 && ctx_.vertex_class(v) == VertexClass::Smooth)
+                    for (auto h : mesh_.voh_range(v)) collapses.push_back(h);
+            for (std::size_t i = 0; i < collapses.size() && !changed; ++i)
             {
-                const HalfedgeHandle h = mesh_.halfedge_handle(edges[0], i);
+                const HalfedgeHandle h = collapses[i];
                 const VertexHandle kept = mesh_.to_vertex_handle(h);
                 if (keeper_.collapse_keeping_tolerance(h, CollapseFor::Raise))
                 {
