@@ -28,6 +28,10 @@ using namespace volume;
 namespace
 {
 
+// Surface passes at most, another while the volume's splits changed more than this fraction of
+// the triangles the last one left (a few too long edges are no reason to remesh it all again).
+constexpr int kSurfaceRounds = 3;
+constexpr double kSurfaceRepeatFraction = 0.01;
 constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
 constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
 
@@ -186,25 +190,30 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
                                                          // splits after it
     std::unique_ptr<BackgroundMeshSize> graded;
     const SizeField* volume_field = &field;
-    if (input)
-    {
+    // One surface pass: the boundary remeshed with the tets mirrored, then the volume's sizes
+    // graded from what the surface reached. Its triangle count.
+    auto surface_pass = [&] {
         const StageTimer timer(report.seconds_surface, report.cpu_seconds_surface);
         mesh.compact();
         if (!mesh.has_adjacency()) mesh.build_adjacency();
         BoundaryMap boundary = extract_boundary(mesh);
-        report.surface_triangles_before = static_cast<int>(input->surface.n_faces());
-        settings.model_surface = &input->surface;
-        // One model on both sides: smooth vertices go onto the projection's HDI surface where
-        // the input's facets are too coarse for the tolerance, trusted as far from their chords
-        // as those are from the smooth surface; elsewhere the facets are the finer model.
-        surface_model.emplace(input->surface);
-        surface::attach_hdi_projection(
-            *surface_model, projector->model(),
-            surface::coarse_input_options(
-                settings.hdi_projection,
-                surface::distance_tolerance(settings,
-                                            surface::bounding_box_diagonal(input->surface))));
-        settings.model = &*surface_model;
+        if (!surface_model)
+        {
+            report.surface_triangles_before = static_cast<int>(input->surface.n_faces());
+            settings.model_surface = &input->surface;
+            // One model on both sides: smooth vertices go onto the projection's HDI surface
+            // where the input's facets are too coarse for the tolerance, trusted as far from
+            // their chords as those are from the smooth surface; elsewhere the facets are the
+            // finer model.
+            surface_model.emplace(input->surface);
+            surface::attach_hdi_projection(
+                *surface_model, projector->model(),
+                surface::coarse_input_options(
+                    settings.hdi_projection,
+                    surface::distance_tolerance(settings,
+                                                surface::bounding_box_diagonal(input->surface))));
+            settings.model = &*surface_model;
+        }
         const surface::SurfaceHooks hooks =
             make_hooks(mesh, boundary, options.mirror, &report.mirror);
         surface::remesh_surface(boundary.surface, settings, hooks);
@@ -240,18 +249,27 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
             sizes[v] = surface_size[old];
             finer = true;
         }
+        volume_field = &field;
+        graded.reset();
         if (finer)
         {
             grade_vertex_sizes(mesh, sizes, std::max(1.0, settings.sizing.hgrad));
             graded = std::make_unique<BackgroundMeshSize>(mesh, std::move(sizes));
             volume_field = graded.get();
         }
-    }
-    // The surface's bands and the refills may leave a few edges too long on either side.
-    if (report.surface_remeshed)
+        return static_cast<int>(mesh.triangles.size());
+    };
+    // The surface pass, then the volume's splits to the graded field, until the volume leaves
+    // the boundary (nearly) as the surface pass made it: its splits of the edges the pass left
+    // too long change it, the optimization after does not.
+    for (int round = 0; input && round < kSurfaceRounds; ++round)
     {
+        const int remeshed = surface_pass();
+        ++report.surface_passes;
+        // The surface's bands and the refills may leave a few edges too long on either side.
         refine_to_field(*volume_field);
         report.surface_triangles_after = static_cast<int>(mesh.triangles.size());
+        if (report.surface_triangles_after - remeshed <= kSurfaceRepeatFraction * remeshed) break;
     }
 
     // the final optimization, then the moves the guard had shortened
@@ -299,8 +317,11 @@ std::string format_adapt_report(const AdaptReport& report, bool with_passes)
     char line[256];
     if (report.surface_remeshed)
     {
-        std::snprintf(line, sizeof line, "surface: %d triangles -> %d, on the input's model\n",
-                      report.surface_triangles_before, report.surface_triangles_after);
+        std::snprintf(line, sizeof line, "surface: %d triangles -> %d, on the input's model%s\n",
+                      report.surface_triangles_before, report.surface_triangles_after,
+                      report.surface_passes > 1
+                          ? (", " + std::to_string(report.surface_passes) + " passes").c_str()
+                          : "");
         out << line << report.mirror.format();
     }
     else if (!report.surface_refusal.empty())

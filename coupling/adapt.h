@@ -81,6 +81,8 @@ struct AdaptReport
     std::string surface_refusal;
     bool surface_remeshed = false;
     int surface_triangles_before = 0, surface_triangles_after = 0;
+    /// Surface passes run: another follows while the volume's splits change the boundary.
+    int surface_passes = 0;
     MirrorStatistics mirror;
     double seconds_surface = 0, cpu_seconds_surface = 0;
 };
