@@ -429,7 +429,8 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
             // onto whichever neighbour the collapse allows.
             for (const VertexHandle v : fv)
                 if (mesh_.valence(v) <= 4 && ctx_.vertex_class(v) == VertexClass::Smooth)
-                    for (auto h : mesh_.voh_range(v)) collapses.push_back(h);
+                    for (auto h : mesh_.voh_range(v))
+                        if (mesh_.edge_handle(h) != edges[0]) collapses.push_back(h);  // (tried)
             for (std::size_t i = 0; i < collapses.size() && !changed; ++i)
             {
                 const HalfedgeHandle h = collapses[i];

@@ -125,6 +125,12 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
         shortest = shortest > 0.0 ? std::min(shortest, (w - p).norm()) : (w - p).norm();
     const double min_length = std::min(options.min_length, shortest);
 
+    // Better than v where it is: less shortfall, or (none short of the goal) a higher worst.
+    auto better_than_before = [&](const Score& s) {
+        return before.shortfall > 0.0 ? s.shortfall < before.shortfall - options.min_gain
+                                      : s.worst > before.worst + options.min_gain;
+    };
+
     // Through the layers (band, turn, quality), the legal ones best first.
     std::vector<Trial> legal;
     for (const Vec3d& t : trials)
@@ -134,10 +140,7 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
         if (!q.ok || !star.lengths_ok(q.point, min_length, options.max_length)) continue;
         const Score after = star.score(q.point, min_cos, options.goal);
         if (after.worst < floor) continue;
-        const bool better = before.shortfall > 0.0
-                                ? after.shortfall < before.shortfall - options.min_gain
-                                : after.worst > before.worst + options.min_gain;
-        if (better) legal.push_back({after, q});
+        if (better_than_before(after)) legal.push_back({after, q});
     }
     auto ahead = [](const Score& a, const Score& b) {
         return a.shortfall != b.shortfall ? a.shortfall < b.shortfall : a.worst > b.worst;
@@ -184,10 +187,7 @@ OpResult relocate_vertex(OperatorContext& ctx, VertexHandle v, const RelocateOpt
                 ++level;
             }
         }
-        const bool better = before.shortfall > 0.0
-                                ? centre.score.shortfall < before.shortfall - options.min_gain
-                                : centre.score.worst > before.worst + options.min_gain;
-        if (moved && better) legal.insert(legal.begin(), centre);
+        if (moved && better_than_before(centre.score)) legal.insert(legal.begin(), centre);
     }
     if (legal.empty()) return refused(OpStatus::Quality);
     const std::size_t asked = std::min<std::size_t>(legal.size(), 3);
