@@ -11,6 +11,7 @@
 #include "coupling/mesh_from_surface.h"
 #include "size_flags.h"
 #include "surface/surface_io.h"
+#include "volume/boundary_repair.h"
 #include "volume/check.h"
 #include "volume/quality_report.h"
 #include "volume/size_fields.h"
@@ -46,7 +47,7 @@ int main(int argc, char** argv)
         cli::SizeFlags size;
         bool check = false, no_optimize = false, no_projection = false, optim_only = false;
         bool noswap = false, nomove = false, noinsert = false;
-        bool keep_surface = false, has_hausd = false, nosurf = false;
+        bool keep_surface = false, has_hausd = false, nosurf = false, strict = false;
         double hausd = 0;
         int verbosity = 1;
         coupling::AdaptOptions options;
@@ -79,6 +80,9 @@ int main(int argc, char** argv)
             {"--optim", &optim_only, "optimize only: keep the sizes of the input mesh"},
             {"--keep-surface", &keep_surface,
              "surface input: its triangles are the boundary, exactly (no remeshing)"},
+            {"--strict", &strict,
+             "tet input: refuse triangles that are not the tets' boundary (TetGen's interior "
+             "and inward ones, missing ones) instead of mending them"},
         });
         cl.option("-v", &verbosity, "0 silent, 1 summary (default), 2 a table per pass");
         cl.option("--max-passes", &options.max_passes, "refinement passes at most (default 40)");
@@ -139,6 +143,9 @@ int main(int argc, char** argv)
             if (has_hausd && !(hausd > 0)) throw cli::UsageError("--hausd must be positive");
             options.hausd = has_hausd ? hausd : 0.0;
             options.surface = !nosurf && !optim_only;
+            if (!strict)
+                for (const std::string& line : repair_boundary(mesh).lines())
+                    std::cerr << "adapt: " << input << ": " << line << "\n";
             if (const auto violations = check_mesh(mesh); !violations.empty())
                 throw InputError(input + ": the input mesh is not valid:\n" +
                                  format_violations(violations));
@@ -171,8 +178,8 @@ int main(int argc, char** argv)
         const QualityReport quality = compute_quality_report(mesh, field.get());
         if (verbosity >= 1)
             std::cout << "output " << output << "\n" << format_quality_table(quality);
-        write_mesh(mesh, output);
         if (!stats_path.empty()) write_quality_json(quality, stats_path);
+        write_mesh(mesh, output);  // last: a run that fails leaves no output
         return 0;
     });
 }

@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "common/errors.h"
 #include "common/sol_io.h"
+#include "volume/boundary_repair.h"
 #include "volume/check.h"
 #include "volume/tet_io.h"
 
@@ -14,7 +15,7 @@ int main(int argc, char** argv)
 {
     return cli::run("meshconvert", [&] {
         std::string input, output, msh_version = "4.1", sol_path;
-        bool binary = false, no_check = false, verbose = false;
+        bool binary = false, no_check = false, verbose = false, strict = false;
         cli::CommandLine cl(
             "meshconvert",
             "Converts a tetrahedral mesh between formats (by extension), keeping\n"
@@ -26,6 +27,9 @@ int main(int argc, char** argv)
             {"--binary", &binary, "write .msh in binary"},
             {"--no-check", &no_check, "write even if the mesh checker finds violations"},
             {"--verbose", &verbose, "print the counts read"},
+            {"--strict", &strict,
+             "refuse triangles that are not the tets' boundary (TetGen's interior and inward "
+             "ones, missing ones) instead of mending them"},
         });
         cl.option("--sol", &sol_path,
                   "a .sol/.solb on the input's vertices, written as .vtu point data \"size\"");
@@ -33,7 +37,12 @@ int main(int argc, char** argv)
         if (msh_version != "2.2" && msh_version != "4.1")
             throw InputError("--msh-version expects 2.2 or 4.1, got '" + msh_version + "'");
 
-        const TetMesh mesh = read_mesh(input);
+        TetMesh mesh = read_mesh(input);
+        BoundaryRepairOptions repair;
+        repair.add_interfaces = false;  // a conversion adds no surface the file did not have
+        if (!strict && mesh.num_live_tets() > 0)
+            for (const std::string& line : repair_boundary(mesh, repair).lines())
+                std::cerr << "meshconvert: " << input << ": " << line << "\n";
         if (verbose)
             std::cout << input << ": " << mesh.num_vertices() << " vertices, "
                       << mesh.num_live_tets() << " tetrahedra, " << mesh.triangles.size()

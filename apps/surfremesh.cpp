@@ -114,8 +114,8 @@ int main(int argc, char** argv)
         const WallStopwatch stopwatch;
         const SurfaceRemeshResult result = remesh_surface(mesh, settings);
         const double seconds = stopwatch.seconds();
-        write_surface(mesh, output);
 
+        // Everything that could fail runs before the output is written.
         if (verbosity > 0 || !stats.empty())
         {
             const double uniform = result.adaptive ? 0.0 : result.uniform_size;
@@ -141,6 +141,7 @@ int main(int argc, char** argv)
             }
             if (!stats.empty()) write_stats(stats, before, after, result, seconds);
         }
+        write_surface(mesh, output);
         return 0;
     });
 }

@@ -131,6 +131,16 @@ long long TextReader::integer_in(const char* what, long long lo, long long hi)
     return v;
 }
 
+std::string too_large(double value)
+{
+    const auto text = [](double v) {
+        char buffer[32];
+        return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr);
+    };
+    return text(value) + " exceeds " + text(kMaxMagnitude) +
+           " in magnitude, the largest a coordinate or size may have";
+}
+
 double TextReader::real(const char* what)
 {
     std::string_view t = token(what);
@@ -142,6 +152,7 @@ double TextReader::real(const char* what)
     if (r.ec != std::errc() || r.ptr != t.data() + t.size() || t.empty())
         fail(std::string("expected a number (") + what + "), got '" + printable(t) + "'");
     if (!std::isfinite(value)) fail(std::string(what) + " is not finite: '" + printable(t) + "'");
+    if (std::abs(value) > kMaxMagnitude) fail(std::string(what) + " " + too_large(value));
     return value;
 }
 

@@ -8,6 +8,7 @@
 // a header by the bytes left in the buffer makes corrupted headers harmless (no huge reserve).
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <ostream>
@@ -19,11 +20,18 @@
 namespace hdimesh::io
 {
 
+/// The largest magnitude a number read from a file may have. Files hold coordinates and sizes
+/// only; beyond this their sixth powers (volumes, quality) or the front's float boxes overflow.
+inline constexpr double kMaxMagnitude = 1e30;
+
 /// Reads the whole file. IoError when it cannot be opened or read.
 std::string load_file(const std::string& path);
 
 /// Lower-case extension with its dot (".mesh"), or "" when there is none.
 std::string lower_extension(const std::string& path);
+
+/// "1e+308 exceeds 1e+30 in magnitude, the largest a coordinate or size may have".
+std::string too_large(double value);
 
 /// Whitespace-separated tokens of a text buffer, with the line of the last token read.
 /// Every failure throws InputError "path:line: message".
@@ -40,7 +48,7 @@ public:
     long long integer(const char* what);
     /// An integer that must fit in [lo, hi].
     long long integer_in(const char* what, long long lo, long long hi);
-    /// A finite double (NaN and infinities are rejected with the line).
+    /// A finite double of magnitude <= kMaxMagnitude (others are rejected with the line).
     double real(const char* what);
     /// An item count read from a header, bounded by the bytes left: each item needs at least
     /// min_bytes_per_item characters, so a corrupted count cannot make a reader allocate more
@@ -116,12 +124,13 @@ public:
         }
     }
 
-    /// A finite coordinate stored as T (float or double).
+    /// A finite number stored as T (float or double), of magnitude <= kMaxMagnitude.
     template <class T>
     double real(const char* what)
     {
         const double v = static_cast<double>(get<T>(what));
         if (!(v - v == 0.0)) fail(std::string(what) + " is not a finite number");
+        if (std::abs(v) > kMaxMagnitude) fail(std::string(what) + " " + too_large(v));
         return v;
     }
 

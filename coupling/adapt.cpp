@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "common/errors.h"
 #include "common/size_quality.h"
 #include "common/stage_timer.h"
 #include "coupling/boundary_map.h"
@@ -88,6 +89,20 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     AdaptReport report;
     const Stopwatch clock;
     if (!mesh.has_adjacency()) mesh.build_adjacency();
+    if (options.refine || options.surface)
+    {
+        // A size far below the model's scale would run until memory is gone.
+        const double expected = expected_tet_count(mesh, field);
+        if (!(expected <= kMaxTets))
+        {
+            char text[200];
+            std::snprintf(text, sizeof text,
+                          "the size field asks for about %.3g tets, more than the %.3g a mesh "
+                          "can hold: the size is far below the model's scale",
+                          expected, kMaxTets);
+            throw InputError(text);
+        }
+    }
 
     // One classification of the input boundary, given to both meshes before either model is
     // built from it.

@@ -67,6 +67,19 @@ double area_fraction_below(const SurfaceMesh& mesh, const std::vector<double>& v
     return total > 0.0 ? below / total : 0.0;
 }
 
+/// Each input triangle's area over an equilateral triangle's of the size at its centroid.
+double expected_triangle_count(const SurfaceMesh& input,
+                               const std::function<double(const Vec3d&)>& size)
+{
+    double count = 0.0;
+    for (auto f : input.faces())
+    {
+        const double h = size(input.calc_face_centroid(f));
+        count += input.calc_face_area(f) / (0.25 * std::sqrt(3.0) * h * h);
+    }
+    return count;
+}
+
 }  // namespace
 
 RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& options,
@@ -275,6 +288,17 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
                 ++model_face;
             }
         }
+    }
+    // A size far below the model's scale would run until memory is gone.
+    if (const double expected = expected_triangle_count(input, options.loop.size);
+        !(expected <= kMaxTriangles))
+    {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "the size asks for about %.3g triangles, more than the %.3g a surface can "
+                      "hold: the size is far below the model's scale (diagonal %.3g)",
+                      expected, kMaxTriangles, result.diagonal);
+        throw InputError(text);
     }
     options.loop.iterations = settings.iterations;
     options.loop.limits.shift_in_model_plane = model.has_smooth_projection();

@@ -99,6 +99,9 @@ RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& optio
                             const Projector& model, const SurfaceHooks& hooks = {});
 
 /// Everything surfremesh needs, for one library call from an input surface.
+/// The most triangles a surface may reach: OpenMesh numbers its 3·F halfedges in 32 bits.
+inline constexpr double kMaxTriangles = 7.0e8;
+
 struct SurfaceRemeshSettings
 {
     FeatureOptions features;

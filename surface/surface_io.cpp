@@ -58,6 +58,11 @@ TriangleSoup read_obj(const std::string& path)
         {
             Vec3d p;
             if (!(s >> p[0] >> p[1] >> p[2])) fail("a vertex needs three coordinates");
+            for (int c = 0; c < 3; ++c)
+            {
+                if (!std::isfinite(p[c])) fail("a coordinate is not finite");
+                if (std::abs(p[c]) > io::kMaxMagnitude) fail("vertex " + io::too_large(p[c]));
+            }
             soup.points.push_back(p);
         }
         else if (key == "f")
@@ -232,6 +237,9 @@ TriangleSoup read_stl_facets(const std::string& path)
                         if (!std::isfinite(x))
                             throw InputError(path + ": facet " + std::to_string(f + 1) +
                                              ": a coordinate is not finite");
+                        if (std::abs(x) > io::kMaxMagnitude)
+                            throw InputError(path + ": facet " + std::to_string(f + 1) + ": " +
+                                             io::too_large(x));
                         corners[k][c] = x;
                     }
                 add_facet(corners);
@@ -287,7 +295,20 @@ TriangleSoup read_with_openmesh(const std::string& path)
     if (!OpenMesh::IO::read_mesh(mesh, path, options))
         throw InputError(path + ": cannot parse as a surface mesh");
     TriangleSoup soup;
-    for (auto v : mesh.vertices()) soup.points.push_back(mesh.point(v));
+    for (auto v : mesh.vertices())
+    {
+        const Vec3d p = mesh.point(v);
+        for (int c = 0; c < 3; ++c)
+        {
+            if (!std::isfinite(p[c]))
+                throw InputError(path + ": vertex " + std::to_string(v.idx() + 1) +
+                                 ": a coordinate is not finite");
+            if (std::abs(p[c]) > io::kMaxMagnitude)
+                throw InputError(path + ": vertex " + std::to_string(v.idx() + 1) + ": " +
+                                 io::too_large(p[c]));
+        }
+        soup.points.push_back(p);
+    }
     for (auto f : mesh.faces())
     {
         auto fv = mesh.cfv_iter(f);

@@ -13,6 +13,7 @@
 
 #include "fixtures.h"
 #include "volume/boundary.h"
+#include "volume/boundary_repair.h"
 #include "volume/tet_tables.h"
 
 using namespace hdimesh;
@@ -165,23 +166,23 @@ TEST_CASE("a missing boundary triangle leaves a hole: three open edges")
     CHECK(count_kind(violations, "open_boundary_edge") == 0);
     CHECK(count_kind(violations, "missing_boundary_triangle") == 1);
 
-    // add_missing_boundary_triangles puts it back, outward
-    CHECK(add_missing_boundary_triangles(mesh) == 1);
+    // repair_boundary puts it back, outward
+    CHECK(repair_boundary(mesh).added_boundary == 1);
     CHECK(check_mesh(mesh).empty());
     Triangle added = mesh.triangles.back();
     std::rotate(added.begin(), std::find(added.begin(), added.end(), removed[0]), added.end());
     CHECK(added == removed);
 }
 
-TEST_CASE("add_missing_boundary_triangles rebuilds a boundary from nothing")
+TEST_CASE("repair_boundary rebuilds a boundary from nothing")
 {
     TetMesh mesh = fixtures::box_mesh(2, 0.2);
     mesh.triangles.clear();
     mesh.triangle_refs.clear();
     CHECK(count_kind(check_mesh(mesh), "missing_boundary_triangle") == 48);
-    CHECK(add_missing_boundary_triangles(mesh) == 48);
+    CHECK(repair_boundary(mesh).added_boundary == 48);
     CHECK(check_mesh(mesh).empty());
-    CHECK(add_missing_boundary_triangles(mesh) == 0);
+    CHECK_FALSE(repair_boundary(mesh).any());
 }
 
 TEST_CASE("an extra tet on the same side of a face: overlap")

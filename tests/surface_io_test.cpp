@@ -164,6 +164,28 @@ TEST_CASE("malformed and missing files are errors naming the file and line")
     CHECK_THROWS_AS(read_surface(medit), InputError);
 }
 
+TEST_CASE("a coordinate too large for the geometry is refused where it is read")
+{
+    // beyond 1e30 the sixth powers of a volume or quality, or a float box, overflow
+    const std::string obj = write_text("huge.obj", "v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n");
+    CHECK_THROWS_WITH_AS(
+        read_surface(obj),
+        (obj + ":2: vertex 1e+308 exceeds 1e+30 in magnitude, the largest a coordinate or size "
+               "may have")
+            .c_str(),
+        InputError);
+    const std::string off =
+        write_text("huge.off", "OFF\n3 1 0\n0 0 0\n1 0 -2e31\n0 1 0\n3 0 1 2\n");
+    CHECK_THROWS_WITH_AS(read_surface(off), doctest::Contains((off + ":4:").c_str()), InputError);
+    const std::string ply = write_text("huge.ply",
+                                       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                       "property float y\nproperty float z\nelement face 1\n"
+                                       "property list uchar int vertex_indices\nend_header\n"
+                                       "0 0 0\n1 0 0\n0 1e37 0\n3 0 1 2\n");
+    CHECK_THROWS_WITH_AS(read_surface(ply), doctest::Contains((ply + ": vertex 3").c_str()),
+                         InputError);
+}
+
 TEST_CASE("OFF and Medit surfaces: colours and unused sections skipped, errors name the line")
 {
     // one triangle; the OFF face line carries a colour, the Medit file a Corners section

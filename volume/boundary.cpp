@@ -108,23 +108,6 @@ std::vector<Triangle> tet_boundary_faces(const TetMesh& mesh)
     return boundary;
 }
 
-int add_missing_boundary_triangles(TetMesh& mesh)
-{
-    std::vector<Triangle> present;
-    present.reserve(mesh.triangles.size());
-    for (const auto& tri : mesh.triangles) present.push_back(sorted(tri));
-    std::sort(present.begin(), present.end());
-
-    int added = 0;
-    for (const Triangle& face : tet_boundary_faces(mesh))
-    {
-        if (std::binary_search(present.begin(), present.end(), sorted(face))) continue;
-        mesh.add_triangle(face, 0);
-        ++added;
-    }
-    return added;
-}
-
 double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles)
 {
     if (triangles.empty()) return 0.0;

@@ -37,11 +37,6 @@ Triangle face_vertices(const TetMesh& mesh, const TetFace& face);
 /// The faces used by exactly one live tet, oriented as that tet sees them (outward).
 std::vector<Triangle> tet_boundary_faces(const TetMesh& mesh);
 
-/// Appends the tets' boundary faces missing from mesh.triangles (ref 0), e.g. for a .msh
-/// without triangles; returns how many. A face is "present" when mesh.triangles holds its
-/// vertex set, whatever the orientation (check_mesh reports a wrong orientation).
-int add_missing_boundary_triangles(TetMesh& mesh);
-
 /// Volume enclosed by a closed, outward-oriented triangle set (divergence theorem), computed
 /// relative to the triangles' bounding-box centre so large offsets do not cost precision.
 double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles);

@@ -15,6 +15,7 @@
 
 #include "common/errors.h"
 #include "volume/boundary.h"
+#include "volume/geometry.h"
 
 namespace hdimesh::volume
 {
@@ -169,6 +170,23 @@ ClampedSize::ClampedSize(std::shared_ptr<const SizeField> inner, double hmin, do
 }
 
 double ClampedSize::size(const Vec3& p) const { return std::clamp(inner_->size(p), hmin_, hmax_); }
+
+double expected_tet_count(const TetMesh& mesh, const SizeField& field)
+{
+    double count = 0.0;
+    for (int t = 0; t < static_cast<int>(mesh.tets.size()); ++t)
+    {
+        if (mesh.is_dead(t)) continue;
+        const auto& v = mesh.tets[t];
+        const Vec3& a = mesh.points[v[0]];
+        const Vec3& b = mesh.points[v[1]];
+        const Vec3& c = mesh.points[v[2]];
+        const Vec3& d = mesh.points[v[3]];
+        const double h = field.size(0.25 * (a + b + c + d));
+        count += std::abs(signed_volume(a, b, c, d)) / (h * h * h / (6.0 * std::sqrt(2.0)));
+    }
+    return count;
+}
 
 std::vector<double> sample_vertex_sizes(const TetMesh& mesh, const SizeField& field)
 {

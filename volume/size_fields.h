@@ -84,6 +84,13 @@ private:
     double hmin_, hmax_;
 };
 
+/// How many tets the field asks for: each live tet's volume over the volume of a regular tet of
+/// the size at its centroid, summed. A guard against sizes far below the model's scale.
+double expected_tet_count(const TetMesh& mesh, const SizeField& field);
+
+/// The most tets a mesh may reach: their faces are numbered 4·tet + face in 32 bits.
+inline constexpr double kMaxTets = 5.0e8;
+
 /// The field sampled at every vertex of the mesh (e.g. before grade_vertex_sizes).
 std::vector<double> sample_vertex_sizes(const TetMesh& mesh, const SizeField& field);
 

@@ -19,3 +19,19 @@ if(EXISTS /usr/bin/python3)
     set_tests_properties(adapt_app_sphere_independent_check PROPERTIES
         DEPENDS adapt_app_sphere PASS_REGULAR_EXPRESSION "CONFORMING: True")
 endif()
+# Inputs as other meshers write them. icosphere320_tetgen.mesh is `tetgen -pgQ` (TetGen 1.5.0) of
+# icosphere320: every tet face listed, the boundary inward. adapt mends it and says so in a line
+# per fix-up; --strict refuses it and writes nothing.
+add_test(NAME adapt_app_tetgen_input
+         COMMAND bash -c "$<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/icosphere320_tetgen.mesh -o ${adapt_out}/tetgen.mesh --hsiz 0.3 --check > ${adapt_out}/tetgen.txt 2>&1 && grep -q 'dropped 722 interior triangles' ${adapt_out}/tetgen.txt && grep -q 'turned 320 boundary triangles outward' ${adapt_out}/tetgen.txt && grep -q 'check output: clean' ${adapt_out}/tetgen.txt")
+add_test(NAME adapt_app_tetgen_strict
+         COMMAND bash -c "! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/icosphere320_tetgen.mesh -o ${adapt_out}/strict.mesh --hsiz 0.3 --strict 2> ${adapt_out}/strict.txt && grep -q 'interior_triangle' ${adapt_out}/strict.txt && test ! -e ${adapt_out}/strict.mesh")
+# A tets-only copy of sphere480 (its Triangles section cut out) gives the same output, byte for byte.
+add_test(NAME adapt_app_tets_only_input
+         COMMAND bash -c "awk '/^Triangles/{skip=1; next} skip==1{n=$1; skip=2; next} skip==2{if (--n == 0) skip=0; next} {print}' ${PROJECT_SOURCE_DIR}/data/sphere480.mesh > ${adapt_out}/tets_only.mesh && ! grep -q Triangles ${adapt_out}/tets_only.mesh && $<TARGET_FILE:adapt> ${adapt_out}/tets_only.mesh -o ${adapt_out}/tets_only_out.mesh --hsiz 0.3 -v 0 2> ${adapt_out}/tets_only.txt && grep -q 'added 256 boundary triangles' ${adapt_out}/tets_only.txt && $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/with_triangles_out.mesh --hsiz 0.3 -v 0 && cmp ${adapt_out}/tets_only_out.mesh ${adapt_out}/with_triangles_out.mesh")
+# A size far below the model's scale is refused up front (it would run until memory is gone),
+# and so is a coordinate the geometry cannot take; neither leaves an output file.
+add_test(NAME adapt_app_size_far_too_small
+         COMMAND bash -c "! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/tiny.mesh --hsiz 1e-6 2> ${adapt_out}/tiny.txt && grep -q 'far below the model' ${adapt_out}/tiny.txt && test ! -e ${adapt_out}/tiny.mesh")
+add_test(NAME adapt_app_huge_coordinate
+         COMMAND bash -c "sed '0,/^v /s/^v [^ ]* /v 1e308 /' ${PROJECT_SOURCE_DIR}/data/icosphere320.obj > ${adapt_out}/huge.obj && ! $<TARGET_FILE:adapt> ${adapt_out}/huge.obj -o ${adapt_out}/huge.mesh --hsiz 0.3 2> ${adapt_out}/huge.txt && grep -q 'huge.obj:[0-9]*: vertex 1e+308 exceeds' ${adapt_out}/huge.txt && test ! -e ${adapt_out}/huge.mesh")

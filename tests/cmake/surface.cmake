@@ -15,6 +15,11 @@ if(TARGET surfremesh)
              COMMAND surfremesh ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${CMAKE_CURRENT_BINARY_DIR}/never.obj
                      --hsiz 0.1 --hausd 0.01)
     set_tests_properties(surfremesh_two_sizes PROPERTIES WILL_FAIL TRUE)
+    # A far too small size, or a spike vertex 1e29 away, asks for more triangles than ids exist.
+    add_test(NAME surfremesh_size_far_too_small
+             COMMAND bash -c "! $<TARGET_FILE:surfremesh> ${PROJECT_SOURCE_DIR}/data/icosphere320.obj -o ${CMAKE_CURRENT_BINARY_DIR}/tiny.obj --hsiz 1e-7 2> ${CMAKE_CURRENT_BINARY_DIR}/tiny.txt && grep -q 'far below the model' ${CMAKE_CURRENT_BINARY_DIR}/tiny.txt && test ! -e ${CMAKE_CURRENT_BINARY_DIR}/tiny.obj")
+    add_test(NAME surfremesh_spike_vertex
+             COMMAND bash -c "sed '0,/^v /s/^v [^ ]* /v 1e29 /' ${PROJECT_SOURCE_DIR}/data/icosphere320.obj > ${CMAKE_CURRENT_BINARY_DIR}/spike.obj && ! $<TARGET_FILE:surfremesh> ${CMAKE_CURRENT_BINARY_DIR}/spike.obj -o ${CMAKE_CURRENT_BINARY_DIR}/spike_out.obj --hsiz 0.3 2> ${CMAKE_CURRENT_BINARY_DIR}/spike.txt && grep -q 'far below the model' ${CMAKE_CURRENT_BINARY_DIR}/spike.txt && test ! -e ${CMAKE_CURRENT_BINARY_DIR}/spike_out.obj")
     # Second opinion on the output topology and quality, where the shared checker's Python is there.
     if(EXISTS /usr/bin/python3 AND EXISTS ${PROJECT_SOURCE_DIR}/scripts/surfstat.py)
         add_test(NAME surfremesh_sphere_surfstat

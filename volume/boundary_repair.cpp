@@ -1,0 +1,157 @@
+#include "volume/boundary_repair.h"
+
+#include <algorithm>
+
+#include "volume/boundary.h"
+
+namespace hdimesh::volume
+{
+
+namespace
+{
+
+/// b lists a's vertices in the same cyclic order.
+bool same_orientation(const Triangle& a, const Triangle& b)
+{
+    for (int r = 0; r < 3; ++r)
+        if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3]) return true;
+    return false;
+}
+
+std::string counted(int n, const char* one, const char* many)
+{
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+}  // namespace
+
+std::vector<std::string> BoundaryRepair::lines() const
+{
+    std::vector<std::string> out;
+    if (dropped_interior > 0)
+        out.push_back("dropped " +
+                      counted(dropped_interior, "interior triangle", "interior triangles") +
+                      " (between two tets of the same ref)");
+    if (dropped_duplicates > 0)
+        out.push_back("dropped " +
+                      counted(dropped_duplicates, "repeated triangle", "repeated triangles"));
+    if (turned_outward > 0)
+        out.push_back("turned " +
+                      counted(turned_outward, "boundary triangle", "boundary triangles") +
+                      " outward");
+    if (added_boundary > 0)
+        out.push_back("added " + counted(added_boundary, "boundary triangle", "boundary triangles") +
+                      " from the tets' unshared faces (ref of their tet)");
+    if (added_interface > 0)
+        out.push_back("added " +
+                      counted(added_interface, "interface triangle", "interface triangles") +
+                      " between tets of two refs (the smaller ref)");
+    return out;
+}
+
+BoundaryRepair repair_boundary(TetMesh& mesh, const BoundaryRepairOptions& options)
+{
+    BoundaryRepair repair;
+    const int nt = static_cast<int>(mesh.triangles.size());
+    if (static_cast<int>(mesh.triangle_refs.size()) != nt) mesh.triangle_refs.resize(nt, 0);
+    const bool has_tet_refs = mesh.tet_refs.size() == mesh.tets.size();
+    auto tet_ref = [&](int t) { return has_tet_refs ? mesh.tet_refs[t] : 0; };
+
+    std::vector<char> required(nt, 0);
+    for (int i : mesh.required_triangles)
+        if (i >= 0 && i < nt) required[i] = 1;
+
+    // declared triangles by vertex set, then by index: the first of a set is the one kept
+    struct Declared
+    {
+        Triangle key;
+        int index;
+        bool operator<(const Declared& o) const
+        {
+            return key != o.key ? key < o.key : index < o.index;
+        }
+    };
+    std::vector<Declared> declared;
+    declared.reserve(nt);
+    for (int i = 0; i < nt; ++i) declared.push_back({sorted_triple(mesh.triangles[i]), i});
+    std::sort(declared.begin(), declared.end());
+
+    std::vector<char> keep(nt, 1);
+    std::vector<Triangle> added;
+    std::vector<int> added_refs;
+    const FaceGroups groups = group_tet_faces(mesh);
+    for (int k = 0; k < groups.num_faces(); ++k)
+    {
+        const int uses = groups.start[k + 1] - groups.start[k];
+        if (uses > 2) continue;  // a face of three tets: the checker's to name
+        const TetFace& first = groups.uses[groups.start[k]];
+        const Triangle face = face_vertices(mesh, first);
+        auto range = std::equal_range(
+            declared.begin(), declared.end(), Declared{sorted_triple(face), -1},
+            [](const Declared& a, const Declared& b) { return a.key < b.key; });
+
+        if (uses == 2)
+        {
+            const TetFace& second = groups.uses[groups.start[k] + 1];
+            const int ref_a = tet_ref(first.tet), ref_b = tet_ref(second.tet);
+            if (ref_a == ref_b)
+            {
+                for (auto it = range.first; it != range.second; ++it)
+                    if (!required[it->index])
+                    {
+                        keep[it->index] = 0;
+                        ++repair.dropped_interior;
+                    }
+                continue;
+            }
+            if (range.first == range.second && options.add_interfaces)
+            {
+                // outward from the tet of the smaller ref, whose ref it takes
+                added.push_back(ref_a < ref_b ? face : face_vertices(mesh, second));
+                added_refs.push_back(std::min(ref_a, ref_b));
+                ++repair.added_interface;
+            }
+        }
+        else if (range.first == range.second)
+        {
+            added.push_back(face);
+            added_refs.push_back(tet_ref(first.tet));
+            ++repair.added_boundary;
+            continue;
+        }
+        else if (Triangle& tri = mesh.triangles[range.first->index]; !same_orientation(tri, face))
+        {
+            std::swap(tri[1], tri[2]);
+            ++repair.turned_outward;
+        }
+        for (auto it = std::next(range.first); it < range.second; ++it)
+            if (!required[it->index])
+            {
+                keep[it->index] = 0;
+                ++repair.dropped_duplicates;
+            }
+    }
+    if (!repair.any()) return repair;
+
+    // renumber the kept triangles in their order, the new ones after them
+    std::vector<int> old2new(nt, -1);
+    int next = 0;
+    for (int i = 0; i < nt; ++i)
+    {
+        if (!keep[i]) continue;
+        old2new[i] = next;
+        mesh.triangles[next] = mesh.triangles[i];
+        mesh.triangle_refs[next] = mesh.triangle_refs[i];
+        ++next;
+    }
+    mesh.triangles.resize(next);
+    mesh.triangle_refs.resize(next);
+    for (int& i : mesh.required_triangles)
+        if (i >= 0 && i < nt) i = old2new[i];  // required triangles are all kept
+    mesh.triangles.insert(mesh.triangles.end(), added.begin(), added.end());
+    mesh.triangle_refs.insert(mesh.triangle_refs.end(), added_refs.begin(), added_refs.end());
+    mesh.classify_vertices();
+    return repair;
+}
+
+}  // namespace hdimesh::volume
