@@ -18,7 +18,7 @@ namespace
 
 constexpr double pi = 3.14159265358979323846;
 
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
+std::size_t slot(int i) { return static_cast<std::size_t>(i); }
 
 // The vector arithmetic of the surface mesh (OpenMesh), term by term in its order, so that a
 // decision at a threshold is the same whichever mesh asks.
@@ -61,8 +61,8 @@ struct Rows
     std::vector<int> begin;
     std::vector<T> items;
 
-    int size(int r) const { return begin[at(r) + 1] - begin[at(r)]; }
-    const T* row(int r) const { return items.data() + begin[at(r)]; }
+    int size(int r) const { return begin[slot(r) + 1] - begin[slot(r)]; }
+    const T* row(int r) const { return items.data() + begin[slot(r)]; }
 };
 
 /// The edges of a triangle surface, the sides along each, and each vertex's edges and
@@ -82,12 +82,12 @@ template <class T>
 Rows<T> make_rows(int row_count, const std::vector<std::pair<int, T>>& pairs)
 {
     Rows<T> rows;
-    rows.begin.assign(at(row_count) + 1, 0);
-    for (const auto& p : pairs) ++rows.begin[at(p.first) + 1];
+    rows.begin.assign(slot(row_count) + 1, 0);
+    for (const auto& p : pairs) ++rows.begin[slot(p.first) + 1];
     std::partial_sum(rows.begin.begin(), rows.begin.end(), rows.begin.begin());
     rows.items.resize(pairs.size());
     std::vector<int> fill(rows.begin.begin(), rows.begin.end() - 1);
-    for (const auto& p : pairs) rows.items[at(fill[at(p.first)]++)] = p.second;
+    for (const auto& p : pairs) rows.items[slot(fill[slot(p.first)]++)] = p.second;
     return rows;
 }
 
@@ -106,7 +106,7 @@ std::vector<KeyedSide> sorted_sides(const std::vector<Triangle3>& triangles)
     for (std::size_t t = 0; t < triangles.size(); ++t)
         for (int i = 0; i < 3; ++i)
         {
-            const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
+            const int a = triangles[t][slot(i)], b = triangles[t][slot((i + 1) % 3)];
             if (a == b) continue;  // a degenerate triangle's collapsed side is no edge
             sides.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t)});
         }
@@ -128,9 +128,9 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
         for (int i = 0; i < 3; ++i)
         {
             const Triangle3& tri = triangles[t];
-            const bool repeated = (i > 0 && tri[at(i)] == tri[0]) || (i > 1 && tri[2] == tri[1]);
+            const bool repeated = (i > 0 && tri[slot(i)] == tri[0]) || (i > 1 && tri[2] == tri[1]);
             if (!repeated)
-                incidences.push_back({tri[at(i)], static_cast<int>(t)});  // once per triangle
+                incidences.push_back({tri[slot(i)], static_cast<int>(t)});  // once per triangle
         }
     table.vertex_triangles = make_rows(point_count, incidences);
     auto vertex_edge_rows = [&]() {
@@ -157,8 +157,9 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
                 if (u > t) break;
                 for (int j = 0; j < 3; ++j)
                 {
-                    const int c = triangles[at(u)][at(j)], d = triangles[at(u)][at((j + 1) % 3)];
-                    const int e = side_edge[at(3 * u + j)];
+                    const int c = triangles[slot(u)][slot(j)],
+                              d = triangles[slot(u)][slot((j + 1) % 3)];
+                    const int e = side_edge[slot(3 * u + j)];
                     if (e >= 0 && ((c == a && d == b) || (c == b && d == a))) return e;
                 }
             }
@@ -167,7 +168,7 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
         for (std::size_t t = 0; t < triangles.size(); ++t)
             for (int i = 0; i < 3; ++i)
             {
-                const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
+                const int a = triangles[t][slot(i)], b = triangles[t][slot((i + 1) % 3)];
                 if (a == b) continue;  // a degenerate triangle's collapsed side is no edge
                 int e = known_edge(static_cast<int>(t), a, b);
                 if (e < 0)
@@ -175,7 +176,7 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
                     e = static_cast<int>(table.edges.size());
                     table.edges.push_back({a, b});
                 }
-                side_edge[3 * t + at(i)] = e;
+                side_edge[3 * t + slot(i)] = e;
             }
         vertex_edge_rows();
     }
@@ -192,7 +193,7 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
         for (std::size_t t = 0; t < triangles.size(); ++t)
             for (int i = 0; i < 3; ++i)
             {
-                const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
+                const int a = triangles[t][slot(i)], b = triangles[t][slot((i + 1) % 3)];
                 if (a == b) continue;
                 int e = -1;
                 for (int k = 0; k < table.vertex_edges.size(a) && e < 0; ++k)
@@ -200,7 +201,7 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
                 if (e < 0)
                     throw InputError("features: side " + std::to_string(i) + " of triangle " +
                                      std::to_string(t) + " is in no given edge");
-                side_edge[3 * t + at(i)] = e;
+                side_edge[3 * t + slot(i)] = e;
             }
     }
 
@@ -209,9 +210,9 @@ EdgeTable build_edge_table(int point_count, const std::vector<Triangle3>& triang
     for (std::size_t t = 0; t < triangles.size(); ++t)
         for (int i = 0; i < 3; ++i)
         {
-            const int e = side_edge[3 * t + at(i)];
+            const int e = side_edge[3 * t + slot(i)];
             if (e < 0) continue;
-            const bool forward = triangles[t][at(i)] == table.edges[at(e)][0];
+            const bool forward = triangles[t][slot(i)] == table.edges[slot(e)][0];
             edge_sides.push_back({e, {static_cast<int>(t), forward}});
         }
     table.sides = make_rows(static_cast<int>(table.edges.size()), edge_sides);  // in triangle order
@@ -242,47 +243,47 @@ public:
     {
         for (int e = 0; e < static_cast<int>(table_.edges.size()); ++e)
             if (table_.open(e))
-                open_vertex_[at(table_.edges[at(e)][0])] =
-                    open_vertex_[at(table_.edges[at(e)][1])] = 1;
+                open_vertex_[slot(table_.edges[slot(e)][0])] =
+                    open_vertex_[slot(table_.edges[slot(e)][1])] = 1;
     }
 
     /// Curves end, meet or turn sharply at corners; an isolated spike is one too.
     void find_corners()
     {
         const int n = static_cast<int>(points_.size());
-        corner_.assign(at(n), 0);
-        sharp_degree_.assign(at(n), 0);
+        corner_.assign(slot(n), 0);
+        sharp_degree_.assign(slot(n), 0);
         for (int e = 0; e < static_cast<int>(table_.edges.size()); ++e)
-            if (sharp_[at(e)])
+            if (sharp_[slot(e)])
             {
-                ++sharp_degree_[at(table_.edges[at(e)][0])];
-                ++sharp_degree_[at(table_.edges[at(e)][1])];
+                ++sharp_degree_[slot(table_.edges[slot(e)][0])];
+                ++sharp_degree_[slot(table_.edges[slot(e)][1])];
             }
         // Marked around the sharp vertices (few), not asked of every other vertex's ring.
-        beside_sharp_.assign(at(n), 0);
+        beside_sharp_.assign(slot(n), 0);
         for (int v = 0; v < n; ++v)
-            if (sharp_degree_[at(v)] > 0)
+            if (sharp_degree_[slot(v)] > 0)
                 for (int i = 0; i < table_.vertex_edges.size(v); ++i)
-                    beside_sharp_[at(table_.vertex_edges.row(v)[i][0])] = 1;
+                    beside_sharp_[slot(table_.vertex_edges.row(v)[i][0])] = 1;
         std::vector<std::pair<double, int>> turn_corners;
         for (int v = 0; v < n; ++v)
         {
-            const int degree = sharp_degree_[at(v)];
+            const int degree = sharp_degree_[slot(v)];
             if (degree == 0)
             {
-                if (is_cone_tip(v)) corner_[at(v)] = 1;
+                if (is_cone_tip(v)) corner_[slot(v)] = 1;
                 continue;
             }
             if (degree != 2)
             {
-                corner_[at(v)] = 1;
+                corner_[slot(v)] = 1;
                 continue;
             }
             int ends[2], open_edges = 0, found = 0;
             for (int i = 0; i < table_.vertex_edges.size(v); ++i)
             {
                 const auto [other, e] = table_.vertex_edges.row(v)[i];
-                if (!sharp_[at(e)] || found == 2) continue;
+                if (!sharp_[slot(e)] || found == 2) continue;
                 ends[found++] = other;
                 open_edges += table_.open(e);
             }
@@ -290,21 +291,21 @@ public:
             // manifold): a curve is open all along or nowhere.
             if (open_edges == 1)
             {
-                corner_[at(v)] = 1;
+                corner_[slot(v)] = 1;
                 continue;
             }
             // An open boundary of a scan zig-zags: only its sharpest turns are corners.
-            const bool open = open_vertex_[at(v)];
+            const bool open = open_vertex_[slot(v)];
             const double limit =
                 open ? options_.boundary_corner_turn_angle_deg : options_.corner_turn_angle_deg;
-            const Vec3& p = points_[at(v)];
+            const Vec3& p = points_[slot(v)];
             const double turn =
-                angle_between_deg(p - points_[at(ends[0])], points_[at(ends[1])] - p);
+                angle_between_deg(p - points_[slot(ends[0])], points_[slot(ends[1])] - p);
             if (turn <= limit) continue;
             if (open)
                 turn_corners.emplace_back(turn, v);  // may be thinned below
             else
-                corner_[at(v)] = 1;  // a ridge that turns sharply is a corner of the part
+                corner_[slot(v)] = 1;  // a ridge that turns sharply is a corner of the part
         }
         // Boundary turn corners closer than min_corner_spacing to a kept corner are zig-zag noise
         // at the scale of the target mesh: the sharpest turn of a cluster stays, the rest slide.
@@ -312,15 +313,15 @@ public:
                   [](const auto& a, const auto& b) { return a.first > b.first; });
         std::vector<Vec3> kept;
         for (int v = 0; v < n; ++v)
-            if (corner_[at(v)]) kept.push_back(points_[at(v)]);
+            if (corner_[slot(v)]) kept.push_back(points_[slot(v)]);
         for (const auto& [turn, v] : turn_corners)
         {
-            const Vec3& p = points_[at(v)];
+            const Vec3& p = points_[slot(v)];
             const bool crowded = std::any_of(kept.begin(), kept.end(), [&](const Vec3& q) {
                 return length(q - p) < options_.min_corner_spacing;
             });
             if (crowded) continue;
-            corner_[at(v)] = 1;
+            corner_[slot(v)] = 1;
             kept.push_back(p);
         }
     }
@@ -332,20 +333,20 @@ public:
         std::vector<char> visited(table_.edges.size(), 0);
         for (int e = 0; e < static_cast<int>(table_.edges.size()); ++e)
         {
-            if (!sharp_[at(e)] || visited[at(e)]) continue;
+            if (!sharp_[slot(e)] || visited[slot(e)]) continue;
             Chain chain;
             chain.open = table_.open(e);
             std::vector<int> forward, backward;
-            visited[at(e)] = 1;
-            walk(table_.edges[at(e)][1], e, visited, forward);
-            walk(table_.edges[at(e)][0], e, visited, backward);
+            visited[slot(e)] = 1;
+            walk(table_.edges[slot(e)][1], e, visited, forward);
+            walk(table_.edges[slot(e)][0], e, visited, backward);
             chain.edges.assign(backward.rbegin(), backward.rend());
             chain.edges.push_back(e);
             chain.edges.insert(chain.edges.end(), forward.begin(), forward.end());
             for (int ce : chain.edges)
             {
-                const EdgeEnds& ends = table_.edges[at(ce)];
-                chain.length += length(points_[at(ends[1])] - points_[at(ends[0])]);
+                const EdgeEnds& ends = table_.edges[slot(ce)];
+                chain.length += length(points_[slot(ends[1])] - points_[slot(ends[0])]);
                 chain.topology = chain.topology || table_.sides.size(ce) > 2;
             }
             out.push_back(std::move(chain));
@@ -362,12 +363,12 @@ private:
     /// triangles around it (angle sum at least cone_min_angle_sum_deg). Reads beside_sharp_.
     bool is_cone_tip(int v)
     {
-        if (open_vertex_[at(v)] || !(options_.cone_defect_deg < 360.0)) return false;
+        if (open_vertex_[slot(v)] || !(options_.cone_defect_deg < 360.0)) return false;
         // Only an isolated spike: next to a ridge the defect belongs to the ridge's geometry.
-        if (beside_sharp_[at(v)]) return false;
+        if (beside_sharp_[slot(v)]) return false;
         // The angle sum is geometry only: computed once, though find_corners runs each round.
         if (angle_sum_.empty()) angle_sum_.assign(points_.size(), not_yet);
-        double& sum = angle_sum_[at(v)];
+        double& sum = angle_sum_[slot(v)];
         if (sum == not_yet) sum = fan_angle_sum(v);
         if (std::isnan(sum)) return false;  // not one closed fan
         return 360.0 - sum > options_.cone_defect_deg && sum >= options_.cone_min_angle_sum_deg;
@@ -385,22 +386,22 @@ private:
         ring_.clear();
         for (int i = 0; i < count; ++i)
         {
-            const Triangle3& tri = triangles_[at(table_.vertex_triangles.row(v)[i])];
+            const Triangle3& tri = triangles_[slot(table_.vertex_triangles.row(v)[i])];
             const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-            ring_.push_back({tri[at((k + 1) % 3)], tri[at((k + 2) % 3)]});
+            ring_.push_back({tri[slot((k + 1) % 3)], tri[slot((k + 2) % 3)]});
         }
-        const Vec3& p = points_[at(v)];
+        const Vec3& p = points_[slot(v)];
         const int start = count - 1;
         int corner = start;
         double sum = 0.0;
         for (int step = 0; step < count; ++step)
         {
-            const auto [a, b] = ring_[at(corner)];
-            sum += angle_between_deg(points_[at(a)] - p, points_[at(b)] - p);
+            const auto [a, b] = ring_[slot(corner)];
+            sum += angle_between_deg(points_[slot(a)] - p, points_[slot(b)] - p);
             // clockwise: across the edge (v, a), into the triangle where a comes just before v
             int next = -1;
             for (int i = 0; i < count; ++i)
-                if (ring_[at(i)][1] == a)
+                if (ring_[slot(i)][1] == a)
                 {
                     if (next >= 0) return not_a_fan;
                     next = i;
@@ -415,17 +416,17 @@ private:
     // Follows the curve from v (reached by edge `came`) through non-corner vertices of degree 2.
     void walk(int v, int came, std::vector<char>& visited, std::vector<int>& out) const
     {
-        while (!corner_[at(v)])
+        while (!corner_[slot(v)])
         {
-            assert(sharp_degree_[at(v)] == 2 && "a vertex inside a curve has two curve edges");
+            assert(sharp_degree_[slot(v)] == 2 && "a vertex inside a curve has two curve edges");
             int next = -1, next_end = -1;
             for (int i = 0; i < table_.vertex_edges.size(v); ++i)
             {
                 const auto [other, e] = table_.vertex_edges.row(v)[i];
-                if (e != came && sharp_[at(e)]) next = e, next_end = other;
+                if (e != came && sharp_[slot(e)]) next = e, next_end = other;
             }
-            if (next < 0 || visited[at(next)]) return;
-            visited[at(next)] = 1;
+            if (next < 0 || visited[slot(next)]) return;
+            visited[slot(next)] = 1;
             out.push_back(next);
             v = next_end;
             came = next;
@@ -455,8 +456,8 @@ std::vector<char> sharp_edges(const std::vector<Vec3>& points,
 {
     std::vector<Vec3> normal(triangles.size());
     for (std::size_t t = 0; t < triangles.size(); ++t)
-        normal[t] = unit_normal(points[at(triangles[t][0])], points[at(triangles[t][1])],
-                                points[at(triangles[t][2])]);
+        normal[t] = unit_normal(points[slot(triangles[t][0])], points[slot(triangles[t][1])],
+                                points[slot(triangles[t][2])]);
     // An edge whose face normals' cosine is above that of the lowest sharp angle by a clear
     // margin is flat: its angle (an acos) is not computed. The margin is far above the rounding
     // of acos and of the degree conversion: the same decisions.
@@ -469,26 +470,26 @@ std::vector<char> sharp_edges(const std::vector<Vec3>& points,
     {
         if (table.sides.size(e) != 2)
         {
-            sharp[at(e)] = 1;  // an open boundary, or topology
+            sharp[slot(e)] = 1;  // an open boundary, or topology
             continue;
         }
         const Side s0 = table.sides.row(e)[0], s1 = table.sides.row(e)[1];
-        if (!refs.empty() && refs[at(s0.triangle)] != refs[at(s1.triangle)])
+        if (!refs.empty() && refs[slot(s0.triangle)] != refs[slot(s1.triangle)])
         {
-            sharp[at(e)] = 1;  // a border between refs is kept like a ridge
+            sharp[slot(e)] = 1;  // a border between refs is kept like a ridge
             continue;
         }
         if (!options.detect_ridges) continue;
-        const Vec3& n0 = normal[at(s0.triangle)];
+        const Vec3& n0 = normal[slot(s0.triangle)];
         const Vec3 n1 =
-            s0.forward == s1.forward ? Vec3(-normal[at(s1.triangle)]) : normal[at(s1.triangle)];
+            s0.forward == s1.forward ? Vec3(-normal[slot(s1.triangle)]) : normal[slot(s1.triangle)];
         const double cosine = cosine_between(n0, n1);
         if (cosine >= flat_cosine) continue;
         const double angle = std::acos(cosine) * 180.0 / pi;
         if (angle > options.ridge_angle_deg)
-            sharp[at(e)] = 1;
+            sharp[slot(e)] = 1;
         else if (angle > options.crease_angle_deg)
-            sharp[at(e)] = 2;  // a crease: kept only in long chains
+            sharp[slot(e)] = 2;  // a crease: kept only in long chains
     }
     return sharp;
 }
@@ -496,14 +497,14 @@ std::vector<char> sharp_edges(const std::vector<Vec3>& points,
 /// The ends of a chain: of its first and last edge, those not shared with the next in line.
 std::pair<int, int> chain_ends(const Chain& c, const EdgeTable& table)
 {
-    const EdgeEnds& first = table.edges[at(c.edges.front())];
+    const EdgeEnds& first = table.edges[slot(c.edges.front())];
     if (c.edges.size() == 1) return {first[0], first[1]};
     auto free_end = [&](const EdgeEnds& e, int neighbour) {
-        const EdgeEnds& n = table.edges[at(neighbour)];
+        const EdgeEnds& n = table.edges[slot(neighbour)];
         const bool shared = n[0] == e[0] || n[1] == e[0];
         return shared ? e[1] : e[0];
     };
-    const EdgeEnds& last = table.edges[at(c.edges.back())];
+    const EdgeEnds& last = table.edges[slot(c.edges.back())];
     return {free_end(first, c.edges[1]), free_end(last, c.edges[c.edges.size() - 2])};
 }
 
@@ -542,14 +543,14 @@ FeatureClassification classify_features(const std::vector<Vec3>& points,
         for (std::size_t i = 0; i < chains.size(); ++i)
         {
             const Chain& c = chains[i];
-            const bool crease_only = std::all_of(c.edges.begin(), c.edges.end(),
-                                                 [&](int e) { return graph.sharp()[at(e)] == 2; });
+            const bool crease_only = std::all_of(
+                c.edges.begin(), c.edges.end(), [&](int e) { return graph.sharp()[slot(e)] == 2; });
             const double needed = (crease_only ? 2.0 : 1.0) * options.min_ridge_length * diagonal;
             if (c.open || c.topology || c.length >= needed)
             {
                 kept[i] = 1;
                 const auto [a, b] = chain_ends(c, table);
-                ridge_end[at(a)] = ridge_end[at(b)] = 1;
+                ridge_end[slot(a)] = ridge_end[slot(b)] = 1;
             }
         }
         for (bool grew = true; grew;)
@@ -559,7 +560,7 @@ FeatureClassification classify_features(const std::vector<Vec3>& points,
             {
                 if (kept[i]) continue;
                 const auto [a, b] = chain_ends(chains[i], table);
-                if (!ridge_end[at(a)] || !ridge_end[at(b)]) continue;
+                if (!ridge_end[slot(a)] || !ridge_end[slot(b)]) continue;
                 kept[i] = 1;
                 grew = true;
             }
@@ -568,7 +569,7 @@ FeatureClassification classify_features(const std::vector<Vec3>& points,
         for (std::size_t i = 0; i < chains.size(); ++i)
         {
             if (kept[i]) continue;
-            for (int e : chains[i].edges) graph.sharp()[at(e)] = 0;
+            for (int e : chains[i].edges) graph.sharp()[slot(e)] = 0;
             ++summary.dropped_ridge_chains;
             dropped = true;
         }
@@ -585,17 +586,17 @@ FeatureClassification classify_features(const std::vector<Vec3>& points,
         const Classification on_curve{Dimension::Curve, curve, c.open};
         for (int e : c.edges)
         {
-            result.edge_class[at(e)] = on_curve;
-            result.vertex_class[at(table.edges[at(e)][1])] = on_curve;
-            result.vertex_class[at(table.edges[at(e)][0])] = on_curve;
+            result.edge_class[slot(e)] = on_curve;
+            result.vertex_class[slot(table.edges[slot(e)][1])] = on_curve;
+            result.vertex_class[slot(table.edges[slot(e)][0])] = on_curve;
             (c.open ? summary.boundary_edges : summary.ridge_edges) += 1;
         }
         ++curve;
     }
     int corner = 0;
     for (int v = 0; v < point_count; ++v)
-        if (graph.corner()[at(v)])
-            result.vertex_class[at(v)] = {Dimension::Corner, corner++, false};
+        if (graph.corner()[slot(v)])
+            result.vertex_class[slot(v)] = {Dimension::Corner, corner++, false};
     for (const Classification& c : result.vertex_class)
     {
         if (c.dimension == Dimension::Curve)
@@ -651,10 +652,10 @@ namespace
 
 int find_root(std::vector<int>& parent, int v)
 {
-    while (parent[at(v)] != v)
+    while (parent[slot(v)] != v)
     {
-        parent[at(v)] = parent[at(parent[at(v)])];
-        v = parent[at(v)];
+        parent[slot(v)] = parent[slot(parent[slot(v)])];
+        v = parent[slot(v)];
     }
     return v;
 }
@@ -677,7 +678,7 @@ std::vector<int> smooth_patches(const std::vector<Triangle3>& triangles, const F
         {
             const int ra = find_root(parent, sides[i].triangle);
             const int rb = find_root(parent, sides[i + 1].triangle);
-            if (ra != rb) parent[at(ra)] = rb;
+            if (ra != rb) parent[slot(ra)] = rb;
         }
         i = j;
     }
@@ -686,7 +687,7 @@ std::vector<int> smooth_patches(const std::vector<Triangle3>& triangles, const F
     int patch_count = 0;
     for (std::size_t t = 0; t < triangles.size(); ++t)
     {
-        int& id = patch_of_root[at(find_root(parent, static_cast<int>(t)))];
+        int& id = patch_of_root[slot(find_root(parent, static_cast<int>(t)))];
         if (id < 0) id = patch_count++;
         patch[t] = id;
     }
@@ -708,10 +709,10 @@ std::vector<FeatureChain> feature_chains(const FeatureSet& features, int point_c
     }
     const Rows<EdgeEnds> graph = make_rows(point_count, incidences);
 
-    std::vector<char> breaks(at(point_count), 0);
-    for (int v = 0; v < point_count; ++v) breaks[at(v)] = graph.size(v) != 2 && graph.size(v) > 0;
+    std::vector<char> breaks(slot(point_count), 0);
+    for (int v = 0; v < point_count; ++v) breaks[slot(v)] = graph.size(v) != 2 && graph.size(v) > 0;
     for (int c : features.corners)
-        if (c >= 0 && c < point_count) breaks[at(c)] = 1;
+        if (c >= 0 && c < point_count) breaks[slot(c)] = 1;
 
     std::vector<char> used(edges.size(), 0);
     std::vector<FeatureChain> chains;
@@ -724,36 +725,36 @@ std::vector<FeatureChain> feature_chains(const FeatureSet& features, int point_c
         while (true)
         {
             const auto [next, edge] = graph.row(current)[incidence];
-            used[at(edge)] = 1;
+            used[slot(edge)] = 1;
             if (next == start)
             {
                 // Back where it began: a loop through one break vertex ends on it (the line is
                 // not smooth there); a loop without any is closed.
-                if (breaks[at(start)])
+                if (breaks[slot(start)])
                     chain.vertices.push_back(start);
                 else
                     chain.closed = true;
                 break;
             }
             chain.vertices.push_back(next);
-            if (breaks[at(next)]) break;
+            if (breaks[slot(next)]) break;
             current = next;
             incidence = -1;
             for (int i = 0; i < graph.size(current); ++i)
-                if (!used[at(graph.row(current)[i][1])]) incidence = i;
+                if (!used[slot(graph.row(current)[i][1])]) incidence = i;
             if (incidence < 0) break;
         }
         chains.push_back(std::move(chain));
     };
     for (int v = 0; v < point_count; ++v)
     {
-        if (!breaks[at(v)]) continue;
+        if (!breaks[slot(v)]) continue;
         for (int i = 0; i < graph.size(v); ++i)
-            if (!used[at(graph.row(v)[i][1])]) walk(v, i);
+            if (!used[slot(graph.row(v)[i][1])]) walk(v, i);
     }
     for (int v = 0; v < point_count; ++v)  // loops without any break vertex
         for (int i = 0; i < graph.size(v); ++i)
-            if (!used[at(graph.row(v)[i][1])]) walk(v, i);
+            if (!used[slot(graph.row(v)[i][1])]) walk(v, i);
     return chains;
 }
 

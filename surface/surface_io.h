@@ -47,8 +47,8 @@ SurfaceMesh read_surface(const std::string& path, ReadReport* report = nullptr);
 
 /// The file's triangles as listed, nothing repaired (polygons split into fans), for a caller
 /// that validates them itself: same formats and errors as read_surface. STL (ASCII or binary)
-/// gives three points per facet, none merged; PLY goes through OpenMesh, which merges repeated
-/// points and drops faces it cannot add to a manifold.
+/// gives three points per facet, none merged; PLY (ASCII or binary) its vertex x, y, z and face
+/// vertex_indices, other elements and properties skipped.
 TriangleSoup read_triangle_soup(const std::string& path);
 
 /// Whether read_surface reads this path's extension.

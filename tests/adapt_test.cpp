@@ -123,3 +123,34 @@ TEST_CASE("adapt's time split: CPU stages add up, refs and classes survive the r
     CHECK(q.percent_too_long == 0.0);
     CHECK(q.min_qe >= 0.3);
 }
+
+TEST_CASE("required triangles come out of adapt bit for bit, still required")
+{
+    //   the box's bottom face (z = 0, 8 triangles) required; a size 0.12 refines the rest
+    TetMesh mesh = fixtures::box_mesh(2);
+    std::vector<std::array<Vec3, 3>> kept;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    {
+        const auto& t = mesh.triangles[i];
+        if (std::all_of(t.begin(), t.end(), [&](int v) { return mesh.points[v].z() == 0.0; }))
+        {
+            mesh.required_triangles.push_back(static_cast<int>(i));
+            kept.push_back({mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]});
+        }
+    }
+    REQUIRE(kept.size() == 8u);
+    coupling::AdaptOptions options;
+    options.verbosity = 0;
+    const ConstantSize field(0.12);
+    coupling::adapt(mesh, field, options);
+
+    const auto violations = check_mesh(mesh);
+    CHECK_MESSAGE(violations.empty(), format_violations(violations));
+    REQUIRE(mesh.required_triangles.size() == kept.size());
+    for (std::size_t k = 0; k < kept.size(); ++k)
+    {
+        const auto& t = mesh.triangles[mesh.required_triangles[k]];
+        for (int c = 0; c < 3; ++c) CHECK(mesh.points[t[c]] == kept[k][c]);
+    }
+    CHECK(mesh.num_live_tets() > 1000);
+}

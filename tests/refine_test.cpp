@@ -223,7 +223,13 @@ TEST_CASE("refine: refs and classes are carried; boundary triangles split with t
                 }
     }
     REQUIRE(mesh.edges.size() == 2u);
-    mesh.required_triangles = {0};
+    // one triangle of the top face required, away from the ridge and the bottom
+    for (std::size_t i = 0; i < mesh.triangles.size() && mesh.required_triangles.empty(); ++i)
+        if (std::all_of(mesh.triangles[i].begin(), mesh.triangles[i].end(),
+                        [&](int v) { return mesh.points[v].z() == 1.0; }))
+            mesh.required_triangles = {static_cast<int>(i)};
+    REQUIRE(mesh.required_triangles.size() == 1u);
+    const Triangle required = mesh.triangles[mesh.required_triangles[0]];
     mesh.classify_vertices();
     const double left = [&] {
         double v = 0;
@@ -267,7 +273,53 @@ TEST_CASE("refine: refs and classes are carried; boundary triangles split with t
         }
     }
     CHECK(bottom == doctest::Approx(1.0));
-    CHECK(mesh.required_triangles.size() >= 4u);
+    // the required triangle is never split: the same one, still required
+    REQUIRE(mesh.required_triangles.size() == 1u);
+    CHECK(mesh.triangles[mesh.required_triangles[0]] == required);
+}
+
+TEST_CASE("refine: required triangles and edges are never split, bit for bit")
+{
+    //   z=0 face of the box: its 8 triangles required, and one vertical edge of the box a
+    //   required feature edge; a size 0.15 splits everything else
+    TetMesh mesh = fixtures::box_mesh(2);
+    std::vector<std::array<Vec3, 3>> kept;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    {
+        const auto& t = mesh.triangles[i];
+        if (mesh.points[t[0]].z() == 0.0 && mesh.points[t[1]].z() == 0.0 &&
+            mesh.points[t[2]].z() == 0.0)
+        {
+            mesh.required_triangles.push_back(static_cast<int>(i));
+            kept.push_back({mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]});
+        }
+    }
+    REQUIRE(kept.size() == 8u);
+    int low = -1, high = -1;  // (1,1,0)-(1,1,0.5)
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+    {
+        if (mesh.points[v] == Vec3(1, 1, 0)) low = v;
+        if (mesh.points[v] == Vec3(1, 1, 0.5)) high = v;
+    }
+    REQUIRE(low >= 0);
+    REQUIRE(high >= 0);
+    mesh.edges.push_back({low, high});
+    mesh.edge_refs.push_back(2);
+    mesh.required_edges = {0};
+    mesh.classify_vertices();
+
+    const ConstantSize field(0.15);
+    refine_checked(mesh, field);
+    REQUIRE(mesh.required_triangles.size() == 8u);
+    for (std::size_t k = 0; k < kept.size(); ++k)
+    {
+        const auto& t = mesh.triangles[mesh.required_triangles[k]];
+        for (int c = 0; c < 3; ++c) CHECK(mesh.points[t[c]] == kept[k][c]);
+    }
+    REQUIRE(mesh.required_edges.size() == 1u);
+    CHECK(mesh.edges[mesh.required_edges[0]] == Edge{low, high});
+    // everything else was refined
+    CHECK(mesh.num_live_tets() > 48 * 20);
 }
 
 TEST_CASE("refine: forced face rules reach all 14 Schönhardt configurations on a real tet")

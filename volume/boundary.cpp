@@ -24,12 +24,6 @@ bool usable_tet(const TetMesh& mesh, int t)
     return !mesh.is_dead(t) && tet_ids_in_range(mesh.tets[t], mesh.num_vertices());
 }
 
-Triangle sorted(Triangle tri)
-{
-    std::sort(tri.begin(), tri.end());
-    return tri;
-}
-
 /// A face filed under its smallest vertex (the bucket) by its two other vertices.
 struct FaceKey
 {
@@ -58,7 +52,7 @@ FaceGroups group_tet_faces(const TetMesh& mesh)
         if (!usable_tet(mesh, t)) continue;
         for (int f = 0; f < 4; ++f)
         {
-            const Triangle s = sorted(face_vertices(mesh, {t, f}));
+            const Triangle s = sorted_triple(face_vertices(mesh, {t, f}));
             ++bucket_start[s[0] + 1];
         }
     }
@@ -70,7 +64,7 @@ FaceGroups group_tet_faces(const TetMesh& mesh)
         if (!usable_tet(mesh, t)) continue;
         for (int f = 0; f < 4; ++f)
         {
-            const Triangle s = sorted(face_vertices(mesh, {t, f}));
+            const Triangle s = sorted_triple(face_vertices(mesh, {t, f}));
             keys[fill[s[0]]++] = {s[1], s[2], {t, f}};
         }
     }

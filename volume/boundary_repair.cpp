@@ -40,7 +40,8 @@ std::vector<std::string> BoundaryRepair::lines() const
                       counted(turned_outward, "boundary triangle", "boundary triangles") +
                       " outward");
     if (added_boundary > 0)
-        out.push_back("added " + counted(added_boundary, "boundary triangle", "boundary triangles") +
+        out.push_back("added " +
+                      counted(added_boundary, "boundary triangle", "boundary triangles") +
                       " from the tets' unshared faces (ref of their tet)");
     if (added_interface > 0)
         out.push_back("added " +
@@ -86,9 +87,9 @@ BoundaryRepair repair_boundary(TetMesh& mesh, const BoundaryRepairOptions& optio
         if (uses > 2) continue;  // a face of three tets: the checker's to name
         const TetFace& first = groups.uses[groups.start[k]];
         const Triangle face = face_vertices(mesh, first);
-        auto range = std::equal_range(
-            declared.begin(), declared.end(), Declared{sorted_triple(face), -1},
-            [](const Declared& a, const Declared& b) { return a.key < b.key; });
+        auto range =
+            std::equal_range(declared.begin(), declared.end(), Declared{sorted_triple(face), -1},
+                             [](const Declared& a, const Declared& b) { return a.key < b.key; });
 
         if (uses == 2)
         {

@@ -25,12 +25,6 @@ std::string ids(const Triangle& t)
 /// same face have opposite orientations exactly when their parities differ.
 int parity(const Triangle& t) { return ((t[0] > t[1]) + (t[0] > t[2]) + (t[1] > t[2])) % 2; }
 
-Triangle sorted(Triangle t)
-{
-    std::sort(t.begin(), t.end());
-    return t;
-}
-
 class Checker
 {
 public:
@@ -247,7 +241,7 @@ private:
         std::vector<Declared> declared;
         for (std::size_t i = 0; i < mesh_.triangles.size(); ++i)
             if (usable_triangle(mesh_.triangles[i]))
-                declared.push_back({sorted(mesh_.triangles[i]), static_cast<int>(i)});
+                declared.push_back({sorted_triple(mesh_.triangles[i]), static_cast<int>(i)});
         std::sort(declared.begin(), declared.end());
         for (std::size_t i = 1; i < declared.size(); ++i)
             if (declared[i].key == declared[i - 1].key)
@@ -262,7 +256,7 @@ private:
             const int count = groups.start[k + 1] - groups.start[k];
             const TetFace& first = groups.uses[groups.start[k]];
             const Triangle face = face_vertices(mesh_, first);
-            const Triangle key = sorted(face);
+            const Triangle key = sorted_triple(face);
             auto range = std::equal_range(
                 declared.begin(), declared.end(), Declared{key, -1},
                 [](const Declared& a, const Declared& b) { return a.key < b.key; });

@@ -70,7 +70,7 @@ FaceRemovalResult remove_face(TetMesh& mesh, OperatorContext& context, int t, in
 namespace
 {
 
-constexpr double kNever = -std::numeric_limits<double>::infinity();
+constexpr double kImpossible = -std::numeric_limits<double>::infinity();
 
 /// One face sandwiched between the apexes a and b, with the state of the dynamic program.
 /// Its vertices run counter-clockwise seen from b; edge k joins v[k] and v[k+1 mod 3]. When the
@@ -93,7 +93,7 @@ struct MultiFacePlan
     int a = -1, b = -1, ref = 0;
     bool legal = false;
     std::vector<SandwichFace> faces;
-    double worst_after = kNever;
+    double worst_after = kImpossible;
     double worst_before = 0;
     std::vector<int> chosen;               // face indices, depth first from the seed
     std::vector<std::array<int, 2>> ring;  // the polygon's edges, in order around it
@@ -229,7 +229,7 @@ void choose_faces(const TetMesh& mesh, const OperatorContext& context, MultiFace
             if (k == face.parent_edge) continue;
             const double stop = tet_quality(p[face.v[k]], p[face.v[(k + 1) % 3]], pa, pb);
             const double through =
-                face.child[k] >= 0 ? subtree_value(plan.faces[face.child[k]]) : kNever;
+                face.child[k] >= 0 ? subtree_value(plan.faces[face.child[k]]) : kImpossible;
             face.extend[k] = through > stop;
             face.best[k] = std::max(stop, through);
         }

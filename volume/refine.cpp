@@ -407,12 +407,48 @@ private:
     RefinePassResult result_;
 };
 
+/// The edges a split may not cut: those of required triangles and the required feature edges,
+/// each as {low, high}, sorted.
+std::vector<Edge> locked_edges(const TetMesh& mesh)
+{
+    std::vector<Edge> locked;
+    for (int i : mesh.required_triangles)
+    {
+        const Triangle& tri = mesh.triangles[i];
+        for (int k = 0; k < 3; ++k)
+            locked.push_back(
+                {std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
+    }
+    for (int i : mesh.required_edges)
+        locked.push_back({std::min(mesh.edges[i][0], mesh.edges[i][1]),
+                          std::max(mesh.edges[i][0], mesh.edges[i][1])});
+    std::sort(locked.begin(), locked.end());
+    return locked;
+}
+
 int RefinePass::mark_edges(const EdgeTable& edges)
 {
     midpoint_.assign(edges.num_edges(), -1);
     touched_.assign(mesh_.num_vertices(), 0);
     int marked = 0;
     const int nv = mesh_.num_vertices();
+    const std::vector<Edge> locked = locked_edges(mesh_);
+    // At a vertex of a locked edge the size is no finer than its locked edges' mean length, as
+    // Mmg sets it: a tet on a coarse required triangle always has an edge as long as its
+    // circumradius, and splitting it would only flatten the tets on the triangle, pass after pass.
+    std::vector<double> locked_size;
+    if (!locked.empty())
+    {
+        locked_size.assign(nv, 0.0);
+        std::vector<int> count(nv, 0);
+        for (const Edge& e : locked)
+        {
+            const double length = (mesh_.points[e[1]] - mesh_.points[e[0]]).norm();
+            for (int v : e) locked_size[v] += length, ++count[v];
+        }
+        for (int v = 0; v < nv; ++v)
+            if (count[v] > 0) locked_size[v] /= count[v];
+    }
     for (int a = 0; a < nv; ++a)
     {
         const Vec3& pa = mesh_.points[a];
@@ -420,7 +456,15 @@ int RefinePass::mark_edges(const EdgeTable& edges)
         {
             const int b = edges.upper(s);
             const Vec3& pb = mesh_.points[b];
-            if (is_too_long((pb - pa).norm(), edge_target_size(field_, pa, pb)))
+            double target = edge_target_size(field_, pa, pb);
+            if (!locked.empty())
+            {
+                if (std::binary_search(locked.begin(), locked.end(),
+                                       Edge{std::min(a, b), std::max(a, b)}))
+                    continue;
+                target = std::max({target, locked_size[a], locked_size[b]});
+            }
+            if (is_too_long((pb - pa).norm(), target))
             {
                 midpoint_[s] = 1;
                 touched_[a] = touched_[b] = 1;

@@ -54,10 +54,12 @@ struct RefinePassResult
 };
 
 /// One pass: marks every too-long edge (is_too_long(L, edge_target_size(field, a, b)), interior
-/// and boundary), adds one midpoint per marked edge, rebuilds each tet from the table (children
-/// keep the parent's ref), splits mesh.triangles with the same face rule (children keep the
-/// ref), splits feature edges (mesh.edges) in two keeping refs and updates ridges and the
-/// required_* lists (children of a required entity are required).
+/// and boundary; never an edge of a required triangle or a required edge, and at their vertices
+/// the size is at least the mean length of those edges), adds one midpoint per
+/// marked edge, rebuilds each tet from the table (children keep the parent's ref), splits
+/// mesh.triangles with the same face rule (children keep the ref), splits feature edges
+/// (mesh.edges) in two keeping refs and updates ridges and the required_* lists (children of a
+/// required tet are required).
 ///
 /// New vertices: the midpoint of a ridge edge is Ridge (ref: the edge's), of an edge of
 /// mesh.triangles Surface (ref: a triangle's), else Interior (ref: the endpoints' common ref,
