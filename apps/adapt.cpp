@@ -146,6 +146,10 @@ int main(int argc, char** argv)
             if (!strict)
                 for (const std::string& line : repair_boundary(mesh).lines())
                     std::cerr << "adapt: " << input << ": " << line << "\n";
+            if (const RegionCurves curves = mark_region_curves(mesh); curves.ridges > 0)
+                std::cerr << "adapt: " << input << ": " << curves.ridges
+                          << " ridge edges where three or more regions meet (" << curves.corners
+                          << " corners)\n";
             if (const auto violations = check_mesh(mesh); !violations.empty())
                 throw InputError(input + ": the input mesh is not valid:\n" +
                                  format_violations(violations));

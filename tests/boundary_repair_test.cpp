@@ -135,3 +135,24 @@ TEST_CASE("repeated triangles dropped, a required interior one kept and renumber
     options.allow_interior_triangles = true;
     CHECK(check_mesh(mesh, options).empty());
 }
+
+TEST_CASE("the curves where three regions meet are ridges")
+{
+    //   the Kuhn cube in two refs (tets 0-2, 3-5): the interface between them meets the outer
+    //   boundary along edges of three triangles (two boundary, one interface)
+    TetMesh mesh = fixtures::kuhn_cube();
+    mesh.triangles.clear();
+    mesh.triangle_refs.clear();
+    for (int t = 0; t < 6; ++t) mesh.tet_refs[t] = t < 3 ? 1 : 2;
+    repair_boundary(mesh);
+    const RegionCurves curves = mark_region_curves(mesh);
+    CHECK(curves.ridges > 0);
+    CHECK(mesh.ridges.size() == static_cast<std::size_t>(curves.ridges));
+    for (int e : mesh.ridges)
+        for (int v : mesh.edges[e]) CHECK(mesh.vertex_classes[v] != VertexClass::Surface);
+    CHECK(check_mesh(mesh).empty());
+    // a second call adds nothing; one ref alone has no such curve
+    CHECK(mark_region_curves(mesh).ridges == 0);
+    TetMesh single = fixtures::kuhn_cube();
+    CHECK(mark_region_curves(single).ridges == 0);
+}

@@ -155,4 +155,66 @@ BoundaryRepair repair_boundary(TetMesh& mesh, const BoundaryRepairOptions& optio
     return repair;
 }
 
+RegionCurves mark_region_curves(TetMesh& mesh)
+{
+    RegionCurves added;
+    std::vector<Edge> uses;
+    uses.reserve(3 * mesh.triangles.size());
+    for (const Triangle& tri : mesh.triangles)
+        for (int k = 0; k < 3; ++k)
+            uses.push_back(
+                {std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
+    std::sort(uses.begin(), uses.end());
+    std::vector<Edge> junctions;
+    for (std::size_t i = 0; i < uses.size();)
+    {
+        std::size_t j = i;
+        while (j < uses.size() && uses[j] == uses[i]) ++j;
+        if (j - i >= 3) junctions.push_back(uses[i]);
+        i = j;
+    }
+    if (junctions.empty()) return added;
+
+    // listed already, as an edge or a ridge?
+    std::vector<std::pair<Edge, int>> listed;
+    for (std::size_t i = 0; i < mesh.edges.size(); ++i)
+        listed.push_back({{std::min(mesh.edges[i][0], mesh.edges[i][1]),
+                           std::max(mesh.edges[i][0], mesh.edges[i][1])},
+                          static_cast<int>(i)});
+    std::sort(listed.begin(), listed.end());
+    std::vector<char> is_ridge(mesh.edges.size(), 0);
+    for (int e : mesh.ridges)
+        if (e >= 0 && e < static_cast<int>(is_ridge.size())) is_ridge[e] = 1;
+    if (mesh.edge_refs.size() != mesh.edges.size()) mesh.edge_refs.resize(mesh.edges.size(), 0);
+    std::vector<int> curves_at(mesh.num_vertices(), 0);
+    for (const Edge& e : junctions)
+    {
+        ++curves_at[e[0]];
+        ++curves_at[e[1]];
+        auto it = std::lower_bound(listed.begin(), listed.end(), std::make_pair(e, -1));
+        if (it != listed.end() && it->first == e)
+        {
+            if (is_ridge[it->second]) continue;
+            mesh.ridges.push_back(it->second);
+        }
+        else
+        {
+            mesh.edges.push_back(e);
+            mesh.edge_refs.push_back(0);
+            mesh.ridges.push_back(static_cast<int>(mesh.edges.size()) - 1);
+        }
+        ++added.ridges;
+    }
+    std::vector<int> corners = mesh.corners;
+    std::sort(corners.begin(), corners.end());
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+        if (curves_at[v] >= 3 && !std::binary_search(corners.begin(), corners.end(), v))
+        {
+            mesh.corners.push_back(v);
+            ++added.corners;
+        }
+    if (added.ridges + added.corners > 0) mesh.classify_vertices();
+    return added;
+}
+
 }  // namespace hdimesh::volume

@@ -45,4 +45,14 @@ struct BoundaryRepairOptions
 /// changed. Tets with out-of-range ids are ignored (the checker names them).
 BoundaryRepair repair_boundary(TetMesh& mesh, const BoundaryRepairOptions& options = {});
 
+/// The curves where three or more regions meet (an edge of three or more triangles: the outer
+/// boundary of two tet refs and their interface, say) listed as ridges, and the points where
+/// three or more such curves meet as corners, so that a split on them stays on the curve.
+struct RegionCurves
+{
+    int ridges = 0;   ///< edges added to mesh.ridges
+    int corners = 0;  ///< vertices added to mesh.corners
+};
+RegionCurves mark_region_curves(TetMesh& mesh);
+
 }  // namespace hdimesh::volume
