@@ -205,6 +205,26 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     }
     const SurfaceModel& model = settings.model ? *settings.model : *own_model;
     report_setup("model");
+    auto refuse_count = [&](double expected, const char* what) {
+        if (expected <= kMaxTriangles) return;
+        char text[240];
+        std::snprintf(text, sizeof text,
+                      "%s asks for about %.3g triangles, more than the %.3g a surface can hold: "
+                      "it is far below the model's scale (diagonal %.3g)",
+                      what, expected, kMaxTriangles, result.diagonal);
+        throw InputError(text);
+    };
+    if (settings.sizing.hausd > 0.0)
+    {
+        // the tolerance's own sizes (h = sqrt(3 hausd / k)): the refinement would chase them
+        SizingOptions tolerance_only = settings.sizing;
+        tolerance_only.hsiz = 0.0;
+        const std::vector<double> local = curvature_sizes(input, model, tolerance_only);
+        const SizeMap tolerance_sizes = SizeMap::per_input_vertex(model, local);
+        refuse_count(
+            expected_triangle_count(input, [&](const Vec3d& p) { return tolerance_sizes.at(p); }),
+            "the distance bound");
+    }
 
     SizeMap sizes = SizeMap::uniform(settings.sizing.hsiz);
     bool coarse = false;  // the tolerance wins over the uniform size
@@ -290,16 +310,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         }
     }
     // A size far below the model's scale would run until memory is gone.
-    if (const double expected = expected_triangle_count(input, options.loop.size);
-        !(expected <= kMaxTriangles))
-    {
-        char text[200];
-        std::snprintf(text, sizeof text,
-                      "the size asks for about %.3g triangles, more than the %.3g a surface can "
-                      "hold: the size is far below the model's scale (diagonal %.3g)",
-                      expected, kMaxTriangles, result.diagonal);
-        throw InputError(text);
-    }
+    refuse_count(expected_triangle_count(input, options.loop.size), "the size");
     options.loop.iterations = settings.iterations;
     options.loop.limits.shift_in_model_plane = model.has_smooth_projection();
     options.loop.verbosity = settings.verbosity;

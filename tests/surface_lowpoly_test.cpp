@@ -74,8 +74,7 @@ TriangleSoup dodecahedron()
 {
     const double phi = (1 + std::sqrt(5.0)) / 2;
     std::vector<Vec3d> p;
-    for (int s = 0; s < 8; ++s)
-        p.emplace_back(s & 1 ? 1 : -1, s & 2 ? 1 : -1, s & 4 ? 1 : -1);
+    for (int s = 0; s < 8; ++s) p.emplace_back(s & 1 ? 1 : -1, s & 2 ? 1 : -1, s & 4 ? 1 : -1);
     for (int a : {-1, 1})
         for (int b : {-1, 1})
         {
@@ -131,8 +130,7 @@ TriangleSoup stepped_pyramid()
             break;
         }
         const int inner = square(w - 0.18, z);
-        for (int i = 0; i < 4; ++i)
-            quad(up + i, up + (i + 1) % 4, inner + (i + 1) % 4, inner + i);
+        for (int i = 0; i < 4; ++i) quad(up + i, up + (i + 1) % 4, inner + (i + 1) % 4, inner + i);
         low = inner;
     }
     return soup;
@@ -149,10 +147,11 @@ double worst_crease_distance(const SurfaceMesh& input, const SurfaceMesh& output
             if (mesh.is_boundary(e)) continue;
             const auto h = mesh.halfedge_handle(e, 0);
             const Vec3d n0 = mesh.calc_face_normal(mesh.face_handle(h));
-            const Vec3d n1 = mesh.calc_face_normal(mesh.face_handle(mesh.opposite_halfedge_handle(h)));
+            const Vec3d n1 =
+                mesh.calc_face_normal(mesh.face_handle(mesh.opposite_halfedge_handle(h)));
             if (OpenMesh::dot(n0, n1) < std::cos(10.0 * M_PI / 180.0))
-                out.push_back({mesh.point(mesh.from_vertex_handle(h)),
-                               mesh.point(mesh.to_vertex_handle(h))});
+                out.push_back(
+                    {mesh.point(mesh.from_vertex_handle(h)), mesh.point(mesh.to_vertex_handle(h))});
         }
         return out;
     };
@@ -166,7 +165,8 @@ double worst_crease_distance(const SurfaceMesh& input, const SurfaceMesh& output
             for (const auto& o : out)
             {
                 const Vec3d ab = o[1] - o[0];
-                const double t = std::clamp(OpenMesh::dot(p - o[0], ab) / OpenMesh::dot(ab, ab), 0.0, 1.0);
+                const double t =
+                    std::clamp(OpenMesh::dot(p - o[0], ab) / OpenMesh::dot(ab, ab), 0.0, 1.0);
                 best = std::min(best, (o[0] + t * ab - p).norm());
             }
             worst = std::max(worst, best);
@@ -183,9 +183,9 @@ TEST_CASE("low-poly models stay on their facets and keep every crease")
         const char* name;
         TriangleSoup soup;
     };
-    for (const Model& model : {Model{"dodecahedron", dodecahedron()},
-                               Model{"stepped pyramid", stepped_pyramid()},
-                               Model{"chamfered box", chamfered_box()}})
+    for (const Model& model :
+         {Model{"dodecahedron", dodecahedron()}, Model{"stepped pyramid", stepped_pyramid()},
+          Model{"chamfered box", chamfered_box()}})
     {
         const SurfaceMesh input = build_surface(model.soup, model.name);
         const double diagonal = bounding_box_diagonal(input);

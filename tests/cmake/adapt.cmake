@@ -35,3 +35,5 @@ add_test(NAME adapt_app_size_far_too_small
          COMMAND bash -c "! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/tiny.mesh --hsiz 1e-6 2> ${adapt_out}/tiny.txt && grep -q 'far below the model' ${adapt_out}/tiny.txt && test ! -e ${adapt_out}/tiny.mesh")
 add_test(NAME adapt_app_huge_coordinate
          COMMAND bash -c "sed '0,/^v /s/^v [^ ]* /v 1e308 /' ${PROJECT_SOURCE_DIR}/data/icosphere320.obj > ${adapt_out}/huge.obj && ! $<TARGET_FILE:adapt> ${adapt_out}/huge.obj -o ${adapt_out}/huge.mesh --hsiz 0.3 2> ${adapt_out}/huge.txt && grep -q 'huge.obj:[0-9]*: vertex 1e+308 exceeds' ${adapt_out}/huge.txt && test ! -e ${adapt_out}/huge.mesh")
+add_test(NAME adapt_app_hausd_far_too_small
+         COMMAND bash -c "! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/tight.mesh --hsiz 0.3 --hausd 1e-300 2> ${adapt_out}/tight.txt && grep -q 'distance bound asks for' ${adapt_out}/tight.txt && test ! -e ${adapt_out}/tight.mesh")
