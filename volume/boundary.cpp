@@ -102,6 +102,29 @@ std::vector<Triangle> tet_boundary_faces(const TetMesh& mesh)
     return boundary;
 }
 
+std::vector<ListedTriangle> listed_triangles(const TetMesh& mesh)
+{
+    std::vector<ListedTriangle> listed;
+    listed.reserve(mesh.triangles.size());
+    const int nv = mesh.num_vertices();
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    {
+        const Triangle& tri = mesh.triangles[i];
+        if (std::all_of(tri.begin(), tri.end(), [nv](int v) { return v >= 0 && v < nv; }))
+            listed.push_back({sorted_triple(tri), static_cast<int>(i)});
+    }
+    std::sort(listed.begin(), listed.end());
+    return listed;
+}
+
+std::pair<std::vector<ListedTriangle>::const_iterator, std::vector<ListedTriangle>::const_iterator>
+listings(const std::vector<ListedTriangle>& listed, const Triangle& key)
+{
+    return std::equal_range(
+        listed.begin(), listed.end(), ListedTriangle{key, -1},
+        [](const ListedTriangle& a, const ListedTriangle& b) { return a.key < b.key; });
+}
+
 double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles)
 {
     if (triangles.empty()) return 0.0;

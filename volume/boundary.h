@@ -4,6 +4,7 @@
 // Computed from the tets alone, never from mesh.neighbors or mesh.triangles, so the checker and
 // the quality report can compare those stored arrays against the truth.
 
+#include <utility>
 #include <vector>
 
 #include "volume/tet_mesh.h"
@@ -36,6 +37,25 @@ Triangle face_vertices(const TetMesh& mesh, const TetFace& face);
 
 /// The faces used by exactly one live tet, oriented as that tet sees them (outward).
 std::vector<Triangle> tet_boundary_faces(const TetMesh& mesh);
+
+/// One listing of mesh.triangles under its vertex set: ordered by the set, then by index, so
+/// that equal_range over a set gives every listing of that face, the first listed first.
+struct ListedTriangle
+{
+    Triangle key;  ///< sorted_triple of the triangle
+    int index;     ///< into mesh.triangles
+    bool operator<(const ListedTriangle& o) const
+    {
+        return key != o.key ? key < o.key : index < o.index;
+    }
+};
+
+/// mesh.triangles with valid vertex ids, sorted (above).
+std::vector<ListedTriangle> listed_triangles(const TetMesh& mesh);
+
+/// The listings of the face with vertex set `key` (sorted), a range of `listed`.
+std::pair<std::vector<ListedTriangle>::const_iterator, std::vector<ListedTriangle>::const_iterator>
+listings(const std::vector<ListedTriangle>& listed, const Triangle& key);
 
 /// Volume enclosed by a closed, outward-oriented triangle set (divergence theorem), computed
 /// relative to the triangles' bounding-box centre so large offsets do not cost precision.

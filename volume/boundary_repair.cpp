@@ -18,35 +18,30 @@ bool same_orientation(const Triangle& a, const Triangle& b)
     return false;
 }
 
-std::string counted(int n, const char* one, const char* many)
-{
-    return std::to_string(n) + " " + (n == 1 ? one : many);
-}
-
 }  // namespace
 
 std::vector<std::string> BoundaryRepair::lines() const
 {
+    struct Line
+    {
+        int count;
+        const char *verb, *one, *many, *tail;
+    };
+    const Line table[] = {
+        {dropped_interior, "dropped", "interior triangle", "interior triangles",
+         " (between two tets of the same ref)"},
+        {dropped_duplicates, "dropped", "repeated triangle", "repeated triangles", ""},
+        {turned_outward, "turned", "boundary triangle", "boundary triangles", " outward"},
+        {added_boundary, "added", "boundary triangle", "boundary triangles",
+         " from the tets' unshared faces (ref of their tet)"},
+        {added_interface, "added", "interface triangle", "interface triangles",
+         " between tets of two refs (the smaller ref)"},
+    };
     std::vector<std::string> out;
-    if (dropped_interior > 0)
-        out.push_back("dropped " +
-                      counted(dropped_interior, "interior triangle", "interior triangles") +
-                      " (between two tets of the same ref)");
-    if (dropped_duplicates > 0)
-        out.push_back("dropped " +
-                      counted(dropped_duplicates, "repeated triangle", "repeated triangles"));
-    if (turned_outward > 0)
-        out.push_back("turned " +
-                      counted(turned_outward, "boundary triangle", "boundary triangles") +
-                      " outward");
-    if (added_boundary > 0)
-        out.push_back("added " +
-                      counted(added_boundary, "boundary triangle", "boundary triangles") +
-                      " from the tets' unshared faces (ref of their tet)");
-    if (added_interface > 0)
-        out.push_back("added " +
-                      counted(added_interface, "interface triangle", "interface triangles") +
-                      " between tets of two refs (the smaller ref)");
+    for (const Line& line : table)
+        if (line.count > 0)
+            out.push_back(std::string(line.verb) + " " + std::to_string(line.count) + " " +
+                          (line.count == 1 ? line.one : line.many) + line.tail);
     return out;
 }
 
@@ -62,20 +57,8 @@ BoundaryRepair repair_boundary(TetMesh& mesh, const BoundaryRepairOptions& optio
     for (int i : mesh.required_triangles)
         if (i >= 0 && i < nt) required[i] = 1;
 
-    // declared triangles by vertex set, then by index: the first of a set is the one kept
-    struct Declared
-    {
-        Triangle key;
-        int index;
-        bool operator<(const Declared& o) const
-        {
-            return key != o.key ? key < o.key : index < o.index;
-        }
-    };
-    std::vector<Declared> declared;
-    declared.reserve(nt);
-    for (int i = 0; i < nt; ++i) declared.push_back({sorted_triple(mesh.triangles[i]), i});
-    std::sort(declared.begin(), declared.end());
+    // the first listing of a face is the one kept
+    const std::vector<ListedTriangle> declared = listed_triangles(mesh);
 
     std::vector<char> keep(nt, 1);
     std::vector<Triangle> added;
@@ -87,9 +70,7 @@ BoundaryRepair repair_boundary(TetMesh& mesh, const BoundaryRepairOptions& optio
         if (uses > 2) continue;  // a face of three tets: the checker's to name
         const TetFace& first = groups.uses[groups.start[k]];
         const Triangle face = face_vertices(mesh, first);
-        auto range =
-            std::equal_range(declared.begin(), declared.end(), Declared{sorted_triple(face), -1},
-                             [](const Declared& a, const Declared& b) { return a.key < b.key; });
+        const auto range = listings(declared, sorted_triple(face));
 
         if (uses == 2)
         {

@@ -228,21 +228,7 @@ private:
     /// extra triangles only on interfaces between different refs.
     void check_declared_triangles(const FaceGroups& groups)
     {
-        // declared triangles sorted by vertex set
-        struct Declared
-        {
-            Triangle key;
-            int index;
-            bool operator<(const Declared& o) const
-            {
-                return key != o.key ? key < o.key : index < o.index;
-            }
-        };
-        std::vector<Declared> declared;
-        for (std::size_t i = 0; i < mesh_.triangles.size(); ++i)
-            if (usable_triangle(mesh_.triangles[i]))
-                declared.push_back({sorted_triple(mesh_.triangles[i]), static_cast<int>(i)});
-        std::sort(declared.begin(), declared.end());
+        const std::vector<ListedTriangle> declared = listed_triangles(mesh_);
         for (std::size_t i = 1; i < declared.size(); ++i)
             if (declared[i].key == declared[i - 1].key)
                 add("duplicate_triangle", declared[i].index,
@@ -257,9 +243,7 @@ private:
             const TetFace& first = groups.uses[groups.start[k]];
             const Triangle face = face_vertices(mesh_, first);
             const Triangle key = sorted_triple(face);
-            auto range = std::equal_range(
-                declared.begin(), declared.end(), Declared{key, -1},
-                [](const Declared& a, const Declared& b) { return a.key < b.key; });
+            const auto range = listings(declared, key);
             if (count == 1)
             {
                 if (range.first == range.second)
@@ -296,7 +280,7 @@ private:
         }
         // only meaningful when the tets could all be read
         if (!usable_) return;
-        for (const Declared& d : declared)
+        for (const ListedTriangle& d : declared)
             if (!matched[d.index])
                 add("triangle_not_a_tet_face", d.index,
                     "triangle " + std::to_string(d.index) + " " + ids(mesh_.triangles[d.index]) +
