@@ -2,8 +2,8 @@
 // pipeline keeps them on their facets to round-off and keeps every crease, whatever the size.
 //
 //   dodecahedron: pentagons at 116.6 degrees; stepped pyramid: five slabs, risers 0.03 high;
-//   chamfered box: a unit cube whose edges are cut 0.01 wide (creases far shorter than any
-//   length rule's 5 % of the diagonal).
+//   chamfered box: a unit cube whose edges are cut 0.01 wide (creases a length rule would drop
+//   as noise).
 
 #include <doctest/doctest.h>
 
