@@ -33,16 +33,11 @@ std::string coupled_surface_refusal(const TetMesh& mesh)
         return "required edges or triangles";
     for (int v : mesh.required_vertices)
         if (mesh.vertex_classes[v] != VertexClass::Interior) return "required boundary vertices";
-    // an interface between tet refs makes edges of three or more surface triangles
-    if (mesh.has_adjacency())
-        for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        {
-            if (mesh.is_dead(t)) continue;
-            for (int n : mesh.neighbors[t])
-                if (n != kNoTet && mesh.tet_refs[n] != mesh.tet_refs[t])
-                    return "interfaces between tet refs";
-        }
-    const std::vector<Triangle> faces = tet_boundary_faces(mesh);
+    // The boundary and the interfaces between tet refs, each interface once: closed shells
+    // apart from each other make one 2-manifold surface; an interface that meets the boundary
+    // or another interface makes edges of three or more triangles.
+    const std::vector<Triangle> faces = tet_surface_faces(mesh);
+    const bool interfaces = faces.size() != tet_boundary_faces(mesh).size();
     std::vector<std::array<int, 3>> keys;
     keys.reserve(faces.size());
     for (const auto& f : faces) keys.push_back(sorted_triple(f));
@@ -55,7 +50,9 @@ std::string coupled_surface_refusal(const TetMesh& mesh)
     topology_only.check_self_intersections = false;  // the faces of valid tets do not cross
     const std::vector<SurfaceDefect> defects =
         check_closed_surface(mesh.points, faces, topology_only);
-    if (!defects.empty()) return format_surface_defects(defects, "the tets' boundary", 1);
+    if (!defects.empty())
+        return interfaces ? "interfaces between tet refs that meet the boundary or each other"
+                          : format_surface_defects(defects, "the tets' boundary", 1);
     return {};
 }
 
@@ -97,7 +94,7 @@ BoundaryMap extract_boundary(const TetMesh& mesh)
         }
         return handle[v];
     };
-    for (const Triangle& f : tet_boundary_faces(mesh))
+    for (const Triangle& f : tet_surface_faces(mesh))
     {
         const auto face = surf.add_face(vertex(f[0]), vertex(f[1]), vertex(f[2]));
         if (!face.is_valid())

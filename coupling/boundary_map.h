@@ -25,7 +25,8 @@ constexpr const char* tet_vertex = "hdimesh:v:tet_vertex";  // int, the tet-mesh
 }
 
 /// Why the coupled surface pass cannot run on `mesh` (empty: it can): interfaces between tet
-/// refs (a non-manifold surface), required boundary entities the surface operators do not
+/// refs that meet the boundary or each other (a non-manifold surface; closed interface shells
+/// apart from the rest are taken), required boundary entities the surface operators do not
 /// know, or a boundary that is not a closed 2-manifold. adapt() then keeps the boundary.
 std::string coupled_surface_refusal(const volume::TetMesh& mesh);
 
@@ -39,7 +40,8 @@ struct BoundaryMap
     std::vector<surface::VertexHandle> tet_to_surface(int num_tet_vertices) const;
 };
 
-/// The faces used by one live tet, outward, as a surface with the refs of mesh.triangles (0 for
+/// The boundary and interface faces (volume::tet_surface_faces: the interfaces outward from
+/// their smaller ref), as one surface with the refs of mesh.triangles (0 for
 /// a face not listed) and the vertex classes of the tets (Surface → smooth, Ridge → ridge,
 /// Corner → corner; curve ids from mesh.edges as write_back stores them, else the feature
 /// detector's to run on it). \pre mesh has adjacency and

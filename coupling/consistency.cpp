@@ -80,14 +80,14 @@ std::vector<std::string> check_consistency(const BoundaryMap& map, const TetMesh
         surface_faces[canonical(t)] = has_ref ? surf.property(face_ref, f) : 0;
     }
     std::vector<Triangle> tet_faces;
-    for (const auto& t : tet_boundary_faces(mesh)) tet_faces.push_back(canonical(t));
+    for (const auto& t : tet_surface_faces(mesh)) tet_faces.push_back(canonical(t));
     std::sort(tet_faces.begin(), tet_faces.end());
     for (const auto& t : tet_faces)
         if (!surface_faces.count(t))
-            report("tet boundary face " + name(t) + " is not on the surface");
+            report("tet boundary or interface face " + name(t) + " is not on the surface");
     for (const auto& [t, ref] : surface_faces)
         if (!std::binary_search(tet_faces.begin(), tet_faces.end(), t))
-            report("surface face " + name(t) + " is not a tet boundary face");
+            report("surface face " + name(t) + " is not a tet boundary or interface face");
 
     if (mesh.triangles.size() != surface_faces.size())
         report(std::to_string(mesh.triangles.size()) + " listed triangles for " +

@@ -120,6 +120,7 @@ private:
         std::vector<int> cavity_vertices;
         std::vector<int> swallowed;  // interior vertices a grown cavity takes away
         std::vector<RefTriangle> removed, added;
+        std::vector<std::pair<FillStage, int>> fill_stages;  // per side filled: stage, layers
         bool adds_vertex = false;
         Vec3 new_point = Vec3::Zero();
     };
@@ -374,46 +375,75 @@ private:
     }
 
     /// One try of simulate() on `cavity` (sorted). On a refusal that more tets may cure, `grow`
-    /// gets them.
+    /// gets them. Across an interface the cavity is one per side, refs never mixed: each side's
+    /// faces are its tets' outer faces with the changed triangles swapped for the new ones
+    /// (reversed on the side they face inward), filled on its own; the fills commit as one.
     bool try_cavity(const CavityChange& change, const std::vector<int>& cavity, Pending& out,
                     std::vector<int>& grow) const
     {
         auto in_cavity = [&](int t) { return std::binary_search(cavity.begin(), cavity.end(), t); };
-        const int ref = mesh_.tet_refs[cavity.front()];
+        std::vector<int> refs;
         double worst_before = 1.0;
         for (int t : cavity)
         {
-            if (mesh_.tet_refs[t] != ref) return refuse(MirrorStatistics::MixedRefs);
+            refs.push_back(mesh_.tet_refs[t]);
             worst_before = std::min(worst_before, mesh_.quality(t));
         }
+        std::sort(refs.begin(), refs.end());
+        refs.erase(std::unique(refs.begin(), refs.end()), refs.end());
+        if (refs.size() > 2) return refuse(MirrorStatistics::MixedRefs);  // one interface only
         if (change.quality_before >= 0.0) worst_before = change.quality_before;
 
-        std::vector<Key> removed_keys;
-        for (const auto& r : change.removed) removed_keys.push_back(sorted_triple(r.vertices));
-        std::sort(removed_keys.begin(), removed_keys.end());
-        std::size_t removed_seen = 0;
-        std::vector<Triangle> faces;
-        std::vector<int> across;  // kept tets across the cavity's inner faces
-        for (int t : cavity)
-            for (int f = 0; f < 4; ++f)
+        std::vector<std::pair<Key, Triangle>> removed;  // by vertex set, as the surface has it
+        for (const auto& r : change.removed)
+            removed.emplace_back(sorted_triple(r.vertices), r.vertices);
+        std::sort(removed.begin(), removed.end());
+        std::vector<std::vector<Triangle>> side_faces(refs.size());
+        std::vector<int> across;  // kept tets of the same ref across the cavity's inner faces
+        for (std::size_t side = 0; side < refs.size(); ++side)
+        {
+            const int ref = refs[side];
+            std::size_t seen = 0, outward = 0;  // changed triangles met, and as outer faces
+            std::vector<Triangle>& faces = side_faces[side];
+            for (int t : cavity)
             {
-                const int n = mesh_.neighbors[t][f];
-                if (n != kNoTet && in_cavity(n)) continue;
-                const auto& lf = tet::kFaceVertices[f];
-                const Triangle tri{mesh_.tets[t][lf[0]], mesh_.tets[t][lf[1]],
-                                   mesh_.tets[t][lf[2]]};
-                if (n == kNoTet && std::binary_search(removed_keys.begin(), removed_keys.end(),
-                                                      sorted_triple(tri)))
+                if (mesh_.tet_refs[t] != ref) continue;
+                for (int f = 0; f < 4; ++f)
                 {
-                    ++removed_seen;
-                    continue;
+                    const int n = mesh_.neighbors[t][f];
+                    const bool inside = n != kNoTet && in_cavity(n);
+                    if (inside && mesh_.tet_refs[n] == ref) continue;
+                    const auto& lf = tet::kFaceVertices[f];
+                    const Triangle tri{mesh_.tets[t][lf[0]], mesh_.tets[t][lf[1]],
+                                       mesh_.tets[t][lf[2]]};
+                    const Key key = sorted_triple(tri);
+                    const auto it =
+                        std::lower_bound(removed.begin(), removed.end(), key,
+                                         [](const auto& r, const Key& k) { return r.first < k; });
+                    if (it != removed.end() && it->first == key)
+                    {
+                        // a changed interface triangle: the tet across it changes too
+                        if (n != kNoTet && !inside)
+                        {
+                            grow.push_back(n);
+                            return refuse(MirrorStatistics::MissedTriangle);
+                        }
+                        ++seen;
+                        if (same_orientation(tri, it->second)) ++outward;
+                        continue;
+                    }
+                    if (n != kNoTet && !inside && mesh_.tet_refs[n] == ref) across.push_back(n);
+                    faces.push_back(tri);
                 }
-                if (n != kNoTet) across.push_back(n);
-                faces.push_back(tri);
             }
-        if (removed_seen != removed_keys.size()) return refuse(MirrorStatistics::MissedTriangle);
-        for (const auto& a : change.added) faces.push_back(a.vertices);
-        if (!cancel_opposite_faces(faces)) return refuse(MirrorStatistics::Folds);
+            if (seen != removed.size() || (outward != 0 && outward != seen))
+                return refuse(MirrorStatistics::MissedTriangle);
+            for (const auto& a : change.added)
+                faces.push_back(outward > 0 || removed.empty()
+                                    ? a.vertices
+                                    : Triangle{a.vertices[0], a.vertices[2], a.vertices[1]});
+            if (!cancel_opposite_faces(faces)) return refuse(MirrorStatistics::Folds);
+        }
         if (!new_edges_are_new(change, cavity, grow)) return refuse(MirrorStatistics::EdgeInside);
 
         // A grown cavity may swallow an interior vertex (its ball inside): the fill drops it.
@@ -422,7 +452,8 @@ private:
         if (cavity.size() > change.tets.size())
         {
             std::vector<int> on_faces;
-            for (const auto& f : faces) on_faces.insert(on_faces.end(), f.begin(), f.end());
+            for (const auto& faces : side_faces)
+                for (const auto& f : faces) on_faces.insert(on_faces.end(), f.begin(), f.end());
             std::sort(on_faces.begin(), on_faces.end());
             std::vector<int> vertices;
             for (int t : cavity)
@@ -441,30 +472,37 @@ private:
             }
         }
 
-        CavityFill fill;
-        if (faces.empty())
+        std::vector<CavityFill> fills(refs.size());
+        for (std::size_t side = 0; side < refs.size(); ++side)
         {
-            fill.filled = true;  // the change only takes tets away (a flip over one tet)
-            fill.first_new_vertex = mesh_.num_vertices();
-            fill.worst_quality = 1.0;
-        }
-        else
-        {
-            fill = fill_cavity(mesh_, faces, nullptr, options_.cavity);
-            if (!fill.filled)
+            CavityFill& fill = fills[side];
+            if (side_faces[side].empty())
             {
-                grow = std::move(across);
-                return refuse(MirrorStatistics::NoFill);
+                fill.filled = true;  // the change only takes tets away (a flip over one tet)
+                fill.first_new_vertex = mesh_.num_vertices();
+                fill.worst_quality = 1.0;
             }
-            if (fill.worst_quality < std::min(options_.min_quality, worst_before))
+            else
             {
-                grow = std::move(across);
-                return refuse(MirrorStatistics::UnderFloor);
+                fill = fill_cavity(mesh_, side_faces[side], nullptr, options_.cavity);
+                if (!fill.filled)
+                {
+                    grow = std::move(across);
+                    return refuse(MirrorStatistics::NoFill);
+                }
+                if (fill.worst_quality < std::min(options_.min_quality, worst_before))
+                {
+                    grow = std::move(across);
+                    return refuse(MirrorStatistics::UnderFloor);
+                }
             }
+            fill.ref = refs[side];
         }
-        fill.removed_tets = cavity;
-        fill.ref = ref;
-        out.fill = std::move(fill);
+        out.fill_stages.clear();
+        for (const CavityFill& fill : fills)
+            if (!fill.tets.empty()) out.fill_stages.push_back({fill.stage, fill.grown_layers});
+        out.fill = merge_fills(std::move(fills));
+        out.fill.removed_tets = cavity;
         out.removed = change.removed;
         out.added = change.added;
         out.swallowed = std::move(swallowed);
@@ -476,6 +514,41 @@ private:
             std::unique(out.cavity_vertices.begin(), out.cavity_vertices.end()),
             out.cavity_vertices.end());
         return true;
+    }
+
+    /// q is p up to rotation (the same triangle, the same way round).
+    static bool same_orientation(const Triangle& p, const Triangle& q)
+    {
+        for (int r = 0; r < 3; ++r)
+            if (q[0] == p[r] && q[1] == p[(r + 1) % 3] && q[2] == p[(r + 2) % 3]) return true;
+        return false;
+    }
+
+    /// The fills of an interface's two sides as one commit: the second side's Steiner points
+    /// numbered after the first's, each tet with its side's ref.
+    static CavityFill merge_fills(std::vector<CavityFill> fills)
+    {
+        if (fills.size() == 1) return std::move(fills.front());
+        CavityFill merged = std::move(fills.front());
+        merged.tet_refs.assign(merged.tets.size(), merged.ref);
+        for (std::size_t side = 1; side < fills.size(); ++side)
+        {
+            const CavityFill& fill = fills[side];
+            const int shift = static_cast<int>(merged.new_points.size());
+            for (TetVertices t : fill.tets)
+            {
+                for (int& v : t)
+                    if (v >= fill.first_new_vertex) v += shift;
+                merged.tets.push_back(t);
+                merged.tet_refs.push_back(fill.ref);
+            }
+            merged.new_points.insert(merged.new_points.end(), fill.new_points.begin(),
+                                     fill.new_points.end());
+            merged.faces.insert(merged.faces.end(), fill.faces.begin(), fill.faces.end());
+            merged.worst_quality = std::min(merged.worst_quality, fill.worst_quality);
+            merged.grown_layers = std::max(merged.grown_layers, fill.grown_layers);
+        }
+        return merged;
     }
 
     /// Drops each face met twice with opposite orientations (a tet face the change exposes as
@@ -560,7 +633,14 @@ private:
         if (stats_)
         {
             ++stats_->done[operation];
-            if (!p.fill.tets.empty()) stats_->fills.add(p.fill);
+            for (const auto& [stage, layers] : p.fill_stages)
+            {
+                CavityFill side;
+                side.filled = true;
+                side.stage = stage;
+                side.grown_layers = layers;
+                stats_->fills.add(side);
+            }
         }
         vertex_tet_.resize(mesh_.num_vertices(), -1);
         for (int v : p.cavity_vertices) vertex_tet_[v] = -1;

@@ -26,32 +26,54 @@ ProjectedPoint to_projected(const hdi::Projection& fit)
 // Most of the area: the facets are then no model of the smooth surface they sample.
 constexpr double kCoarseAreaFraction = 0.5;
 
-// Whether options ask for the HDI on `model` (coarse_facet_tolerance: only on coarse facets).
-bool wanted(const SurfaceModel& model, const HdiProjectionOptions& options)
+// Per input face, whether options ask for the HDI on it: with coarse_facet_tolerance, only on
+// the shells most of whose area is on coarse facets (a coarse ball inside a flat box). Empty:
+// on every face; all zero: nowhere.
+std::vector<char> wanted_faces(const SurfaceModel& model, const HdiProjectionOptions& options)
 {
-    return !(options.coarse_facet_tolerance > 0.0) ||
-           model.coarse_area_fraction(options.coarse_facet_tolerance) > kCoarseAreaFraction;
+    if (!(options.coarse_facet_tolerance > 0.0)) return {};
+    const std::vector<int> shell = model.face_shells();
+    const std::vector<double> coarse =
+        model.coarse_area_fractions(options.coarse_facet_tolerance, shell);
+    const auto wants = [&coarse](int s) { return coarse[s] > kCoarseAreaFraction; };
+    int wanted = 0;
+    for (std::size_t s = 0; s < coarse.size(); ++s) wanted += wants(static_cast<int>(s));
+    if (wanted == static_cast<int>(coarse.size())) return {};
+    std::vector<char> faces(shell.size(), 0);
+    for (std::size_t f = 0; f < shell.size(); ++f) faces[f] = wants(shell[f]);
+    return faces;
 }
 
-// `surface` as model's smooth projection, trusted where it stays within the deviation bound
-// of the facets.
+bool nowhere(const std::vector<char>& faces)
+{
+    return !faces.empty() && std::find(faces.begin(), faces.end(), 1) == faces.end();
+}
+
+// `surface` as model's smooth projection on the faces `only` (empty: all), trusted where it
+// stays within the deviation bound of the facets.
 void install(SurfaceModel& model, std::shared_ptr<const hdi::HdiSurface> surface,
-             const HdiProjectionOptions& options)
+             const HdiProjectionOptions& options, std::vector<char> only)
 {
     const double max_deviation = options.max_deviation_fraction * model.diagonal();
     const double edge_fraction = options.max_deviation_edge_fraction;
     const SurfaceModel* facets = &model;
-    model.set_smooth_projection(
-        [surface = std::move(surface), facets, max_deviation, edge_fraction](const Vec3d& p) {
-            ProjectedPoint out = to_projected(surface->project(hdi::Vec3(p[0], p[1], p[2])));
-            if (!out.ok) return out;
-            const ProjectedPoint on_facets = facets->closest_on_input(out.point);
-            const double bound =
-                std::max(max_deviation, edge_fraction * facets->shortest_edge(on_facets.face));
-            out.ok = on_facets.ok && (on_facets.point - out.point).norm() <= bound;
-            out.face = on_facets.face;
-            return out;
-        });
+    model.set_smooth_projection([surface = std::move(surface), facets, max_deviation, edge_fraction,
+                                 only = std::move(only)](const Vec3d& p) {
+        if (!only.empty())
+        {
+            // a shell the facets model well enough: not ok sends p onto them
+            const ProjectedPoint under = facets->closest_on_input(p);
+            if (!under.ok || under.face < 0 || !only[under.face]) return ProjectedPoint{};
+        }
+        ProjectedPoint out = to_projected(surface->project(hdi::Vec3(p[0], p[1], p[2])));
+        if (!out.ok) return out;
+        const ProjectedPoint on_facets = facets->closest_on_input(out.point);
+        const double bound =
+            std::max(max_deviation, edge_fraction * facets->shortest_edge(on_facets.face));
+        out.ok = on_facets.ok && (on_facets.point - out.point).norm() <= bound;
+        out.face = on_facets.face;
+        return out;
+    });
 }
 
 }  // namespace
@@ -85,7 +107,8 @@ HdiProjectionOptions coarse_input_options(HdiProjectionOptions base, double tole
 void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
                            const HdiProjectionOptions& options)
 {
-    if (!wanted(model, options)) return;  // before the model is built
+    std::vector<char> only = wanted_faces(model, options);
+    if (nowhere(only)) return;  // before the model is built
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
     OpenMesh::EPropHandleT<int> edge_curve;
     const bool classified = input.get_property_handle(vertex_class, property_names::vertex_class) &&
@@ -126,16 +149,17 @@ void attach_hdi_projection(SurfaceModel& model, const SurfaceMesh& input,
     hdi_options.neighbours = options.neighbours;
     auto surface = std::make_shared<const hdi::HdiSurface>(std::move(points), std::move(triangles),
                                                            features, hdi_options);
-    install(model, surface, options);
+    install(model, surface, options, std::move(only));
 }
 
 void attach_hdi_projection(SurfaceModel& model, const hdi::HdiSurface& surface,
                            const HdiProjectionOptions& options)
 {
-    if (!wanted(model, options)) return;
+    std::vector<char> only = wanted_faces(model, options);
+    if (nowhere(only)) return;
     // Not owned: the caller's model outlives this one.
     install(model, std::shared_ptr<const hdi::HdiSurface>(&surface, [](const hdi::HdiSurface*) {}),
-            options);
+            options, std::move(only));
 }
 
 }  // namespace hdimesh::surface

@@ -583,17 +583,50 @@ double SurfaceModel::chord_error(int face) const
 
 double SurfaceModel::coarse_area_fraction(double tolerance) const
 {
-    double total = 0.0, coarse = 0.0;
+    const std::vector<int> one_shell(face_vertices_.size(), 0);
+    const std::vector<double> fractions = coarse_area_fractions(tolerance, one_shell);
+    return fractions.empty() ? 0.0 : fractions.front();
+}
+
+std::vector<int> SurfaceModel::face_shells() const
+{
+    std::vector<int> parent(points_.size());
+    for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = static_cast<int>(v);
+    auto root = [&parent](int v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (const auto& f : face_vertices_)
+        for (int k = 1; k < 3; ++k) parent[root(f[k])] = root(f[0]);
+    std::vector<int> shell_of_root(points_.size(), -1), shells;
+    shells.reserve(face_vertices_.size());
+    int count = 0;
+    for (const auto& f : face_vertices_)
+    {
+        int& shell = shell_of_root[root(f[0])];
+        if (shell < 0) shell = count++;
+        shells.push_back(shell);
+    }
+    return shells;
+}
+
+std::vector<double> SurfaceModel::coarse_area_fractions(double tolerance,
+                                                        const std::vector<int>& face_shell) const
+{
+    const int shells =
+        face_shell.empty() ? 0 : *std::max_element(face_shell.begin(), face_shell.end()) + 1;
+    std::vector<double> total(shells, 0.0), coarse(shells, 0.0);
     for (int f = 0; f < static_cast<int>(face_vertices_.size()); ++f)
     {
         const auto& v = face_vertices_[f];
         const double area =
             0.5 *
             OpenMesh::cross(points_[v[1]] - points_[v[0]], points_[v[2]] - points_[v[0]]).norm();
-        total += area;
-        if (chord_error(f) > tolerance) coarse += area;
+        total[face_shell[f]] += area;
+        if (chord_error(f) > tolerance) coarse[face_shell[f]] += area;
     }
-    return total > 0.0 ? coarse / total : 0.0;
+    for (int s = 0; s < shells; ++s) coarse[s] = total[s] > 0.0 ? coarse[s] / total[s] : 0.0;
+    return coarse;
 }
 
 double SurfaceModel::shortest_edge(int face) const

@@ -81,6 +81,12 @@ public:
     double chord_error(int face) const;
     /// The fraction of the input's area on faces whose chord_error exceeds `tolerance`.
     double coarse_area_fraction(double tolerance) const;
+    /// Per input face, its shell: the connected component (over shared vertices) it is in,
+    /// numbered from 0 in face order.
+    std::vector<int> face_shells() const;
+    /// coarse_area_fraction over each shell of `face_shell` (face_shells()) on its own.
+    std::vector<double> coarse_area_fractions(double tolerance,
+                                              const std::vector<int>& face_shell) const;
     std::size_t curve_count() const;
 
 private:

@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include <map>
 #include <random>
 
 #pragma GCC diagnostic push
@@ -15,6 +16,7 @@
 #include "surface/features.h"
 #include "surface/local_ops.h"
 #include "surface/surface_model.h"
+#include "volume/boundary_repair.h"
 #include "volume/check.h"
 #include "volume/geometry.h"
 #include "volume/tet_io.h"
@@ -91,6 +93,40 @@ MirrorStatistics fuzz(TetMesh& mesh, int operations, std::uint32_t seed, double 
     return stats;
 }
 
+/// The volume of the tets of each ref, by ref.
+std::map<int, double> volume_by_ref(const TetMesh& mesh)
+{
+    std::map<int, double> volume;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        if (!mesh.is_dead(t)) volume[mesh.tet_refs[t]] += mesh.volume(t);
+    return volume;
+}
+
+/// [0,1]^3 as 4^3 Kuhn cubes, the central 2^3 block ref 2, the rest ref 1:
+///
+///     +--+--+--+--+      the block's 48 interface triangles make a closed shell a layer
+///     |  |  |  |  |      of cubes away from the box's faces (a ball inside a box)
+///     +--+==+==+--+
+///     |  |22|22|  |
+///     +--+==+==+--+
+///     |  |22|22|  |
+///     +--+==+==+--+
+///     |  |  |  |  |
+///     +--+--+--+--+
+TetMesh two_materials()
+{
+    TetMesh mesh = fixtures::box_mesh(4);
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        volume::Vec3 c = volume::Vec3::Zero();
+        for (int v : mesh.tets[t]) c += 0.25 * mesh.points[v];
+        const bool inside = (c.array() > 0.25).all() && (c.array() < 0.75).all();
+        mesh.tet_refs[t] = inside ? 2 : 1;
+    }
+    volume::repair_boundary(mesh, {});  // lists the interface triangles
+    return mesh;
+}
+
 }  // namespace
 
 TEST_CASE("the boundary of a tet mesh maps onto a surface and back, vertex for vertex")
@@ -110,11 +146,17 @@ TEST_CASE("the boundary of a tet mesh maps onto a surface and back, vertex for v
     CHECK(mesh.corners.size() == 8);
 }
 
-TEST_CASE("two tet refs sharing a face make an interface the coupled pass refuses")
+TEST_CASE("an interface that meets the boundary is refused; a closed one inside is taken")
 {
     TetMesh mesh = fixtures::box_mesh(2);
-    mesh.tet_refs[0] = 7;
-    CHECK(coupled_surface_refusal(mesh) == "interfaces between tet refs");
+    mesh.tet_refs[0] = 7;  // a corner tet: its interface faces meet the box's
+    CHECK(coupled_surface_refusal(mesh) ==
+          "interfaces between tet refs that meet the boundary or each other");
+    TetMesh inner = two_materials();
+    CHECK(coupled_surface_refusal(inner) == "");
+    BoundaryMap map = extract_boundary(inner);
+    CHECK(map.surface.n_faces() == 6 * 16 * 2 + 6 * 4 * 2);  // the box's faces, the block's
+    CHECK(consistency(map, inner) == "");
 }
 
 TEST_CASE("two tets touching at one vertex pinch the boundary: the coupled pass refuses them")
@@ -200,6 +242,25 @@ TEST_CASE("random surface operations on a box keep its ridges, corners and both 
     CHECK(stats.done[MirrorStatistics::Collapse] > 0);
     // faces stay planar and corners fixed: the volume is the cube's
     CHECK(mesh.total_volume() == doctest::Approx(volume));
+}
+
+TEST_CASE("random surface operations on a box holding a block of another material")
+{
+    // every operation on the block's faces is one cavity a side, each refilled with its ref
+    TetMesh mesh = two_materials();
+    mesh.build_adjacency();
+    const std::map<int, double> before = volume_by_ref(mesh);
+    const MirrorStatistics stats = fuzz(mesh, 3000, 7, 0.3);
+    MESSAGE(stats.format());
+    CHECK(stats.done[MirrorStatistics::Split] > 0);
+    CHECK(stats.done[MirrorStatistics::Collapse] > 0);
+    CHECK(stats.done[MirrorStatistics::Flip] > 0);
+    CHECK(stats.refusals[MirrorStatistics::MixedRefs] == 0);
+    // the block's faces stay planar and its corners fixed: each material keeps its volume
+    const std::map<int, double> after = volume_by_ref(mesh);
+    REQUIRE(after.size() == 2);
+    CHECK(after.at(1) == doctest::Approx(before.at(1)));
+    CHECK(after.at(2) == doctest::Approx(before.at(2)));
 }
 
 TEST_CASE("a boundary move its tets cannot follow refills its ball around the new place")

@@ -35,7 +35,7 @@ void check_manifold(const SurfaceMesh& mesh)
 }
 
 // A subdivided octahedron pushed onto the unit sphere (8·4^level triangles).
-SurfaceMesh sphere(int level)
+TriangleSoup sphere_soup(int level)
 {
     std::vector<Vec3d> p = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     std::vector<std::array<int, 3>> t = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
@@ -65,8 +65,10 @@ SurfaceMesh sphere(int level)
     TriangleSoup soup;
     soup.points = p;
     soup.triangles = t;
-    return build_surface(soup, "sphere");
+    return soup;
 }
+
+SurfaceMesh sphere(int level) { return build_surface(sphere_soup(level), "sphere"); }
 
 // The unit cube without its top face, each face a 2x2 grid: an open box with 8 sharp edges
 // (45°+), 4 boundary edges along the rim, and corners where three curves meet.
@@ -444,4 +446,38 @@ TEST_CASE("a coarse input is remeshed on its HDI model by default: on the sphere
     MESSAGE("worst |r - 1|: on the HDI model ", on_hdi, ", on the facets ", on_facets);
     CHECK(on_hdi < 0.01);  // the fit's own accuracy on so few nodes
     CHECK(on_facets > 0.03);
+}
+
+TEST_CASE("a coarse ball inside a flat box: the HDI model on the ball's shell, facets on the box")
+{
+    //   two shells: the unit ball's 128 facets sag up to ~0.07 below its sphere (coarse), the
+    //   box [-2, 2]^3 is 12 flat triangles (exact), with 20 times the ball's area. By area over
+    //   the whole input the facets would win and the ball come out faceted: the choice is the
+    //   shell's. Remeshed to h = 0.15, the ball's vertices land on the sphere and the box's
+    //   stay on its planes to round-off.
+    TriangleSoup soup = sphere_soup(2);
+    const int base = static_cast<int>(soup.points.size());
+    for (int i = 0; i < 8; ++i)  // corner i at (±2, ±2, ±2), bit k of i: the sign of axis k
+        soup.points.push_back(Vec3d(i & 1 ? 2 : -2, i & 2 ? 2 : -2, i & 4 ? 2 : -2));
+    const int box[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                            {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    for (const auto& t : box) soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+    SurfaceMesh mesh = build_surface(soup, "ball in a box");
+    SurfaceRemeshSettings settings;
+    settings.sizing.hsiz = 0.15;
+    remesh_surface(mesh, settings);
+    check_manifold(mesh);
+    double ball = 0.0, walls = 0.0;
+    for (auto v : mesh.vertices())
+    {
+        const Vec3d p = mesh.point(v);
+        if (p.norm() < 1.5)
+            ball = std::max(ball, std::abs(p.norm() - 1.0));
+        else
+            walls = std::max(
+                walls, std::abs(std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}) - 2.0));
+    }
+    MESSAGE("worst |r - 1| on the ball ", ball, ", off the box's planes ", walls);
+    CHECK(ball < 0.01);
+    CHECK(walls < 1e-12);
 }

@@ -102,6 +102,27 @@ std::vector<Triangle> tet_boundary_faces(const TetMesh& mesh)
     return boundary;
 }
 
+std::vector<Triangle> tet_surface_faces(const TetMesh& mesh)
+{
+    const FaceGroups groups = group_tet_faces(mesh);
+    std::vector<Triangle> faces;
+    for (int k = 0; k < groups.num_faces(); ++k)
+    {
+        const int first = groups.start[k], count = groups.start[k + 1] - first;
+        if (count == 1)
+        {
+            faces.push_back(face_vertices(mesh, groups.uses[first]));
+            continue;
+        }
+        if (count != 2) continue;  // a non-conforming face (check_mesh reports it)
+        const TetFace& a = groups.uses[first];
+        const TetFace& b = groups.uses[first + 1];
+        const int ra = mesh.tet_refs[a.tet], rb = mesh.tet_refs[b.tet];
+        if (ra != rb) faces.push_back(face_vertices(mesh, ra < rb ? a : b));
+    }
+    return faces;
+}
+
 std::vector<ListedTriangle> listed_triangles(const TetMesh& mesh)
 {
     std::vector<ListedTriangle> listed;

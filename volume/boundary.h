@@ -38,6 +38,12 @@ Triangle face_vertices(const TetMesh& mesh, const TetFace& face);
 /// The faces used by exactly one live tet, oriented as that tet sees them (outward).
 std::vector<Triangle> tet_boundary_faces(const TetMesh& mesh);
 
+/// The boundary faces (above) and, once each, the faces between two live tets of different
+/// refs (the interfaces), oriented outward from the tet with the smaller ref (as
+/// repair_boundary lists them): one orientation per interface, consistent over each of its
+/// closed shells.
+std::vector<Triangle> tet_surface_faces(const TetMesh& mesh);
+
 /// One listing of mesh.triangles under its vertex set: ordered by the set, then by index, so
 /// that equal_range over a set gives every listing of that face, the first listed first.
 struct ListedTriangle

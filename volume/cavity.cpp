@@ -378,6 +378,7 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
 {
     assert(fill.filled);
     assert(mesh.num_vertices() == fill.first_new_vertex);
+    assert(fill.tet_refs.empty() || fill.tet_refs.size() == fill.tets.size());
     for (const Vec3& p : fill.new_points) mesh.add_vertex(p, 0, VertexClass::Interior);
 
     // a fill into an empty mesh (a whole volume) has nothing to link to: the caller links the
@@ -415,16 +416,17 @@ std::vector<int> commit_cavity(TetMesh& mesh, const CavityFill& fill)
     ids.reserve(fill.tets.size());
     for (std::size_t k = 0; k < fill.tets.size(); ++k)
     {
+        const int ref = fill.tet_refs.empty() ? fill.ref : fill.tet_refs[k];
         if (k < slots.size())
         {
             const int id = slots[k];
             mesh.tets[id] = fill.tets[k];
-            mesh.tet_refs[id] = fill.ref;
+            mesh.tet_refs[id] = ref;
             ids.push_back(id);
         }
         else
         {
-            ids.push_back(mesh.add_tet(fill.tets[k], fill.ref));
+            ids.push_back(mesh.add_tet(fill.tets[k], ref));
         }
     }
     if (!linked) return ids;

@@ -79,6 +79,9 @@ struct CavityFill
     /// refill_tets: the live tets the fill replaces (the given ones plus the grown layers).
     std::vector<int> removed_tets;
     int ref = 0;  ///< ref of the new tets (refill_tets: the cavity's common tet ref)
+    /// Per new tet, its ref, for a fill put together from cavities on both sides of an
+    /// interface (empty: every tet takes `ref`).
+    std::vector<int> tet_refs;
     int grown_layers = 0;
     double worst_quality = 0;  ///< min Qe over tets
     std::string failure;       ///< why not, when !filled
