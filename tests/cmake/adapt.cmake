@@ -37,3 +37,10 @@ add_test(NAME adapt_app_huge_coordinate
          COMMAND bash -c "sed '0,/^v /s/^v [^ ]* /v 1e308 /' ${PROJECT_SOURCE_DIR}/data/icosphere320.obj > ${adapt_out}/huge.obj && ! $<TARGET_FILE:adapt> ${adapt_out}/huge.obj -o ${adapt_out}/huge.mesh --hsiz 0.3 2> ${adapt_out}/huge.txt && grep -q 'huge.obj:[0-9]*: vertex 1e+308 exceeds' ${adapt_out}/huge.txt && test ! -e ${adapt_out}/huge.mesh")
 add_test(NAME adapt_app_hausd_far_too_small
          COMMAND bash -c "! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/tight.mesh --hsiz 0.3 --hausd 1e-300 2> ${adapt_out}/tight.txt && grep -q 'distance bound asks for' ${adapt_out}/tight.txt && test ! -e ${adapt_out}/tight.mesh")
+# Two materials: box_with_ball.msh (Gmsh, box_with_ball.geo) is a ball of ref 2 inside a box of
+# ref 1. The coupled pass remeshes the box's faces and the interface together, each cavity
+# refilled one side at a time; the interface stays on the sphere with surfremesh's shapes.
+if(EXISTS /usr/bin/python3)
+    add_test(NAME adapt_app_two_materials
+             COMMAND bash -c "$<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/box_with_ball.msh -o ${adapt_out}/two_materials.mesh --hsiz 0.1 --check > ${adapt_out}/two_materials.txt 2>&1 && grep -q 'surface: 1180 triangles -> .*on the input' ${adapt_out}/two_materials.txt && grep -q 'check output: clean' ${adapt_out}/two_materials.txt && /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/interface_check.py ${adapt_out}/two_materials.mesh")
+endif()
