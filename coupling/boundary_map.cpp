@@ -37,7 +37,6 @@ std::string coupled_surface_refusal(const TetMesh& mesh)
     // apart from each other make one 2-manifold surface; an interface that meets the boundary
     // or another interface makes edges of three or more triangles.
     const std::vector<Triangle> faces = tet_surface_faces(mesh);
-    const bool interfaces = faces.size() != tet_boundary_faces(mesh).size();
     std::vector<std::array<int, 3>> keys;
     keys.reserve(faces.size());
     for (const auto& f : faces) keys.push_back(sorted_triple(f));
@@ -50,10 +49,11 @@ std::string coupled_surface_refusal(const TetMesh& mesh)
     topology_only.check_self_intersections = false;  // the faces of valid tets do not cross
     const std::vector<SurfaceDefect> defects =
         check_closed_surface(mesh.points, faces, topology_only);
-    if (!defects.empty())
-        return interfaces ? "interfaces between tet refs that meet the boundary or each other"
-                          : format_surface_defects(defects, "the tets' boundary", 1);
-    return {};
+    if (defects.empty()) return {};
+    // (the boundary alone is then listed again, for the message only)
+    return faces.size() != tet_boundary_faces(mesh).size()
+               ? "interfaces between tet refs that meet the boundary or each other"
+               : format_surface_defects(defects, "the tets' boundary", 1);
 }
 
 std::vector<surface::VertexHandle> BoundaryMap::tet_to_surface(int num_tet_vertices) const

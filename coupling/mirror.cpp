@@ -516,14 +516,6 @@ private:
         return true;
     }
 
-    /// q is p up to rotation (the same triangle, the same way round).
-    static bool same_orientation(const Triangle& p, const Triangle& q)
-    {
-        for (int r = 0; r < 3; ++r)
-            if (q[0] == p[r] && q[1] == p[(r + 1) % 3] && q[2] == p[(r + 2) % 3]) return true;
-        return false;
-    }
-
     /// The fills of an interface's two sides as one commit: the second side's Steiner points
     /// numbered after the first's, each tet with its side's ref.
     static CavityFill merge_fills(std::vector<CavityFill> fills)
@@ -570,11 +562,7 @@ private:
             {
                 const Triangle& p = faces[keyed[i].second];
                 const Triangle& q = faces[keyed[i + 1].second];
-                // opposite: q is p reversed up to rotation
-                const bool opposite = (q[0] == p[0] && q[1] == p[2] && q[2] == p[1]) ||
-                                      (q[0] == p[1] && q[1] == p[0] && q[2] == p[2]) ||
-                                      (q[0] == p[2] && q[1] == p[1] && q[2] == p[0]);
-                if (!opposite) return false;
+                if (!same_orientation(p, {q[0], q[2], q[1]})) return false;  // not opposite
                 drop[keyed[i].second] = drop[keyed[i + 1].second] = 1;
             }
             i = j;

@@ -489,7 +489,7 @@ bool FrontMesher::valid_tet(int face, int p, bool is_new)
         for (const Triangle& s : sides)
         {
             const int g = front_.find(s);
-            if (g >= 0 && detail::same_orientation(s, front_.vertices[g])) return false;
+            if (g >= 0 && same_orientation(s, front_.vertices[g])) return false;
         }
 
     const TetVertices tet{a, b, c, p};
@@ -640,7 +640,7 @@ void FrontMesher::commit(int face, int p)
         if (g >= 0)
         {
             // closing: the face on the front must run the other way (a same-way one is a bug)
-            assert(!detail::same_orientation(s, front_.vertices[g]));
+            assert(!same_orientation(s, front_.vertices[g]));
             remove_face(g);
         }
         else
@@ -925,7 +925,7 @@ bool FrontMesher::retreat()
             const int g = front_.find(outward);
             if (g >= 0)
             {
-                assert(detail::same_orientation(outward, front_.vertices[g]));
+                assert(same_orientation(outward, front_.vertices[g]));
                 front_.remove(g);
             }
             else

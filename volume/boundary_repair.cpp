@@ -7,19 +7,6 @@
 namespace hdimesh::volume
 {
 
-namespace
-{
-
-/// b lists a's vertices in the same cyclic order.
-bool same_orientation(const Triangle& a, const Triangle& b)
-{
-    for (int r = 0; r < 3; ++r)
-        if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3]) return true;
-    return false;
-}
-
-}  // namespace
-
 std::vector<std::string> BoundaryRepair::lines() const
 {
     struct Line

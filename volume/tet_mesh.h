@@ -54,6 +54,13 @@ inline Triangle sorted_triple(const Triangle& t)
     if (s[0] > s[1]) std::swap(s[0], s[1]);
     return s;
 }
+/// True when u lists the vertices of t in the same cyclic order (same orientation).
+inline bool same_orientation(const Triangle& t, const Triangle& u)
+{
+    for (int k = 0; k < 3; ++k)
+        if (u[k] == t[0]) return u[(k + 1) % 3] == t[1] && u[(k + 2) % 3] == t[2];
+    return false;
+}
 using Edge = std::array<int, 2>;
 
 /// Old-to-new index maps returned by TetMesh::compact(); removed entities map to -1.

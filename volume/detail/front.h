@@ -16,14 +16,6 @@
 namespace hdimesh::volume::detail
 {
 
-/// True when u lists the vertices of t in the same cyclic order (same orientation).
-inline bool same_orientation(const Triangle& t, const Triangle& u)
-{
-    for (int k = 0; k < 3; ++k)
-        if (u[k] == t[0]) return u[(k + 1) % 3] == t[1] && u[(k + 2) % 3] == t[2];
-    return false;
-}
-
 /// Open addressing with linear probing and backward-shift deletion: no tombstones, so a long
 /// run of inserts and erases keeps the probe sequences short.
 class FaceHash
