@@ -143,16 +143,8 @@ int main(int argc, char** argv)
             if (has_hausd && !(hausd > 0)) throw cli::UsageError("--hausd must be positive");
             options.hausd = has_hausd ? hausd : 0.0;
             options.surface = !nosurf && !optim_only;
-            if (!strict)
-                for (const std::string& line : repair_boundary(mesh).lines())
-                    std::cerr << "adapt: " << input << ": " << line << "\n";
-            if (const RegionCurves curves = mark_region_curves(mesh); curves.ridges > 0)
-                std::cerr << "adapt: " << input << ": " << curves.ridges
-                          << " ridge edges where three or more regions meet (" << curves.corners
-                          << " corners)\n";
-            if (const auto violations = check_mesh(mesh); !violations.empty())
-                throw InputError(input + ": the input mesh is not valid:\n" +
-                                 format_violations(violations));
+            for (const std::string& line : prepare_tet_input(mesh, input, strict))
+                std::cerr << "adapt: " << input << ": " << line << "\n";
             if (check && verbosity >= 1) std::cout << "check input: clean\n";
 
             if (!size.any() && !optim_only)

@@ -178,6 +178,7 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
             row.seconds = pass_clock.wall_seconds();
             report.passes.push_back(row);
             if (options.verbosity >= 2) std::cout << format_pass_row(row) << std::flush;
+            if (options.progress) options.progress("pass " + std::to_string(pass), row.tets);
             if (options.verbosity >= 1 && isatty(STDERR_FILENO))
                 std::fprintf(stderr, "\radapt: pass %d, %d tets", pass, row.tets);
             // A few splits a pass that no longer decrease: the long edges left are where a split
@@ -279,6 +280,7 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     // too long change it, the optimization after does not.
     for (int round = 0; input && round < kSurfaceRounds; ++round)
     {
+        if (options.progress) options.progress("surface", mesh.num_live_tets());
         const int remeshed = surface_pass();
         ++report.surface_passes;
         // The surface's bands and the refills may leave a few edges too long on either side.
@@ -290,6 +292,7 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     // the final optimization, then the moves the guard had shortened
     if (options.optimize)
     {
+        if (options.progress) options.progress("optimize", mesh.num_live_tets());
         const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
         mesh.compact();  // renumbering needs a compact mesh; the passes leave it so, this makes
                          // sure

@@ -16,6 +16,7 @@
 //   optimize_mesh      collapse too-short edges, swap and smooth to the end
 //   project_all        (no surface pass) finish the moves that were shortened, improve again
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,9 @@ struct AdaptOptions
     /// 0 silent; 1 progress on stderr when it is a terminal; 2 also a table row per pass on
     /// stdout as the passes run.
     int verbosity = 1;
+    /// Told after each refinement pass ("pass 3") and as the surface pass and the final
+    /// optimization start, with the live tet count; it may throw to stop the run.
+    std::function<void(const std::string& stage, int tets)> progress;
 };
 
 /// One refinement pass: what it split, the mesh after it, what the projection did.

@@ -5,11 +5,15 @@
 set -euo pipefail
 
 packages=(g++ cmake make libopenmesh-dev libeigen3-dev libflann-dev doctest-dev)
+# the Python module (python/): pybind11 and the interpreter's headers; numpy at run time,
+# meshio for its example
+packages+=(pybind11-dev python3-dev python3-numpy python3-meshio)
 if [[ "${1:-}" == "--tests" ]]; then
     # meshio and gmsh read our outputs back as independent third-party readers;
     # numpy/scipy serve the independent checker scripts.
     # clang-format checks the tree against .clang-format.
-    packages+=(python3 python3-numpy python3-scipy python3-meshio gmsh clang-format)
+    # pytest runs the Python module's tests.
+    packages+=(python3 python3-numpy python3-scipy python3-meshio python3-pytest gmsh clang-format)
 fi
 
 missing=()

@@ -4,16 +4,19 @@
 # quality report (input, passes, output; the checker verdict). Output: out/sphere480_A.mesh, its
 # report as out/sphere480_A.json; `build/apps/meshstat out/sphere480_A.mesh --svg q.svg` draws it.
 # Then a volume from a surface alone: data/spot.obj remeshed at 2 % of its diagonal and filled with
-# tets (out/spot.mesh).
+# tets (out/spot.mesh). Last, the Python module's example (examples/adapt_gmsh_mesh.py): a Gmsh
+# mesh read with meshio, adapted to a size computed in numpy, written as out/box_with_ball.vtu.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/install_deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DHDIMESH_BUILD_TESTS=OFF > /dev/null
 echo "building Release (log: build/build.log)..."
-cmake --build build -j"$(nproc)" --target adapt meshstat > build/build.log 2>&1 ||
+cmake --build build -j"$(nproc)" --target adapt meshstat _hdimesh > build/build.log 2>&1 ||
     { tail -40 build/build.log; exit 1; }
 mkdir -p out
 build/apps/adapt data/sphere480.mesh -o out/sphere480_A.mesh --bench-field A --check \
     --stats out/sphere480_A.json "$@"
 build/apps/adapt data/spot.obj -o out/spot.mesh --hsiz 0.05 --check
+PYTHONPATH=build/python /usr/bin/python3 examples/adapt_gmsh_mesh.py data/box_with_ball.msh \
+    out/box_with_ball.vtu

@@ -10,24 +10,30 @@ jobs=$(nproc)
 unity=-DCMAKE_UNITY_BUILD=ON
 
 scripts/install_deps.sh --tests
+# each stage's wall time, to keep .ci/run under its 30 minutes
+stage() { echo "== $1 (at ${SECONDS} s)"; }
 
-echo "== format"
+stage "format"
 scripts/check_format.sh
 
-echo "== Release build and tests"
+stage "Release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$unity" > /dev/null
 cmake --build build -j"$jobs"
+stage "Release tests"
 ctest --test-dir build --output-on-failure -j"$jobs"
 
-echo "== Release build with assertions, and tests"
+stage "Release build with assertions, and tests"
 cmake -S . -B build-assert -DCMAKE_BUILD_TYPE=Release -DHDIMESH_ASSERTS=ON "$unity" \
-    -DHDIMESH_BUILD_BENCH=OFF > /dev/null
+    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF > /dev/null
 cmake --build build-assert -j"$jobs"
+stage "assertions tests"
 ctest --test-dir build-assert --output-on-failure -j"$jobs"
 
-echo "== ASan+UBSan build and tests"
+stage "ASan+UBSan build and tests"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHDIMESH_SANITIZE=ON "$unity" \
-    -DHDIMESH_BUILD_BENCH=OFF > /dev/null
+    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF > /dev/null
 cmake --build build-asan -j"$jobs"
+stage "ASan+UBSan tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j"$jobs" -LE no-sanitizer
+stage "done"

@@ -788,6 +788,37 @@ void write_medit(const SurfaceMesh& mesh, const std::string& path)
     if (!out) throw IoError(path + ": write failed");
 }
 
+/// OBJ, OFF and ASCII PLY at full double precision (OpenMesh's writers of them go through
+/// floats, 1e-8 off: a round trip would move every vertex).
+void write_polygons(const SurfaceMesh& mesh, const std::string& path, const std::string& ext)
+{
+    std::ofstream out(path);
+    if (!out) throw IoError(path + ": cannot open for writing");
+    out.precision(17);
+    std::vector<int> index(mesh.n_vertices(), -1);
+    int n = 0;
+    for (auto v : mesh.vertices()) index[v.idx()] = n++;
+    if (ext == "off") out << "OFF\n" << n << " " << mesh.n_faces() << " 0\n";
+    if (ext == "ply")
+        out << "ply\nformat ascii 1.0\nelement vertex " << n
+            << "\nproperty double x\nproperty double y\nproperty double z\nelement face "
+            << mesh.n_faces() << "\nproperty list uchar int vertex_indices\nend_header\n";
+    const bool obj = ext == "obj";
+    for (auto v : mesh.vertices())
+    {
+        const Vec3d p = mesh.point(v);
+        out << (obj ? "v " : "") << p[0] << " " << p[1] << " " << p[2] << "\n";
+    }
+    for (auto f : mesh.faces())
+    {
+        out << (obj ? "f" : "3");
+        for (auto v : mesh.fv_range(f)) out << " " << index[v.idx()] + (obj ? 1 : 0);
+        out << "\n";
+    }
+    out.flush();
+    if (!out) throw IoError(path + ": write failed");
+}
+
 }  // namespace
 
 void write_surface(const SurfaceMesh& mesh, const std::string& path)
@@ -801,6 +832,8 @@ void write_surface(const SurfaceMesh& mesh, const std::string& path)
     const std::string temp = path + ".tmp" + std::to_string(::getpid()) + "." + ext;
     if (ext == "mesh")
         write_medit(mesh, temp);
+    else if (ext != "stl")  // STL holds floats by definition: OpenMesh's writer is exact there
+        write_polygons(mesh, temp, ext);
     else
     {
         OpenMesh::IO::Options options;

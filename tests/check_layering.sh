@@ -34,7 +34,9 @@ for module in common hdi volume surface coupling; do
     modules=" $(allowed_modules "$module") "
     libraries=" $(allowed_libraries "$module") "
     while IFS=: read -r file line text; do
-        target=$(sed -E 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]([^>"]*)[>"].*/\1/' <<< "$text")
+        # (a bash match, not a sed per line: thousands of includes)
+        [[ $text =~ include[[:space:]]*[\<\"]([^\>\"]*)[\>\"] ]] || continue
+        target=${BASH_REMATCH[1]}
         first=${target%%/*}
         [[ $first == "$target" ]] && continue  # a system header (<vector>) or a local one
         case $first in

@@ -7,7 +7,8 @@ build_dir=$1
 source_dir=$2
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
-cmake --install "$build_dir" --prefix "$scratch/prefix" > /dev/null
+# the C++ library only: the Python package goes to the interpreter's site-packages
+cmake --install "$build_dir" --prefix "$scratch/prefix" --component Unspecified > /dev/null
 
 # Public headers only: nothing from a detail/ folder, and every project header an installed
 # header includes is installed too.

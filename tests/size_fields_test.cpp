@@ -17,6 +17,7 @@
 #include "fixtures.h"
 #include "volume/boundary.h"
 #include "volume/check.h"
+#include "volume/size_spec.h"
 
 using namespace hdimesh;
 
@@ -352,4 +353,27 @@ TEST_CASE("sample_vertex_sizes")
     const auto sizes = sample_vertex_sizes(mesh, BenchmarkSize(benchmark_case('C')));
     REQUIRE(sizes.size() == mesh.points.size());
     CHECK(sizes[13] == BenchmarkSize(benchmark_case('C')).size(mesh.points[13]));
+}
+
+TEST_CASE("size spec: the options as the apps and Python give them")
+{
+    const TetMesh mesh = fixtures::box_mesh(2, 0.0, 1);
+    SizeSpec spec;
+    spec.vertex_sizes = linear_sizes(mesh);
+    const auto field = make_size_field(spec, mesh);
+    for (const Vec3& p : mesh.points) CHECK(field->size(p) == doctest::Approx(linear(p)));
+    spec.hmax = 0.3;  // a clamp over the vertex sizes
+    CHECK(make_size_field(spec, mesh)->size(Vec3(1, 1, 1)) == doctest::Approx(0.3));
+    spec.hsiz = 0.2;
+    CHECK_THROWS_WITH_AS(make_size_field(spec, mesh), doctest::Contains("only one of"), InputError);
+    SizeSpec wrong_count;
+    wrong_count.vertex_sizes = {0.1, 0.2};
+    CHECK_THROWS_WITH_AS(make_size_field(wrong_count, mesh), doctest::Contains("2 vertex sizes"),
+                         InputError);
+    SizeSpec gentle;
+    gentle.hsiz = 0.2;
+    gentle.hgrad = 0.9;
+    CHECK_THROWS_WITH_AS(make_size_field(gentle, mesh), doctest::Contains("hgrad"), InputError);
+    SizeSpec none;  // the input's own sizes: its mean edge length about each vertex
+    CHECK(make_size_field(none, mesh)->size(mesh.points[0]) > 0);
 }

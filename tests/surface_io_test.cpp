@@ -98,6 +98,35 @@ TEST_CASE("OBJ, OFF, STL, PLY and Medit round trips keep the geometry; Medit kee
     }
 }
 
+TEST_CASE("OBJ, OFF, PLY and Medit keep every bit of a coordinate; STL its float")
+{
+    //  a tet whose corners are no floats: 1/3, 0.1, ...
+    SurfaceMesh mesh = read_surface(write_text("thirds.obj", tetra_obj(0.0, 0)));
+    for (auto v : mesh.vertices())
+        mesh.set_point(v, mesh.point(v) * (1.0 / 3.0) + Vec3d(0.1, 0.2, 0.7));
+    for (const char* ext : {"obj", "off", "ply", "mesh", "stl"})
+    {
+        const std::string path = temp_path(std::string("exact.") + ext);
+        write_surface(mesh, path);
+        const SurfaceMesh back = read_surface(path);
+        const bool exact = std::string(ext) != "stl";
+        double worst = 0;  // over the vertices, matched by nearest
+        for (auto v : mesh.vertices())
+        {
+            double nearest = 1e300;
+            for (auto w : back.vertices())
+                nearest = std::min(nearest, (mesh.point(v) - back.point(w)).norm());
+            worst = std::max(worst, nearest);
+        }
+        CAPTURE(ext);
+        if (exact)
+            CHECK(worst == 0.0);
+        else
+            CHECK(worst < 1e-7);
+        std::remove(path.c_str());
+    }
+}
+
 TEST_CASE(
     "duplicate vertices are merged, degenerate and repeated triangles dropped, orientation "
     "repaired")

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "common/errors.h"
 #include "volume/boundary.h"
+#include "volume/check.h"
 
 namespace hdimesh::volume
 {
@@ -183,6 +185,20 @@ RegionCurves mark_region_curves(TetMesh& mesh)
         }
     if (added.ridges + added.corners > 0) mesh.classify_vertices();
     return added;
+}
+
+std::vector<std::string> prepare_tet_input(TetMesh& mesh, const std::string& source, bool strict)
+{
+    std::vector<std::string> lines;
+    if (!strict) lines = repair_boundary(mesh).lines();
+    if (const RegionCurves curves = mark_region_curves(mesh); curves.ridges > 0)
+        lines.push_back(std::to_string(curves.ridges) +
+                        " ridge edges where three or more regions meet (" +
+                        std::to_string(curves.corners) + " corners)");
+    if (const auto violations = check_mesh(mesh); !violations.empty())
+        throw InputError(source + ": the input mesh is not valid:\n" +
+                         format_violations(violations));
+    return lines;
 }
 
 }  // namespace hdimesh::volume

@@ -55,4 +55,9 @@ struct RegionCurves
 };
 RegionCurves mark_region_curves(TetMesh& mesh);
 
+/// A tet mesh as read, made ready for adapt: its boundary mended (unless strict), the curves
+/// where regions meet marked, then checked. Returns a line per change made; throws InputError
+/// naming `source` and the violations when the mesh is not valid.
+std::vector<std::string> prepare_tet_input(TetMesh& mesh, const std::string& source, bool strict);
+
 }  // namespace hdimesh::volume

@@ -154,6 +154,8 @@ TetMesh read_mesh(const std::string& path)
     return mesh;
 }
 
+void finish_mesh(TetMesh& mesh, const std::string& source) { io_detail::finish_read(mesh, source); }
+
 void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions& options)
 {
     const MeshFormat format = mesh_format_from_path(path);

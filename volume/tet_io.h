@@ -56,6 +56,12 @@ MeshFormat mesh_format_from_path(const std::string& path);
 /// content, IoError when the file cannot be opened.
 TetMesh read_mesh(const std::string& path);
 
+/// What every read ends with, for a mesh built in memory (the Python module's arrays): the
+/// same checks (ids in range, finite coordinates, positive tets, no face shared by three
+/// tets), refs sized, adjacency built, vertices classified. Throws InputError naming `source`
+/// and the element (numbered from 1, as in the files).
+void finish_mesh(TetMesh& mesh, const std::string& source);
+
 struct WriteOptions
 {
     std::vector<double> vertex_sizes;  ///< optional point data "size" for .vtu (and nothing else)

@@ -1,0 +1,369 @@
+"""hdimesh: tet meshes and their boundary surfaces adapted together to a size field.
+
+The boundary follows a meshfree (Hermite Diffuse Interpolation) model of the input surface, so
+no CAD is needed. Meshes are numpy arrays held by :class:`TetMesh`; every call below runs the
+same library code as the command-line tools (``adapt``, ``surfremesh``), with the GIL released.
+
+    import hdimesh
+    mesh = hdimesh.read("sphere.mesh")
+    out = hdimesh.adapt(mesh, hsiz=0.1)
+    print(hdimesh.quality(out, hsiz=0.1)["tets"]["min_qe"])
+    hdimesh.write(out, "sphere.o.mesh")
+
+Indices count from 0. Errors are ``ValueError`` (bad input: array shape, ids out of range, NaN,
+an invalid mesh, a bad option; messages number elements from 1, as the files do) and
+``OSError`` (a file that cannot be read or written).
+"""
+
+import collections
+
+import numpy as np
+
+from . import _hdimesh
+
+__all__ = [
+    "TetMesh",
+    "Violation",
+    "read",
+    "write",
+    "adapt",
+    "remesh_surface",
+    "mesh_volume",
+    "quality",
+    "check",
+    "from_meshio",
+    "to_meshio",
+]
+
+_INDEX = np.int32
+
+# (attribute, columns, rows it is per, or None for a list of ids)
+_ARRAYS = (
+    ("tets", 4, None),
+    ("triangles", 3, None),
+    ("edges", 2, None),
+    ("vertex_refs", 1, "points"),
+    ("tet_refs", 1, "tets"),
+    ("triangle_refs", 1, "triangles"),
+    ("edge_refs", 1, "edges"),
+    ("ridges", 1, None),
+    ("corners", 1, None),
+    ("required_vertices", 1, None),
+    ("required_edges", 1, None),
+    ("required_triangles", 1, None),
+    ("required_tets", 1, None),
+)
+
+
+def _points(name, values):
+    a = np.asarray(values, dtype=np.float64)
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"{name} must have shape (n, 3), got {a.shape}")
+    bad = ~np.isfinite(a).all(axis=1)
+    if bad.any():
+        raise ValueError(f"{name} row {int(np.argmax(bad))} is not finite (NaN or infinity)")
+    return a
+
+
+def _ids(name, values, columns, limit=None):
+    a = np.asarray(values)
+    if a.size == 0:
+        a = a.reshape((0, columns) if columns > 1 else (0,))
+    if a.dtype.kind not in "iu":
+        if a.dtype.kind == "f" and np.all(np.isfinite(a)) and np.all(a == np.round(a)):
+            a = a.astype(np.int64)
+        else:
+            raise ValueError(f"{name} must hold integers, got dtype {a.dtype}")
+    want = (columns,) if columns > 1 else ()
+    if a.ndim != 1 + len(want) or a.shape[1:] != want:
+        shape = f"(m, {columns})" if columns > 1 else "(m,)"
+        raise ValueError(f"{name} must have shape {shape}, got {a.shape}")
+    if limit is not None and a.size:
+        low, high = a.min(), a.max()
+        if low < 0 or high >= limit:
+            bad = int(np.argmax((a < 0) | (a >= limit)))
+            row = bad // columns if columns > 1 else bad
+            value = a.reshape(-1)[bad]
+            raise ValueError(f"{name} row {row} refers to {value}, out of range [0, {limit})")
+    return a
+
+
+class TetMesh:
+    """A tet mesh, or a surface (triangles and no tets), as numpy arrays.
+
+    points (n, 3) float64; tets (m, 4), triangles (k, 3), edges (e, 2) vertex ids; tet_refs,
+    triangle_refs, edge_refs, vertex_refs one int per row; ridges and required_edges ids into
+    edges, corners and required_vertices vertex ids, required_triangles and required_tets ids
+    into triangles and tets. Tets are positive: det(v1-v0, v2-v0, v3-v0) > 0. The arrays are
+    kept as given (no copy) when they already have the right type.
+    """
+
+    def __init__(self, points, tets=None, triangles=None, tet_refs=None, triangle_refs=None,
+                 **more):
+        unknown = set(more) - {name for name, _, _ in _ARRAYS}
+        if unknown:
+            raise TypeError(f"TetMesh got unknown arrays {sorted(unknown)}")
+        self.points = _points("points", points)
+        given = dict(more, tets=tets, triangles=triangles, tet_refs=tet_refs,
+                     triangle_refs=triangle_refs)
+        n = len(self.points)
+        for name, columns, per in _ARRAYS:
+            value = given.get(name)
+            limit = {"tets": n, "triangles": n, "edges": n, "corners": n,
+                     "required_vertices": n}.get(name)
+            if value is None:
+                rows = len(getattr(self, per)) if per else 0
+                value = np.zeros((rows, columns) if columns > 1 else (rows,), dtype=_INDEX)
+            setattr(self, name, _ids(name, value, columns, limit))
+        for name, _, per in _ARRAYS:
+            if per and len(getattr(self, name)) != len(getattr(self, per)):
+                raise ValueError(f"{name} has {len(getattr(self, name))} values for "
+                                 f"{len(getattr(self, per))} {per}")
+        for name, into in (("ridges", "edges"), ("required_edges", "edges"),
+                           ("required_triangles", "triangles"), ("required_tets", "tets")):
+            _ids(name, getattr(self, name), 1, len(getattr(self, into)))
+
+    @classmethod
+    def _from_native(cls, d):
+        return cls(**d)
+
+    def _native(self):
+        return {name: getattr(self, name) for name in ("points",) + tuple(a for a, _, _ in _ARRAYS)}
+
+    @property
+    def is_surface(self):
+        """True when the mesh has triangles and no tets."""
+        return len(self.tets) == 0
+
+    def __repr__(self):
+        return (f"TetMesh({len(self.points)} points, {len(self.tets)} tets, "
+                f"{len(self.triangles)} triangles)")
+
+
+Violation = collections.namedtuple("Violation", "kind element message")
+Violation.__str__ = lambda v: f"{v.kind} {v.element + 1}: {v.message}"
+
+
+def read(path):
+    """Reads .mesh/.meshb (Medit), .msh (Gmsh 2.2, 4.1), or a surface (.obj .off .stl .ply)."""
+    return TetMesh._from_native(_hdimesh.read(str(path)))
+
+
+def write(mesh, path):
+    """Writes by extension: .mesh .meshb .msh .vtu, or the triangles to .obj .off .stl .ply.
+
+    Atomic: a failed write leaves no file."""
+    _hdimesh.write(_as_mesh(mesh)._native(), str(path))
+
+
+def _as_mesh(mesh):
+    if isinstance(mesh, TetMesh):
+        return mesh
+    raise TypeError(f"expected an hdimesh.TetMesh, got {type(mesh).__name__}")
+
+
+def _number(name, value, default=0.0):
+    if value is None:
+        return default
+    v = float(value)
+    if not np.isfinite(v) or v <= 0:
+        raise ValueError(f"{name} must be a positive number, got {value!r}")
+    return v
+
+
+def _vertex_sizes(sizes, points):
+    """Sizes at `points`: an array (n,), or a callable evaluated once on all of them."""
+    if sizes is None:
+        return None
+    values = sizes(np.array(points, dtype=np.float64)) if callable(sizes) else sizes
+    a = np.asarray(values, dtype=np.float64).reshape(-1)
+    if a.shape != (len(points),):
+        raise ValueError(f"sizes must give one value per vertex ({len(points)}), got "
+                         f"{np.asarray(values).shape}")
+    bad = ~(np.isfinite(a) & (a > 0))
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"sizes[{i}] = {a[i]} is not a positive number")
+    return a
+
+
+def _conformity(mesh, sizes, hmin, hmax):
+    """Share of edges with Qt >= 0.66 against a callable at the edge midpoints (one call)."""
+    t = mesh.tets
+    edges = np.concatenate([t[:, [a, b]] for a, b in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3),
+                                                       (2, 3))])
+    edges = np.unique(np.sort(edges, axis=1), axis=0)
+    p, q = mesh.points[edges[:, 0]], mesh.points[edges[:, 1]]
+    h = _vertex_sizes(sizes, (p + q) / 2)
+    h = np.clip(h, hmin if hmin else 0, hmax if hmax else np.inf)
+    length = np.linalg.norm(p - q, axis=1)
+    qt = np.minimum(h / length, length / h)
+    return float(np.mean(qt >= 0.66))
+
+
+def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=None,
+          threads=None, verbose=0, progress=None, bench_field=None, nosurf=False,
+          noinsert=False, noswap=False, nomove=False, optim=False, no_optimize=False,
+          keep_surface=False, strict=False, max_passes=40, size_rounds=4):
+    """Adapts a tet mesh and its boundary to a size field; returns a new TetMesh.
+
+    Given a surface (a TetMesh with triangles and no tets), remeshes it to the size and fills
+    the volume it bounds, as :func:`mesh_volume` does.
+
+    The size: ``hsiz`` (constant), ``sizes`` (an array with one value per input vertex, or a
+    callable taking an (n, 3) array of points and returning (n,) sizes), or ``bench_field``
+    (the paper's case "A" to "E"); ``hmin``/``hmax`` bound it, ``hgrad`` (> 1) bounds the size
+    ratio between neighbours. A callable is evaluated in batches, never once per point: at the
+    vertices of the mesh, which is then adapted to those sizes; repeated on the result (at most
+    ``size_rounds`` times, as Mmg users iterate) until 99 % of the edges conform to the
+    callable at their midpoints. ``hausd`` bounds the boundary's distance to the input.
+
+    The switches are the app's: ``nosurf`` (keep the boundary, only split and projected),
+    ``noinsert``, ``noswap``, ``nomove``, ``optim`` (optimize only, keep the sizes),
+    ``no_optimize``, ``keep_surface`` (a surface input's triangles are the boundary, exactly),
+    ``strict`` (refuse boundary triangles that are not the tets' boundary instead of mending
+    them). ``verbose``: 0 silent, 1 summary, 2 a row per pass (on stdout).
+    ``progress(stage, tets)`` is called after each refinement pass and as the surface pass and
+    the final optimization start; an exception it raises stops the run.
+
+    ``threads``: accepted for the API to come; the engine runs on one thread today, and its
+    output does not depend on the thread count.
+    """
+    mesh = _as_mesh(mesh)
+    if threads is not None and int(threads) < 1:
+        raise ValueError(f"threads must be at least 1, got {threads}")
+    if progress is not None and not callable(progress):
+        raise TypeError("progress must be callable")
+    if sum(x is not None for x in (hsiz, sizes, bench_field)) > 1:
+        raise ValueError("give only one of hsiz, sizes and bench_field")
+    hmin_v, hmax_v = _number("hmin", hmin), _number("hmax", hmax)
+    if hgrad is not None and not float(hgrad) > 1:
+        raise ValueError(f"hgrad must be larger than 1, got {hgrad!r}")
+    if bench_field is not None and bench_field not in tuple("ABCDE"):
+        raise ValueError(f"bench_field is one of 'A' to 'E', got {bench_field!r}")
+    args = dict(hsiz=_number("hsiz", hsiz), bench_field=bench_field or "", hmin=hmin_v,
+                hmax=hmax_v, hgrad=float(hgrad) if hgrad is not None else 0.0,
+                hausd=_number("hausd", hausd), verbose=int(verbose), progress=progress,
+                nosurf=bool(nosurf), noinsert=bool(noinsert), noswap=bool(noswap),
+                nomove=bool(nomove), optim=bool(optim), no_optimize=bool(no_optimize),
+                keep_surface=bool(keep_surface), strict=bool(strict),
+                max_passes=int(max_passes))
+
+    def once(m, vertex_sizes):
+        return TetMesh._from_native(_hdimesh.adapt(m._native(), sizes=vertex_sizes, **args))
+
+    if not callable(sizes):
+        return once(mesh, _vertex_sizes(sizes, mesh.points))
+    if mesh.is_surface:
+        return mesh_volume(mesh.points, mesh.triangles, sizes=sizes, hmin=hmin, hmax=hmax,
+                           hgrad=hgrad, hausd=hausd, verbose=verbose, progress=progress)
+    current = mesh
+    for _ in range(max(1, int(size_rounds))):
+        current = once(current, _vertex_sizes(sizes, current.points))
+        if _conformity(current, sizes, hmin_v, hmax_v) >= 0.99:
+            break
+    return current
+
+
+def remesh_surface(vertices, faces, hsiz=None, hausd=None, ridge_angle=45.0, refs=None,
+                   hmin=None, hmax=None, hgrad=None, sizes=None, no_ridges=False,
+                   iterations=8, verbose=0):
+    """Remeshes a triangle surface on its own HDI model; returns (vertices, faces).
+
+    Ridges sharper than ``ridge_angle`` degrees, corners, open boundaries and refs are kept.
+    The size: ``hsiz``, ``sizes`` (one per input vertex, or a callable on an (n, 3) array),
+    or curvature-adaptive with ``hausd``; none: curvature-adaptive with hausd 0.002 x the
+    diagonal, at most twice the input's mean edge length. With ``refs`` (one per face) given,
+    returns (vertices, faces, refs).
+    """
+    vertices = _points("vertices", vertices)
+    faces = _ids("faces", faces, 3, len(vertices))
+    face_refs = None if refs is None else _ids("refs", refs, 1)
+    if face_refs is not None and len(face_refs) != len(faces):
+        raise ValueError(f"refs has {len(face_refs)} values for {len(faces)} faces")
+    if sum(x is not None for x in (hsiz, sizes, hausd)) > 1:
+        raise ValueError("give at most one of hsiz, sizes and hausd")
+    if not 0 < float(ridge_angle) < 180:
+        raise ValueError(f"ridge_angle must lie in (0, 180) degrees, got {ridge_angle!r}")
+    surface = TetMesh(vertices, triangles=faces, triangle_refs=face_refs)
+    v, f, r = _hdimesh.remesh_surface(
+        surface._native(), hsiz=_number("hsiz", hsiz), hausd=_number("hausd", hausd),
+        ridge_angle=float(ridge_angle), no_ridges=bool(no_ridges), hmin=_number("hmin", hmin),
+        hmax=_number("hmax", hmax), hgrad=float(hgrad) if hgrad is not None else 1.3,
+        sizes=_vertex_sizes(sizes, vertices), iterations=int(iterations), verbose=int(verbose))
+    return (v, f) if refs is None else (v, f, r)
+
+
+def mesh_volume(vertices, faces, hsiz=None, hausd=None, sizes=None, hmin=None, hmax=None,
+                hgrad=None, refs=None, keep_surface=False, verbose=0, progress=None):
+    """Fills the volume a closed surface bounds with tets; returns a TetMesh.
+
+    The surface is checked first (open, non-manifold, self-intersecting, inconsistently
+    oriented or duplicated faces raise ValueError naming them), remeshed to the size (unless
+    ``keep_surface``), filled and optimized. Nested shells make voids, disjoint ones separate
+    regions with tet refs 1, 2, ... ``sizes`` is an array (one per input vertex) or a callable
+    evaluated on the input vertices.
+    """
+    vertices = _points("vertices", vertices)
+    faces = _ids("faces", faces, 3, len(vertices))
+    surface = TetMesh(vertices, triangles=faces, triangle_refs=refs)
+    if sizes is not None and (hsiz is not None or hausd is not None):
+        raise ValueError("give only one of hsiz, sizes and hausd")
+    if hsiz is None and hausd is None and sizes is None and not keep_surface:
+        raise ValueError("no size: give hsiz, sizes or hausd (or keep_surface=True)")
+    return adapt(surface, hsiz=hsiz, sizes=_vertex_sizes(sizes, vertices), hmin=hmin,
+                 hmax=hmax, hgrad=hgrad, hausd=hausd, keep_surface=keep_surface,
+                 verbose=verbose, progress=progress)
+
+
+def quality(mesh, hsiz=None, sizes=None, bench_field=None):
+    """The quality report (the app's --stats JSON) as a dict: counts, Qe, dihedral angles and,
+    with a size (``hsiz``, ``sizes`` per vertex or a callable, or ``bench_field``), the
+    conformity Qt of every edge."""
+    mesh = _as_mesh(mesh)
+    if sum(x is not None for x in (hsiz, sizes, bench_field)) > 1:
+        raise ValueError("give only one of hsiz, sizes and bench_field")
+    import json
+    return json.loads(_hdimesh.quality(mesh._native(), hsiz=_number("hsiz", hsiz),
+                                       sizes=_vertex_sizes(sizes, mesh.points),
+                                       bench_field=bench_field or ""))
+
+
+def check(mesh):
+    """The mesh checker's violations, a list of Violation(kind, element, message); empty when
+    the mesh is valid (positive tets, consistent faces, a closed oriented boundary equal to
+    the triangles, volume conserved)."""
+    mesh = _as_mesh(mesh)
+    return [Violation(*v) for v in _hdimesh.check(mesh._native())]
+
+
+def from_meshio(m):
+    """A TetMesh from a meshio.Mesh: its tetra and triangle cells, refs from the cell data
+    "medit:ref" or "gmsh:physical" when present."""
+    tets, triangles, tet_refs, triangle_refs = [], [], [], []
+    key = next((k for k in ("medit:ref", "gmsh:physical", "ref") if k in m.cell_data), None)
+    for i, block in enumerate(m.cells):
+        refs = m.cell_data[key][i] if key else np.zeros(len(block.data), dtype=_INDEX)
+        if block.type == "tetra":
+            tets.append(block.data)
+            tet_refs.append(refs)
+        elif block.type == "triangle":
+            triangles.append(block.data)
+            triangle_refs.append(refs)
+    cat = (lambda parts, cols: np.concatenate(parts) if parts
+           else np.zeros((0, cols) if cols > 1 else (0,), dtype=_INDEX))
+    return TetMesh(m.points, tets=cat(tets, 4), triangles=cat(triangles, 3),
+                   tet_refs=cat(tet_refs, 1), triangle_refs=cat(triangle_refs, 1))
+
+
+def to_meshio(mesh):
+    """A meshio.Mesh with tetra and triangle cells and their refs as "medit:ref"."""
+    import meshio
+    mesh = _as_mesh(mesh)
+    cells, refs = [], []
+    for kind, data, ref in (("tetra", mesh.tets, mesh.tet_refs),
+                            ("triangle", mesh.triangles, mesh.triangle_refs)):
+        if len(data):
+            cells.append((kind, data))
+            refs.append(ref)
+    return meshio.Mesh(mesh.points, cells, cell_data={"medit:ref": refs})

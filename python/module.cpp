@@ -1,0 +1,456 @@
+// The Python module's native part (hdimesh._hdimesh): numpy arrays in, the library's calls
+// with the GIL released, numpy arrays out. python/hdimesh/__init__.py is the public face: it
+// validates arrays, holds them in hdimesh.TetMesh and turns callable size fields into batches.
+//
+// A mesh crosses as a dict of arrays under TetMesh's attribute names, indices from 0.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/buffer_io.h"
+#include "common/errors.h"
+#include "coupling/adapt.h"
+#include "coupling/mesh_from_surface.h"
+#include "surface/remesh_surface.h"
+#include "surface/surface_io.h"
+#include "volume/boundary_repair.h"
+#include "volume/check.h"
+#include "volume/quality_report.h"
+#include "volume/size_fields.h"
+#include "volume/size_spec.h"
+#include "volume/tet_io.h"
+
+namespace py = pybind11;
+using namespace hdimesh;
+using volume::TetMesh;
+
+namespace
+{
+
+template <typename T>
+using Array = py::array_t<T, py::array::c_style | py::array::forcecast>;
+
+/// A numpy array that owns `values` (moved to the heap; no copy), shaped (n, columns).
+template <typename T, typename Element>
+py::array owning_array(std::vector<Element>&& values, std::size_t columns)
+{
+    static_assert(sizeof(Element) % sizeof(T) == 0, "rows of T");
+    auto* heap = new std::vector<Element>(std::move(values));
+    py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<Element>*>(p); });
+    const auto rows = static_cast<py::ssize_t>(heap->size() * sizeof(Element) / sizeof(T) /
+                                               std::max<std::size_t>(columns, 1));
+    const T* data = reinterpret_cast<const T*>(heap->data());
+    const auto item = static_cast<py::ssize_t>(sizeof(T));
+    if (columns == 1)
+        return py::array_t<T>(std::vector<py::ssize_t>{rows}, std::vector<py::ssize_t>{item}, data,
+                              owner);
+    const auto width = static_cast<py::ssize_t>(columns);
+    return py::array_t<T>(std::vector<py::ssize_t>{rows, width},
+                          std::vector<py::ssize_t>{width * item, item}, data, owner);
+}
+
+/// `mesh[name]` as rows of `columns` values (an absent or None entry: no rows).
+template <typename T>
+Array<T> rows_of(const py::dict& mesh, const char* name, py::ssize_t columns)
+{
+    if (!mesh.contains(name) || mesh[name].is_none()) return Array<T>(std::vector<py::ssize_t>{0});
+    Array<T> a = py::cast<Array<T>>(mesh[name]);
+    const bool vector = columns == 1 && a.ndim() == 1;
+    if (!vector && (a.ndim() != 2 || a.shape(1) != columns))
+        throw py::value_error(
+            std::string(name) + " must have shape (n, " + std::to_string(columns) + "), got " +
+            py::str(py::cast<py::object>(mesh[name].attr("shape"))).cast<std::string>());
+    return a;
+}
+
+/// Rows of ids into `out` (ids beyond an int are refused here; the range is finish_mesh's).
+template <typename Element>
+void copy_rows(const Array<long long>& a, std::vector<Element>& out, const char* name)
+{
+    constexpr std::size_t n = sizeof(Element) / sizeof(int);
+    out.resize(static_cast<std::size_t>(a.size()) / n);
+    const long long* p = a.data();
+    for (std::size_t r = 0; r < out.size(); ++r)
+        for (std::size_t k = 0; k < n; ++k)
+        {
+            const long long id = p[r * n + k];
+            if (id != static_cast<int>(id))
+                throw py::value_error(std::string(name) + " row " + std::to_string(r) + " holds " +
+                                      std::to_string(id) + ", beyond any index");
+            out[r][k] = static_cast<int>(id);
+        }
+}
+
+/// A tet mesh from the dict of arrays, checked as a file read is (ValueError naming the
+/// element, numbered from 1 as in the files).
+TetMesh to_mesh(const py::dict& m, bool finish = true)
+{
+    TetMesh mesh;
+    const Array<double> points = rows_of<double>(m, "points", 3);
+    const std::size_t n = static_cast<std::size_t>(points.size() / 3);
+    mesh.points.resize(n);
+    for (std::size_t v = 0; v < n; ++v)
+        mesh.points[v] =
+            volume::Vec3(points.data()[3 * v], points.data()[3 * v + 1], points.data()[3 * v + 2]);
+    copy_rows(rows_of<long long>(m, "tets", 4), mesh.tets, "tets");
+    copy_rows(rows_of<long long>(m, "triangles", 3), mesh.triangles, "triangles");
+    copy_rows(rows_of<long long>(m, "edges", 2), mesh.edges, "edges");
+
+    struct PerRow
+    {
+        const char* name;
+        std::vector<int>* out;
+        std::size_t rows;  ///< 0: a list of ids of any length
+    };
+    for (const PerRow& r : {PerRow{"vertex_refs", &mesh.vertex_refs, n},
+                            PerRow{"tet_refs", &mesh.tet_refs, mesh.tets.size()},
+                            PerRow{"triangle_refs", &mesh.triangle_refs, mesh.triangles.size()},
+                            PerRow{"edge_refs", &mesh.edge_refs, mesh.edges.size()},
+                            PerRow{"ridges", &mesh.ridges, 0}, PerRow{"corners", &mesh.corners, 0},
+                            PerRow{"required_vertices", &mesh.required_vertices, 0},
+                            PerRow{"required_edges", &mesh.required_edges, 0},
+                            PerRow{"required_triangles", &mesh.required_triangles, 0},
+                            PerRow{"required_tets", &mesh.required_tets, 0}})
+    {
+        const auto a = rows_of<long long>(m, r.name, 1);
+        if (r.rows > 0 && a.size() > 0 && static_cast<std::size_t>(a.size()) != r.rows)
+            throw py::value_error(std::string(r.name) + " has " + std::to_string(a.size()) +
+                                  " values for " + std::to_string(r.rows) + " rows");
+        std::vector<std::array<int, 1>> ids;
+        copy_rows(a, ids, r.name);
+        r.out->resize(ids.size());
+        for (std::size_t i = 0; i < ids.size(); ++i) (*r.out)[i] = ids[i][0];
+    }
+    if (finish)
+        volume::finish_mesh(mesh, "mesh");
+    else  // for the checker, which names what finish_mesh would refuse
+    {
+        mesh.vertex_refs.resize(mesh.points.size(), 0);
+        mesh.tet_refs.resize(mesh.tets.size(), 0);
+        mesh.triangle_refs.resize(mesh.triangles.size(), 0);
+        mesh.edge_refs.resize(mesh.edges.size(), 0);
+        const int nv = mesh.num_vertices();
+        auto in_range = [nv](const auto& rows) {
+            for (const auto& row : rows)
+                for (int id : row)
+                    if (id < 0 || id >= nv) return false;
+            return true;
+        };
+        if (in_range(mesh.tets) && in_range(mesh.triangles) && in_range(mesh.edges))
+            mesh.classify_vertices();
+        else
+            mesh.vertex_classes.assign(mesh.points.size(), volume::VertexClass::Interior);
+    }
+    return mesh;
+}
+
+/// The dict of arrays of a (compacted) mesh; the vectors move into the arrays.
+py::dict from_mesh(TetMesh&& mesh)
+{
+    mesh.compact();
+    py::dict d;
+    d["points"] = owning_array<double>(std::move(mesh.points), 3);
+    d["tets"] = owning_array<int>(std::move(mesh.tets), 4);
+    d["triangles"] = owning_array<int>(std::move(mesh.triangles), 3);
+    d["edges"] = owning_array<int>(std::move(mesh.edges), 2);
+    d["vertex_refs"] = owning_array<int>(std::move(mesh.vertex_refs), 1);
+    d["tet_refs"] = owning_array<int>(std::move(mesh.tet_refs), 1);
+    d["triangle_refs"] = owning_array<int>(std::move(mesh.triangle_refs), 1);
+    d["edge_refs"] = owning_array<int>(std::move(mesh.edge_refs), 1);
+    d["ridges"] = owning_array<int>(std::move(mesh.ridges), 1);
+    d["corners"] = owning_array<int>(std::move(mesh.corners), 1);
+    d["required_vertices"] = owning_array<int>(std::move(mesh.required_vertices), 1);
+    d["required_edges"] = owning_array<int>(std::move(mesh.required_edges), 1);
+    d["required_triangles"] = owning_array<int>(std::move(mesh.required_triangles), 1);
+    d["required_tets"] = owning_array<int>(std::move(mesh.required_tets), 1);
+    return d;
+}
+
+/// OBJ, OFF, STL, PLY: the surface formats (the rest are the tet formats, which also hold a
+/// surface alone).
+bool is_surface_format(const std::string& path)
+{
+    const std::string ext = io::lower_extension(path);
+    return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
+}
+
+/// The surface of a mesh dict (points and triangles) as a soup.
+surface::TriangleSoup to_soup(const py::dict& m)
+{
+    const TetMesh mesh = to_mesh(m);
+    return coupling::triangle_soup(mesh);
+}
+
+/// A surface (built by the library's reader rules) as vertices, faces and refs.
+py::tuple from_surface(const surface::SurfaceMesh& s)
+{
+    std::vector<std::array<double, 3>> vertices;
+    std::vector<std::array<int, 3>> faces;
+    std::vector<int> refs;
+    std::vector<int> index(s.n_vertices(), -1);
+    for (auto v : s.vertices())
+    {
+        index[v.idx()] = static_cast<int>(vertices.size());
+        const auto p = s.point(v);
+        vertices.push_back({p[0], p[1], p[2]});
+    }
+    OpenMesh::FPropHandleT<int> face_ref;
+    const bool has_refs = s.get_property_handle(face_ref, surface::property_names::face_ref);
+    for (auto f : s.faces())
+    {
+        std::array<int, 3> t{};
+        int k = 0;
+        for (auto v : s.fv_range(f)) t[k++] = index[v.idx()];
+        faces.push_back(t);
+        refs.push_back(has_refs ? s.property(face_ref, f) : 0);
+    }
+    return py::make_tuple(owning_array<double>(std::move(vertices), 3),
+                          owning_array<int>(std::move(faces), 3),
+                          owning_array<int>(std::move(refs), 1));
+}
+
+std::vector<double> to_vector(const std::optional<Array<double>>& a)
+{
+    if (!a) return {};
+    return std::vector<double>(a->data(), a->data() + a->size());
+}
+
+/// Sizes: one of hsiz, a per-vertex array, a benchmark case; bounds and gradation.
+volume::SizeSpec size_spec(double hsiz, const std::optional<Array<double>>& sizes,
+                           const std::string& bench_field, double hmin, double hmax, double hgrad)
+{
+    volume::SizeSpec spec;
+    spec.hsiz = hsiz;
+    spec.vertex_sizes = to_vector(sizes);
+    if (bench_field.size() > 1) throw InputError("bench_field is one letter A-E");
+    spec.benchmark = bench_field.empty() ? 0 : bench_field[0];
+    spec.hmin = hmin;
+    spec.hmax = hmax;
+    spec.hgrad = hgrad;
+    return spec;
+}
+
+/// The progress callback, called with the GIL held; the Python object is released with it.
+std::function<void(const std::string&, int)> progress_callback(const py::object& callback)
+{
+    if (callback.is_none()) return {};
+    auto held = std::shared_ptr<py::object>(new py::object(callback), [](py::object* o) {
+        py::gil_scoped_acquire gil;
+        delete o;
+    });
+    return [held](const std::string& stage, int tets) {
+        py::gil_scoped_acquire gil;
+        (*held)(stage, tets);
+    };
+}
+
+coupling::VolumeFromSurfaceOptions volume_options(const volume::SizeSpec& spec, double hausd,
+                                                  bool keep_surface, bool noinsert,
+                                                  bool no_optimize,
+                                                  const coupling::AdaptOptions& adapt)
+{
+    coupling::VolumeFromSurfaceOptions o;
+    o.sizing.hsiz = spec.hsiz;
+    o.sizing.hausd = hausd;
+    o.sizing.vertex_sizes = spec.vertex_sizes;
+    if (spec.benchmark != 0)
+        o.sizing.field =
+            std::make_shared<volume::BenchmarkSize>(volume::benchmark_case(spec.benchmark));
+    o.sizing.hmin = spec.hmin;
+    o.sizing.hmax = spec.hmax;
+    o.sizing.hgrad = spec.hgrad;
+    o.keep_surface = keep_surface;
+    o.refine = !noinsert;
+    o.optimize = !no_optimize;
+    o.adapt = adapt;
+    o.source = "mesh";
+    return o;
+}
+
+/// adapt(): the app's two pipelines, a tet mesh adapted or a closed surface filled.
+py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>>& sizes,
+               const std::string& bench_field, double hmin, double hmax, double hgrad, double hausd,
+               int verbose, const py::object& progress, bool nosurf, bool noinsert, bool noswap,
+               bool nomove, bool optim, bool no_optimize, bool keep_surface, bool strict,
+               int max_passes)
+{
+    TetMesh mesh = to_mesh(m);
+    const volume::SizeSpec spec = size_spec(hsiz, sizes, bench_field, hmin, hmax, hgrad);
+    if (hausd < 0) throw InputError("hausd must be positive");
+    coupling::AdaptOptions options;
+    options.optimizer.swap = !noswap;
+    options.optimizer.move = !nomove;
+    options.optimizer.collapse = !optim;
+    options.optimizer.split = !noinsert && !optim;
+    options.verbosity = verbose;
+    options.optimizer.verbosity = verbose;
+    options.max_passes = max_passes;
+    options.progress = progress_callback(progress);
+    options.hausd = hausd;
+    std::vector<std::string> notes;  // what the input's repair changed
+    {
+        py::gil_scoped_release release;
+        if (mesh.tets.empty())
+        {
+            if (optim) throw InputError("optim needs a tet mesh, not a surface");
+            if (!spec.any() && !(hausd > 0) && !keep_surface)
+                throw InputError("no size field: give hsiz, sizes, hausd or bench_field");
+            const surface::TriangleSoup soup = coupling::triangle_soup(mesh);
+            coupling::VolumeFromSurfaceOptions o =
+                volume_options(spec, hausd, keep_surface, noinsert, no_optimize, options);
+            mesh = coupling::mesh_volume_from_surface(soup, o, nullptr);
+        }
+        else
+        {
+            if (keep_surface) throw InputError("keep_surface applies to a surface input");
+            options.surface = !nosurf && !optim;
+            notes = volume::prepare_tet_input(mesh, "mesh", strict);
+            if (!spec.any() && !optim)
+                throw InputError("no size field: give hsiz, sizes or bench_field (or optim=True)");
+            const auto field = volume::make_size_field(spec, mesh);
+            options.refine = !noinsert && !optim;
+            options.optimize = !no_optimize;
+            coupling::adapt(mesh, *field, options);
+        }
+        if (const auto violations = volume::check_mesh(mesh); !violations.empty())
+            throw Error("adaptation produced an invalid mesh:\n" +
+                        volume::format_violations(violations));
+    }
+    if (verbose > 0)
+        for (const std::string& line : notes) py::print("hdimesh.adapt: mesh:", line);
+    return from_mesh(std::move(mesh));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_hdimesh, mod)
+{
+    mod.doc() = "hdimesh's native part; use the hdimesh package";
+    py::register_exception_translator([](std::exception_ptr p) {
+        try
+        {
+            if (p) std::rethrow_exception(p);
+        }
+        catch (const IoError& e)
+        {
+            PyErr_SetString(PyExc_OSError, e.what());
+        }
+        catch (const InputError& e)
+        {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        }
+        catch (const TopologyError& e)
+        {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        }
+        catch (const Error& e)
+        {
+            PyErr_SetString(PyExc_RuntimeError, e.what());
+        }
+    });
+
+    mod.def(
+        "read",
+        [](const std::string& path) {
+            TetMesh mesh;
+            {
+                py::gil_scoped_release release;
+                if (is_surface_format(path))
+                {
+                    const surface::TriangleSoup soup = surface::read_triangle_soup(path);
+                    for (const auto& p : soup.points)
+                        mesh.add_vertex(volume::Vec3(p[0], p[1], p[2]));
+                    for (std::size_t f = 0; f < soup.triangles.size(); ++f)
+                        mesh.add_triangle(soup.triangles[f], soup.refs.empty() ? 0 : soup.refs[f]);
+                    volume::finish_mesh(mesh, path);
+                }
+                else
+                    mesh = volume::read_mesh(path);
+            }
+            return from_mesh(std::move(mesh));
+        },
+        py::arg("path"));
+
+    mod.def(
+        "write",
+        [](const py::dict& m, const std::string& path) {
+            TetMesh mesh = to_mesh(m);
+            py::gil_scoped_release release;
+            if (is_surface_format(path))
+                surface::write_surface(surface::build_surface(coupling::triangle_soup(mesh), path),
+                                       path);
+            else
+                volume::write_mesh(mesh, path);
+        },
+        py::arg("mesh"), py::arg("path"));
+
+    mod.def("adapt", &adapt, py::arg("mesh"), py::arg("hsiz"), py::arg("sizes"),
+            py::arg("bench_field"), py::arg("hmin"), py::arg("hmax"), py::arg("hgrad"),
+            py::arg("hausd"), py::arg("verbose"), py::arg("progress"), py::arg("nosurf"),
+            py::arg("noinsert"), py::arg("noswap"), py::arg("nomove"), py::arg("optim"),
+            py::arg("no_optimize"), py::arg("keep_surface"), py::arg("strict"),
+            py::arg("max_passes"));
+
+    mod.def(
+        "remesh_surface",
+        [](const py::dict& m, double hsiz, double hausd, double ridge_angle, bool no_ridges,
+           double hmin, double hmax, double hgrad, const std::optional<Array<double>>& sizes,
+           int iterations, int verbose) {
+            surface::TriangleSoup soup = to_soup(m);
+            surface::SurfaceRemeshSettings settings;
+            settings.features.detect_ridges = !no_ridges;
+            settings.features.ridge_angle_deg = ridge_angle;
+            settings.sizing.hsiz = hsiz;
+            settings.sizing.hausd = hausd;
+            settings.sizing.hmin = hmin;
+            settings.sizing.hmax = hmax;
+            settings.sizing.hgrad = hgrad;
+            settings.iterations = iterations;
+            settings.verbosity = verbose > 1 ? verbose - 1 : 0;
+            settings.input_sizes = to_vector(sizes);
+            surface::SurfaceMesh mesh;
+            {
+                py::gil_scoped_release release;
+                mesh = surface::build_surface(std::move(soup), "surface");
+                if (!(hsiz > 0) && !(hausd > 0) && settings.input_sizes.empty() && !(hmax > 0))
+                    settings.sizing.hmax = 2.0 * surface::mean_edge_length(mesh);
+                surface::remesh_surface(mesh, settings);
+            }
+            return from_surface(mesh);
+        },
+        py::arg("mesh"), py::arg("hsiz"), py::arg("hausd"), py::arg("ridge_angle"),
+        py::arg("no_ridges"), py::arg("hmin"), py::arg("hmax"), py::arg("hgrad"), py::arg("sizes"),
+        py::arg("iterations"), py::arg("verbose"));
+
+    mod.def(
+        "quality",
+        [](const py::dict& m, double hsiz, const std::optional<Array<double>>& sizes,
+           const std::string& bench_field) {
+            TetMesh mesh = to_mesh(m);
+            const volume::SizeSpec spec = size_spec(hsiz, sizes, bench_field, 0, 0, 0);
+            py::gil_scoped_release release;
+            const auto field = spec.any() ? volume::make_size_field(spec, mesh) : nullptr;
+            return volume::quality_report_json(volume::compute_quality_report(mesh, field.get()));
+        },
+        py::arg("mesh"), py::arg("hsiz"), py::arg("sizes"), py::arg("bench_field"));
+
+    mod.def(
+        "check",
+        [](const py::dict& m) {
+            TetMesh mesh = to_mesh(m, false);
+            std::vector<std::tuple<std::string, int, std::string>> out;
+            {
+                py::gil_scoped_release release;
+                for (const auto& v : volume::check_mesh(mesh))
+                    out.emplace_back(v.kind, v.element, v.message);
+            }
+            return out;
+        },
+        py::arg("mesh"));
+}

@@ -1,0 +1,189 @@
+"""The Python module against the app and against bad input (run by CTest: python_module).
+
+Environment: PYTHONPATH holds the built package, HDIMESH_DATA the data/ folder, HDIMESH_ADAPT
+the adapt app.
+"""
+import os
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import hdimesh
+
+DATA = os.environ.get("HDIMESH_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
+ADAPT = os.environ.get("HDIMESH_ADAPT", "adapt")
+SPHERE = os.path.join(DATA, "sphere480.mesh")
+ICOSPHERE = os.path.join(DATA, "icosphere320.obj")
+
+
+def one_tet():
+    #      3
+    #      |
+    #      0 --- 1     positive: det(v1-v0, v2-v0, v3-v0) > 0
+    #     /
+    #    2 (y)
+    points = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    tets = np.array([[0, 1, 2, 3]])
+    triangles = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    return points, tets, triangles
+
+
+def same_mesh(a, b):
+    for name in ("points", "tets", "triangles", "tet_refs", "triangle_refs"):
+        assert np.array_equal(getattr(a, name), getattr(b, name)), name
+
+
+# --- data and files
+
+def test_numpy_round_trip(tmp_path):
+    mesh = hdimesh.read(SPHERE)
+    assert mesh.points.shape[1] == 3 and mesh.tets.shape[1] == 4 and len(mesh.tets) > 0
+    path = tmp_path / "copy.mesh"
+    hdimesh.write(mesh, path)
+    same_mesh(mesh, hdimesh.read(path))
+    # arrays of the right type are held as given, not copied
+    points, tets, triangles = one_tet()
+    m = hdimesh.TetMesh(points, tets.astype(np.int32), triangles)
+    assert m.points is points or np.shares_memory(m.points, points)
+    assert hdimesh.check(m) == []
+
+
+def test_meshio_round_trip(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    mesh = hdimesh.read(SPHERE)
+    same_mesh(mesh, hdimesh.from_meshio(hdimesh.to_meshio(mesh)))
+    # a file meshio writes, read by us; ours, read by meshio
+    meshio.write(tmp_path / "by_meshio.mesh", hdimesh.to_meshio(mesh))
+    same_mesh(mesh, hdimesh.read(tmp_path / "by_meshio.mesh"))
+    hdimesh.write(mesh, tmp_path / "ours.vtu")
+    back = meshio.read(tmp_path / "ours.vtu")
+    assert np.allclose(back.points, mesh.points)
+    assert np.array_equal(back.cells_dict["tetra"], mesh.tets)
+
+
+def test_surface_read_write(tmp_path):
+    surface = hdimesh.read(ICOSPHERE)
+    assert surface.is_surface and len(surface.triangles) == 320
+    hdimesh.write(surface, tmp_path / "copy.off")
+    again = hdimesh.read(tmp_path / "copy.off")
+    corners = lambda m: np.sort(np.sort(m.points[m.triangles].reshape(-1, 9), axis=1), axis=0)
+    assert np.allclose(corners(again), corners(surface), atol=1e-6)  # OFF: OpenMesh writes floats
+
+
+# --- the library calls
+
+def test_adapt_matches_the_app(tmp_path):
+    """The paper's case A on sphere480: the same mesh as `adapt --bench-field A`."""
+    out = tmp_path / "app.mesh"
+    subprocess.run([ADAPT, SPHERE, "-o", str(out), "--bench-field", "A", "-v", "0"], check=True)
+    app = hdimesh.read(out)
+    ours = hdimesh.adapt(hdimesh.read(SPHERE), bench_field="A")
+    same_mesh(app, ours)
+    a = hdimesh.quality(app, bench_field="A")
+    b = hdimesh.quality(ours, bench_field="A")
+    assert a == b
+    assert b["tets"] == len(ours.tets) and b["min_qe"] > 0.3 and b["percent_qt_ge_066"] > 99
+    assert hdimesh.check(ours) == []
+
+
+def test_callable_sizes_in_batches():
+    calls = []
+
+    def size(points):
+        calls.append(len(points))
+        return 0.12 + 0.08 * np.abs(points[:, 0])
+
+    mesh = hdimesh.read(SPHERE)
+    out = hdimesh.adapt(mesh, sizes=size)
+    assert hdimesh.check(out) == []
+    assert len(calls) <= 8 and min(calls) > 100, calls  # batches, never a point at a time
+    assert hdimesh._conformity(out, size, 0, 0) >= 0.99
+    # an array at the vertices is the same field, sampled once
+    once = hdimesh.adapt(mesh, sizes=size(mesh.points), size_rounds=1)
+    assert len(once.tets) > len(mesh.tets)
+
+
+def test_progress_and_gil_released():
+    mesh = hdimesh.read(SPHERE)
+    stages = []
+    result = {}
+    worker = threading.Thread(
+        target=lambda: result.update(mesh=hdimesh.adapt(mesh, hsiz=0.06,
+                                                        progress=lambda s, n: stages.append(s))))
+    ticks = 0
+    worker.start()
+    while worker.is_alive():
+        ticks += 1  # runs only while adapt has let go of the GIL
+        time.sleep(0.001)
+    worker.join()
+    assert ticks >= 20, ticks
+    assert "pass 1" in stages and stages[-1] == "optimize", stages
+    assert hdimesh.check(result["mesh"]) == []
+
+
+def test_remesh_surface_and_mesh_volume():
+    surface = hdimesh.read(ICOSPHERE)
+    v, f = hdimesh.remesh_surface(surface.points, surface.triangles, hsiz=0.15, ridge_angle=60)
+    assert v.shape[1] == 3 and f.shape[1] == 3 and len(f) > 320
+    radius = np.linalg.norm(v, axis=1)
+    assert radius.max() - radius.min() < 0.05
+    v2, f2, r2 = hdimesh.remesh_surface(surface.points, surface.triangles, hsiz=0.15,
+                                        refs=np.full(320, 7))
+    assert set(np.unique(r2)) == {7}
+    solid = hdimesh.mesh_volume(v, f, hsiz=0.15)
+    assert len(solid.tets) > 0 and hdimesh.check(solid) == []
+    q = hdimesh.quality(solid, hsiz=0.15)
+    assert q["min_qe"] > 0.2 and q["tets"] == len(solid.tets)
+
+
+def test_check_names_violations():
+    points, tets, triangles = one_tet()
+    inverted = hdimesh.TetMesh(points, tets[:, [1, 0, 2, 3]], triangles)
+    found = hdimesh.check(inverted)
+    assert found and any(v.element == 0 for v in found), found
+
+
+# --- bad input: a clear exception, never a crash
+
+@pytest.mark.parametrize("make, pattern", [
+    (lambda p, t, f: hdimesh.TetMesh(p[:, :2], t, f), r"points must have shape \(n, 3\)"),
+    (lambda p, t, f: hdimesh.TetMesh(np.where(p == 1, np.nan, p), t, f), "not finite"),
+    (lambda p, t, f: hdimesh.TetMesh(p, t + 1, f), "out of range"),
+    (lambda p, t, f: hdimesh.TetMesh(p, t[:, :3], f), r"tets must have shape \(m, 4\)"),
+    (lambda p, t, f: hdimesh.TetMesh(p, t * 0.5, f), "integers"),
+    (lambda p, t, f: hdimesh.TetMesh(p, t, f, tet_refs=[1, 2]), "tet_refs has 2 values"),
+    (lambda p, t, f: hdimesh.adapt(hdimesh.TetMesh(p, t[:, [1, 0, 2, 3]], f), hsiz=0.5),
+     "negative volume"),
+    (lambda p, t, f: hdimesh.adapt(hdimesh.TetMesh(p, t, f), hsiz=-1), "hsiz must be a positive"),
+    (lambda p, t, f: hdimesh.adapt(hdimesh.TetMesh(p, t, f), hsiz=0.5, sizes=[1, 1, 1, 1]),
+     "only one of"),
+    (lambda p, t, f: hdimesh.adapt(hdimesh.TetMesh(p, t, f), sizes=[1, 1]),
+     "one value per vertex"),
+    (lambda p, t, f: hdimesh.adapt(hdimesh.TetMesh(p, t, f), sizes=[1, 1, -1, 1]),
+     r"sizes\[2\]"),
+    (lambda p, t, f: hdimesh.adapt(hdimesh.TetMesh(p, t, f), sizes=lambda x: np.zeros(len(x))),
+     r"sizes\[0\]"),
+    (lambda p, t, f: hdimesh.adapt(hdimesh.TetMesh(p, t, f)), "no size field"),
+    (lambda p, t, f: hdimesh.mesh_volume(p, f[:3], hsiz=0.3), "open|boundary"),
+    (lambda p, t, f: hdimesh.remesh_surface(p, f, hsiz=0.3, ridge_angle=500), "ridge_angle"),
+])
+def test_bad_input(make, pattern):
+    points, tets, triangles = one_tet()
+    with pytest.raises(ValueError, match=pattern):
+        make(points, tets, triangles)
+
+
+def test_bad_files(tmp_path):
+    with pytest.raises(OSError, match="no_such.mesh"):
+        hdimesh.read(tmp_path / "no_such.mesh")
+    bad = tmp_path / "bad.mesh"
+    bad.write_text("MeshVersionFormatted 2\nDimension 3\nVertices\n2\n0 0 0 0\n")
+    with pytest.raises(ValueError, match="bad.mesh"):
+        hdimesh.read(bad)
+    with pytest.raises(OSError):
+        hdimesh.write(hdimesh.TetMesh(*one_tet()), tmp_path / "no_dir" / "x.mesh")
+    with pytest.raises(TypeError):
+        hdimesh.adapt({"points": np.zeros((4, 3))}, hsiz=1)
