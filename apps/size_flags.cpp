@@ -82,7 +82,8 @@ std::shared_ptr<const SizeField> SizeFlags::make(const TetMesh& input) const
     if (hsiz_set && !(hsiz > 0)) throw UsageError("--hsiz must be positive");
     if (hmin < 0 || hmax < 0) throw UsageError("--hmin and --hmax must be positive");
     if (hmin > 0 && hmax > 0 && hmin > hmax) throw UsageError("--hmin is larger than --hmax");
-    if (hgrad != 0 && !(hgrad > 1)) throw UsageError("--hgrad must be larger than 1");
+    // <= 0: no gradation, as Mmg's -hgrad -1
+    if (hgrad > 0 && !(hgrad > 1)) throw UsageError("--hgrad must be larger than 1 (or -1: none)");
     if (bench_field.size() > 1) throw UsageError("--bench-field expects one letter A-E");
 
     std::shared_ptr<const SizeField> field;
