@@ -45,11 +45,11 @@ int main(int argc, char** argv)
     return cli::run("adapt", [&] {
         std::string input, output, stats_path;
         cli::SizeFlags size;
-        bool check = false, no_optimize = false, no_projection = false, optim_only = false;
-        bool noswap = false, nomove = false, noinsert = false;
-        bool keep_surface = false, has_hausd = false, nosurf = false, strict = false;
+        coupling::AdaptSwitches switches;
+        bool check = false, keep_surface = false, has_hausd = false, strict = false;
+        bool memory_set = false;
         double hausd = 0;
-        int verbosity = 1;
+        int verbosity = 1, memory_mb = 0;
         coupling::AdaptOptions options;
 
         cli::CommandLine cl("adapt",
@@ -57,46 +57,92 @@ int main(int argc, char** argv)
                             "boundary follows a meshfree (HDI) model of the input surface.\n"
                             "Given a closed surface instead, checks it, remeshes it to the size\n"
                             "and fills the volume it bounds with tets (nested shells make voids,\n"
-                            "disjoint ones separate regions with refs 1, 2, ...).");
+                            "disjoint ones separate regions with refs 1, 2, ...).\n"
+                            "mmg3d's command line works too: its spelling of an option is listed\n"
+                            "beside ours, and its options without a counterpart are refused.");
         cl.positional("IN", &input,
                       "input tet mesh (.mesh .meshb .msh) or closed surface (.obj .off .stl .ply, "
-                      "or a mesh file with triangles and no tets)");
-        cl.option("-o", &output, "output mesh (.mesh .meshb .msh .vtu)");
+                      "or a mesh file with triangles and no tets); without an extension, as "
+                      "Mmg: IN.meshb if it exists, else IN.mesh");
+        cl.positional("OUT", &output,
+                      "output mesh (.mesh .meshb .msh .vtu); default, as Mmg: IN less its "
+                      "extension plus .o.mesh (.o.meshb, .o.msh for those inputs); without an "
+                      "extension, the input's",
+                      false);
+        cl.alias("-in", "IN");
+        cl.alias("-o", "OUT");
+        cl.alias("-out", "OUT");
         size.add_to(cl, true);
+        size.add_mmg_aliases(cl, true);
         cl.option("--hausd", &hausd,
                   "the boundary's distance bound to the input surface (a surface input: "
-                  "curvature-adaptive sizes keeping it)",
+                  "curvature-adaptive sizes keeping it). A tet input with no size given but "
+                  "this, -hmin, -hmax or -hgrad keeps its own sizes within them (Mmg grades "
+                  "the boundary's curvature sizes inward instead)",
                   &has_hausd);
+        cl.alias("-hausd", "--hausd");
+        cl.option("--ridge-angle", &switches.ridge_angle,
+                  "ridge detection angle in degrees on the boundary (default 45)");
+        cl.alias("-ar", "--ridge-angle");
         cl.option("--stats", &stats_path, "write the final quality report as JSON");
         cl.flags({
             {"--check", &check, "print the mesh checker's verdict on the input and output"},
-            {"--no-optimize", &no_optimize, "refinement (and projection) only"},
-            {"--no-projection", &no_projection, "keep the boundary as the input polyhedron"},
-            {"--noswap", &noswap, "no edge/face removal during optimization"},
-            {"--nomove", &nomove, "no vertex smoothing during optimization"},
-            {"--noinsert", &noinsert, "no refinement (no vertex insertion, no edge split)"},
-            {"--nosurf", &nosurf,
+            {"--no-optimize", &switches.no_optimize, "refinement (and projection) only"},
+            {"--no-projection", &switches.no_projection,
+             "keep the boundary as the input polyhedron"},
+            {"--noswap", &switches.noswap, "no edge/face removal during optimization"},
+            {"--nomove", &switches.nomove, "no vertex smoothing during optimization"},
+            {"--noinsert", &switches.noinsert,
+             "tet input: no vertex inserted or removed, as Mmg (no refinement, no collapse, "
+             "and no surface remeshing, which splits and collapses)"},
+            {"--nosurf", &switches.nosurf,
              "tet input: keep the boundary (only split and projected), no surface remeshing"},
-            {"--optim", &optim_only, "optimize only: keep the sizes of the input mesh"},
+            {"--optim", &switches.optim, "optimize only: keep the sizes of the input mesh"},
+            {"--no-ridges", &switches.no_ridges,
+             "detect no ridges by angle (declared ridges, region borders and open boundaries "
+             "are still kept)"},
             {"--keep-surface", &keep_surface,
              "surface input: its triangles are the boundary, exactly (no remeshing)"},
             {"--strict", &strict,
              "tet input: refuse triangles that are not the tets' boundary (TetGen's interior "
              "and inward ones, missing ones) instead of mending them"},
         });
-        cl.option("-v", &verbosity, "0 silent, 1 summary (default), 2 a table per pass");
+        for (const char* name : {"noswap", "nomove", "noinsert", "nosurf", "optim"})
+            cl.alias(std::string("-") + name, std::string("--") + name);
+        cl.alias("-nr", "--no-ridges");
+        cl.verbosity("-v", &verbosity, 2,
+                     "0 silent, 1 summary (default), 2 a table per pass; Mmg's -1..10 clamped "
+                     "to these (N optional, as Mmg)");
+        cl.option("-m", &memory_mb,
+                  "memory limit in MB: the process's address space is capped (RLIMIT_AS); a run "
+                  "that needs more stops with an error and writes nothing",
+                  &memory_set);
         cl.option("--max-passes", &options.max_passes, "refinement passes at most (default 40)");
+        cli::refuse_mmg_options(cl, cli::MmgTool::mmg3d);
         cl.parse(argc, argv);
-        if (output.empty()) throw InputError("missing -o OUT (see --help)");
+        if (memory_set) cli::limit_memory_mb(memory_mb);
+        if (!(switches.ridge_angle > 0 && switches.ridge_angle < 180))
+            throw cli::UsageError("--ridge-angle must be between 0 and 180 degrees");
+        input = cli::mmg_input_name(input);
+        output = cli::mmg_output_name(output, input);
+        cli::refuse_mmg_parameter_file(input, ".mmg3d");
+        // Mmg's defaults when no size is given: the sizes beside the input (X.sol), else the
+        // input's own edge lengths once a bound or hausd asks for an adaptation
+        const bool optim_only = switches.optim;
+        if (!size.any() && !optim_only)
+        {
+            size.sol = cli::mmg_default_sol(input);
+            size.sol_set = !size.sol.empty();
+            if (size.sol_set && verbosity >= 1)
+                std::cerr << "adapt: sizes from " << size.sol << " (Mmg's default beside " << input
+                          << ")\n";
+            size.own_sizes =
+                !size.sol_set && (has_hausd || size.hmin > 0 || size.hmax_set || size.hgrad_set);
+        }
 
-        options.optimizer.swap = !noswap;
-        options.optimizer.move = !nomove;
-        options.optimizer.collapse = !optim_only;
-        options.optimizer.split = !noinsert && !optim_only;  // a split inserts a vertex
-        options.project = !no_projection;
+        coupling::apply_switches(switches, options);
         options.verbosity = verbosity;
         options.optimizer.verbosity = verbosity;
-
         TetMesh mesh;
         surface::TriangleSoup soup;
         std::shared_ptr<const SizeField> field;
@@ -126,9 +172,10 @@ int main(int argc, char** argv)
             sizing.hmax = size.hmax;
             sizing.hgrad = size.hgrad;
             from_surface.keep_surface = keep_surface;
-            from_surface.refine = !noinsert;
-            from_surface.optimize = !no_optimize;
+            from_surface.refine = !switches.noinsert;
+            from_surface.optimize = !switches.no_optimize;
             from_surface.adapt = options;
+            from_surface.remesh.features = options.surface_settings.features;
             from_surface.source = input;
             coupling::VolumeFromSurfaceReport report;
             mesh = coupling::mesh_volume_from_surface(soup, from_surface, &report);
@@ -142,7 +189,6 @@ int main(int argc, char** argv)
             if (keep_surface) throw cli::UsageError("--keep-surface applies to a surface input");
             if (has_hausd && !(hausd > 0)) throw cli::UsageError("--hausd must be positive");
             options.hausd = has_hausd ? hausd : 0.0;
-            options.surface = !nosurf && !optim_only;
             for (const std::string& line : prepare_tet_input(mesh, input, strict))
                 std::cerr << "adapt: " << input << ": " << line << "\n";
             if (check && verbosity >= 1) std::cout << "check input: clean\n";
@@ -150,8 +196,6 @@ int main(int argc, char** argv)
             if (!size.any() && !optim_only)
                 throw InputError("no size field: give --hsiz, --sol or --bench-field (or --optim)");
             field = size.make(mesh);
-            options.refine = !noinsert && !optim_only;
-            options.optimize = !no_optimize;
 
             if (verbosity >= 1)
             {

@@ -19,6 +19,8 @@ std::shared_ptr<const volume::SizeField> SizeFlags::make(const volume::TetMesh& 
     const int given = int(hsiz_set) + int(sol_set) + int(!bench_field.empty());
     if (given > 1) throw UsageError("give only one of --hsiz, --sol and --bench-field");
     if (hsiz_set && !(hsiz > 0)) throw UsageError("--hsiz must be positive");
+    // <= 0: no gradation, as Mmg's -hgrad -1
+    if (hgrad > 0 && !(hgrad > 1)) throw UsageError("--hgrad must be larger than 1 (or -1: none)");
     if (bench_field.size() > 1) throw UsageError("--bench-field expects one letter A-E");
     volume::SizeSpec spec;
     spec.hsiz = hsiz_set ? hsiz : 0.0;
@@ -26,7 +28,7 @@ std::shared_ptr<const volume::SizeField> SizeFlags::make(const volume::TetMesh& 
     spec.benchmark = bench_field.empty() ? 0 : bench_field[0];
     spec.hmin = hmin;
     spec.hmax = hmax;
-    spec.hgrad = hgrad;
+    spec.hgrad = hgrad > 0 ? hgrad : 0.0;
     return volume::make_size_field(spec, input);
 }
 

@@ -15,10 +15,12 @@ namespace hdimesh::cli
 struct SizeFlags : SizeOptions
 {
     std::string bench_field;  ///< --bench-field: the paper's cases A-E
+    /// No size given but one asked for (Mmg's default): the input's own sizes, as with none.
+    bool own_sizes = false;
 
     /// Registers --hsiz, --sol, --bench-field and, when with_bounds, --hmin/--hmax/--hgrad.
     void add_to(CommandLine& cli, bool with_bounds);
-    bool any() const { return hsiz_set || sol_set || !bench_field.empty(); }
+    bool any() const { return hsiz_set || sol_set || !bench_field.empty() || own_sizes; }
     /// The field they describe over `input` (the mesh the .sol belongs to). With no size flag:
     /// the input's own sizes (mean length of the edges at each vertex, linear in each tet), so
     /// --optim keeps the sizes. --hmin/--hmax clamp; --hgrad bounds the size ratio between

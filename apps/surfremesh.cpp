@@ -54,6 +54,27 @@ void write_stats(const std::string& path, const QualityReport& before, const Qua
     });
 }
 
+/// The size an input already has at each vertex: the mean length of its edges there.
+std::vector<double> mean_incident_edge_lengths(const SurfaceMesh& mesh)
+{
+    std::vector<double> sizes(mesh.n_vertices(), 0.0);
+    for (const auto v : mesh.vertices())
+    {
+        double sum = 0;
+        int count = 0;
+        for (const auto w : mesh.vv_range(v))
+        {
+            sum += (mesh.point(w) - mesh.point(v)).norm();
+            ++count;
+        }
+        if (count == 0 || !(sum > 0))
+            throw InputError("input surface: vertex " + std::to_string(v.idx() + 1) +
+                             " has no edge to take its size from (--optim)");
+        sizes[v.idx()] = sum / count;
+    }
+    return sizes;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -62,32 +83,77 @@ int main(int argc, char** argv)
         std::string input, output, stats;
         cli::SizeOptions size;
         double hausd = 0, ridge_angle = 45;
-        bool use_hdi = false, has_hausd = false, no_ridges = false;
-        int verbosity = 1, iterations = 8;
-        cli::CommandLine cmd(
-            "surfremesh", "Remesh a triangle surface (OBJ, OFF, STL, PLY, Medit .mesh) to a size.");
-        cmd.positional("IN", &input, "input surface");
-        cmd.option("-o", &output, "output surface (format by extension)");
+        bool use_hdi = false, has_hausd = false, no_ridges = false, optim = false;
+        bool memory_set = false;
+        int verbosity = 1, iterations = 8, memory_mb = 0;
+        cli::CommandLine cmd("surfremesh",
+                             "Remesh a triangle surface (OBJ, OFF, STL, PLY, Medit .mesh) to a "
+                             "size.\nmmgs's command line works too: its spelling of an option "
+                             "is listed beside ours,\nand its options without a counterpart are "
+                             "refused.");
+        cmd.positional("IN", &input,
+                       "input surface; without an extension, as Mmg: IN.meshb if it exists, "
+                       "else IN.mesh");
+        cmd.positional("OUT", &output,
+                       "output surface (format by extension); default, as Mmg: IN less its "
+                       "extension plus .o.mesh; without an extension, the input's",
+                       false);
+        cmd.alias("-in", "IN");
+        cmd.alias("-o", "OUT");
+        cmd.alias("-out", "OUT");
         size.add_to(cmd, true);
+        size.add_mmg_aliases(cmd, true);
         cmd.option("--hausd", &hausd,
                    "geometric tolerance: curvature-adaptive size (default 0.002*diag)", &has_hausd);
+        cmd.alias("-hausd", "--hausd");
         cmd.option("--ridge-angle", &ridge_angle, "ridge detection angle in degrees (default 45)");
+        cmd.alias("-ar", "--ridge-angle");
         cmd.flags({
             {"--hdi", &use_hdi,
              "smooth vertices on the HDI model instead of the input facets (a coarse input "
              "gets it by default)"},
             {"--no-ridges", &no_ridges, "detect no ridges (open boundaries are still kept)"},
+            {"--optim", &optim,
+             "keep the input's sizes (the mean length of the edges at each vertex), as Mmg's "
+             "-optim"},
         });
+        cmd.alias("-nr", "--no-ridges");
+        cmd.alias("-optim", "--optim");
         cmd.option("--iterations", &iterations, "remeshing iterations (default 8)");
         cmd.option("--stats", &stats, "write the before/after figures as JSON");
-        cmd.option("-v", &verbosity,
-                   "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details)");
+        cmd.verbosity("-v", &verbosity, 3,
+                      "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details); "
+                      "Mmg's -1..10 clamped to these (N optional, as Mmg)");
+        cmd.option("-m", &memory_mb,
+                   "memory limit in MB: the process's address space is capped (RLIMIT_AS); a "
+                   "run that needs more stops with an error and writes nothing",
+                   &memory_set);
+        cli::refuse_mmg_options(cmd, cli::MmgTool::mmgs);
+        // the remesher's loop and stages split, flip and shift together: no switch for one
+        const std::string no_switch = "the surface remesher has no switch to turn it off";
+        cmd.refuse("-noinsert", "no point insertion or deletion", no_switch);
+        cmd.refuse("-noswap", "no edge flipping", no_switch);
+        cmd.refuse("-nomove", "no point relocation", no_switch);
         cmd.parse(argc, argv);
-        if (output.empty()) throw InputError("missing -o OUT");
+        if (memory_set) cli::limit_memory_mb(memory_mb);
+        input = cli::mmg_input_name(input);
+        output = cli::mmg_output_name(output, input);
+        cli::refuse_mmg_parameter_file(input, ".mmgs");
+        if (!size.hsiz_set && !size.sol_set && !has_hausd && !optim)
+        {
+            // Mmg reads the sizes beside the input when none is given
+            size.sol = cli::mmg_default_sol(input);
+            size.sol_set = !size.sol.empty();
+            if (size.sol_set && verbosity >= 1)
+                std::cerr << "surfremesh: sizes from " << size.sol << " (Mmg's default beside "
+                          << input << ")\n";
+        }
         const bool has_hsiz = size.hsiz_set, has_sol = size.sol_set;
-        if ((has_hsiz ? 1 : 0) + (has_sol ? 1 : 0) + (has_hausd ? 1 : 0) > 1)
-            throw InputError("give at most one of --hsiz, --sol, --hausd");
+        if (int(has_hsiz) + int(has_sol) + int(has_hausd) + int(optim) > 1)
+            throw InputError("give at most one of --hsiz, --sol, --hausd, --optim");
         if (has_hsiz && !(size.hsiz > 0)) throw InputError("--hsiz must be positive");
+        if (!(ridge_angle > 0 && ridge_angle < 180))
+            throw cli::UsageError("--ridge-angle must be between 0 and 180 degrees");
 
         ReadReport read_report;
         SurfaceMesh mesh = read_surface(input, &read_report);
@@ -108,7 +174,8 @@ int main(int argc, char** argv)
         settings.verbosity = verbosity > 1 ? verbosity - 1 : 0;
         if (has_sol)
             settings.input_sizes = read_sol_sizes(size.sol, static_cast<int>(mesh.n_vertices()));
-        if (!has_hsiz && !has_sol && !has_hausd && !size.hmax_set)
+        if (optim) settings.input_sizes = mean_incident_edge_lengths(mesh);
+        if (!has_hsiz && !has_sol && !has_hausd && !optim && !size.hmax_set)
             settings.sizing.hmax = 2.0 * mean_edge_length(mesh);
 
         const WallStopwatch stopwatch;

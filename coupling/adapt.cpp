@@ -84,6 +84,26 @@ const char* kPassHeader =
 
 }  // namespace
 
+void apply_switches(const AdaptSwitches& switches, AdaptOptions& options)
+{
+    const bool insert = !switches.noinsert && !switches.optim;
+    options.refine = insert;
+    options.optimize = !switches.no_optimize;
+    options.project = !switches.no_projection;
+    // the surface pass splits and collapses
+    options.surface = !switches.nosurf && insert;
+    options.optimizer.swap = !switches.noswap;
+    options.optimizer.move = !switches.nomove;
+    options.optimizer.split = insert;
+    options.optimizer.collapse = insert;  // a collapse removes a vertex
+    for (hdi::FeatureOptions* features :
+         {&options.surface_settings.features, &options.projection.features})
+    {
+        features->detect_ridges = !switches.no_ridges;
+        features->ridge_angle_deg = switches.ridge_angle;
+    }
+}
+
 AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& options)
 {
     AdaptReport report;

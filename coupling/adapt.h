@@ -91,6 +91,23 @@ struct AdaptReport
     double seconds_surface = 0, cpu_seconds_surface = 0;
 };
 
+/// Mmg's switches, as the tools and the Python module take them.
+struct AdaptSwitches
+{
+    bool noinsert = false;  ///< no vertex inserted or removed: no split, collapse or surface pass
+    bool noswap = false, nomove = false;  ///< no edge/face removal; no smoothing
+    bool nosurf = false;                  ///< keep the boundary (only split and projected)
+    bool optim = false;        ///< optimize only, at the input's sizes (no split or collapse)
+    bool no_optimize = false;  ///< refinement (and projection) only
+    bool no_projection = false;
+    bool no_ridges = false;     ///< no ridge found by angle (declared ones kept)
+    double ridge_angle = 45.0;  ///< degrees
+};
+
+/// `options` as the switches ask, for a tet input (refine, optimize, surface, the optimizer's
+/// operators, the features of the surface pass and of the boundary model).
+void apply_switches(const AdaptSwitches& switches, AdaptOptions& options);
+
 /// Adapts mesh in place. \pre mesh passes check_mesh (positive tets, closed boundary).
 /// Throws InputError when the boundary cannot carry a surface model.
 /// Ids are not kept: the output is compact and, before the final optimization, renumbered

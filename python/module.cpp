@@ -269,6 +269,7 @@ coupling::VolumeFromSurfaceOptions volume_options(const volume::SizeSpec& spec, 
     o.refine = !noinsert;
     o.optimize = !no_optimize;
     o.adapt = adapt;
+    o.remesh.features = adapt.surface_settings.features;
     o.source = "mesh";
     return o;
 }
@@ -278,16 +279,22 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
                const std::string& bench_field, double hmin, double hmax, double hgrad, double hausd,
                int verbose, const py::object& progress, bool nosurf, bool noinsert, bool noswap,
                bool nomove, bool optim, bool no_optimize, bool keep_surface, bool strict,
-               int max_passes)
+               int max_passes, double ridge_angle, bool no_ridges)
 {
     TetMesh mesh = to_mesh(m);
     const volume::SizeSpec spec = size_spec(hsiz, sizes, bench_field, hmin, hmax, hgrad);
     if (hausd < 0) throw InputError("hausd must be positive");
     coupling::AdaptOptions options;
-    options.optimizer.swap = !noswap;
-    options.optimizer.move = !nomove;
-    options.optimizer.collapse = !optim;
-    options.optimizer.split = !noinsert && !optim;
+    coupling::AdaptSwitches switches;
+    switches.nosurf = nosurf;
+    switches.noinsert = noinsert;
+    switches.noswap = noswap;
+    switches.nomove = nomove;
+    switches.optim = optim;
+    switches.no_optimize = no_optimize;
+    switches.no_ridges = no_ridges;
+    switches.ridge_angle = ridge_angle;
+    coupling::apply_switches(switches, options);
     options.verbosity = verbose;
     options.optimizer.verbosity = verbose;
     options.max_passes = max_passes;
@@ -309,13 +316,10 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
         else
         {
             if (keep_surface) throw InputError("keep_surface applies to a surface input");
-            options.surface = !nosurf && !optim;
             notes = volume::prepare_tet_input(mesh, "mesh", strict);
             if (!spec.any() && !optim)
                 throw InputError("no size field: give hsiz, sizes or bench_field (or optim=True)");
             const auto field = volume::make_size_field(spec, mesh);
-            options.refine = !noinsert && !optim;
-            options.optimize = !no_optimize;
             coupling::adapt(mesh, *field, options);
         }
         if (const auto violations = volume::check_mesh(mesh); !violations.empty())
@@ -395,7 +399,7 @@ PYBIND11_MODULE(_hdimesh, mod)
             py::arg("hausd"), py::arg("verbose"), py::arg("progress"), py::arg("nosurf"),
             py::arg("noinsert"), py::arg("noswap"), py::arg("nomove"), py::arg("optim"),
             py::arg("no_optimize"), py::arg("keep_surface"), py::arg("strict"),
-            py::arg("max_passes"));
+            py::arg("max_passes"), py::arg("ridge_angle"), py::arg("no_ridges"));
 
     mod.def(
         "remesh_surface",

@@ -204,7 +204,8 @@ def _conformity(mesh, sizes, hmin, hmax):
 def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=None,
           threads=None, verbose=0, progress=None, bench_field=None, nosurf=False,
           noinsert=False, noswap=False, nomove=False, optim=False, no_optimize=False,
-          keep_surface=False, strict=False, max_passes=40, size_rounds=4):
+          keep_surface=False, strict=False, max_passes=40, size_rounds=4, ridge_angle=45.0,
+          no_ridges=False):
     """Adapts a tet mesh and its boundary to a size field; returns a new TetMesh.
 
     Given a surface (a TetMesh with triangles and no tets), remeshes it to the size and fills
@@ -219,10 +220,11 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
     callable at their midpoints. ``hausd`` bounds the boundary's distance to the input.
 
     The switches are the app's: ``nosurf`` (keep the boundary, only split and projected),
-    ``noinsert``, ``noswap``, ``nomove``, ``optim`` (optimize only, keep the sizes),
+    ``noinsert`` (no vertex inserted or removed), ``noswap``, ``nomove``, ``optim`` (optimize only, keep the sizes),
     ``no_optimize``, ``keep_surface`` (a surface input's triangles are the boundary, exactly),
     ``strict`` (refuse boundary triangles that are not the tets' boundary instead of mending
-    them). ``verbose``: 0 silent, 1 summary, 2 a row per pass (on stdout).
+    them), ``ridge_angle`` (degrees) and ``no_ridges`` for the boundary's features.
+    ``verbose``: 0 silent, 1 summary, 2 a row per pass (on stdout).
     ``progress(stage, tets)`` is called after each refinement pass and as the surface pass and
     the final optimization start; an exception it raises stops the run.
 
@@ -237,6 +239,8 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
     if sum(x is not None for x in (hsiz, sizes, bench_field)) > 1:
         raise ValueError("give only one of hsiz, sizes and bench_field")
     hmin_v, hmax_v = _number("hmin", hmin), _number("hmax", hmax)
+    if not 0 < float(ridge_angle) < 180:
+        raise ValueError(f"ridge_angle must lie in (0, 180) degrees, got {ridge_angle!r}")
     if hgrad is not None and not float(hgrad) > 1:
         raise ValueError(f"hgrad must be larger than 1, got {hgrad!r}")
     if bench_field is not None and bench_field not in tuple("ABCDE"):
@@ -247,7 +251,8 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
                 nosurf=bool(nosurf), noinsert=bool(noinsert), noswap=bool(noswap),
                 nomove=bool(nomove), optim=bool(optim), no_optimize=bool(no_optimize),
                 keep_surface=bool(keep_surface), strict=bool(strict),
-                max_passes=int(max_passes))
+                max_passes=int(max_passes), ridge_angle=float(ridge_angle),
+                no_ridges=bool(no_ridges))
 
     def once(m, vertex_sizes):
         return TetMesh._from_native(_hdimesh.adapt(m._native(), sizes=vertex_sizes, **args))
