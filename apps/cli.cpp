@@ -99,6 +99,11 @@ void CommandLine::flag(const std::string& name, bool* target, const std::string&
     options_.push_back({name, help, "", [target](const std::string&) { *target = true; }});
 }
 
+void CommandLine::always_on(const std::string& name, const std::string& help)
+{
+    options_.push_back({name, help, "", [](const std::string&) {}});
+}
+
 void CommandLine::flags(const std::vector<Flag>& table)
 {
     for (const Flag& f : table) flag(f.name, f.target, f.help);
@@ -322,8 +327,9 @@ void refuse_mmg_options(CommandLine& cli, MmgTool tool)
     cli.refuse("-rn", "SCOTCH renumbering");
     cli.refuse("-nsd", "save only one subdomain");
     cli.refuse("-xreg", "vertex regularization");
-    cli.refuse("-nreg", "normal regularization",
-               "the HDI model fits its own normals and has no smoothing pass to turn on");
+    cli.always_on("-nreg",
+                  "Mmg's normal regularization: always on here (the HDI model refits each node "
+                  "normal from its neighbours)");
     cli.refuse("-nosizreq", "no sizes imposed at required vertices");
     cli.refuse("-hgradreq", "gradation from required entities");
     cli.refuse("-d", "debug mode");

@@ -31,6 +31,8 @@ public:
                     bool required = true);
     /// A flag without value ("--check").
     void flag(const std::string& name, bool* target, const std::string& help);
+    /// A flag naming what the tool always does (Mmg's -nreg): accepted, and said so in --help.
+    void always_on(const std::string& name, const std::string& help);
     struct Flag
     {
         std::string name;

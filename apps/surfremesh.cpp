@@ -84,6 +84,7 @@ int main(int argc, char** argv)
         cli::SizeOptions size;
         double hausd = 0, ridge_angle = 45;
         bool use_hdi = false, has_hausd = false, no_ridges = false, optim = false;
+        bool noinsert = false, noswap = false, nomove = false;
         bool memory_set = false;
         int verbosity = 1, iterations = 8, memory_mb = 0;
         cli::CommandLine cmd("surfremesh",
@@ -116,7 +117,12 @@ int main(int argc, char** argv)
             {"--optim", &optim,
              "keep the input's sizes (the mean length of the edges at each vertex), as Mmg's "
              "-optim"},
+            {"--noinsert", &noinsert, "no vertex inserted or removed (no split or collapse)"},
+            {"--noswap", &noswap, "no edge flip"},
+            {"--nomove", &nomove, "no vertex moved"},
         });
+        for (const char* name : {"noinsert", "noswap", "nomove"})
+            cmd.alias(std::string("-") + name, std::string("--") + name);
         cmd.alias("-nr", "--no-ridges");
         cmd.alias("-optim", "--optim");
         cmd.option("--iterations", &iterations, "remeshing iterations (default 8)");
@@ -129,11 +135,6 @@ int main(int argc, char** argv)
                    "run that needs more stops with an error and writes nothing",
                    &memory_set);
         cli::refuse_mmg_options(cmd, cli::MmgTool::mmgs);
-        // the remesher's loop and stages split, flip and shift together: no switch for one
-        const std::string no_switch = "the surface remesher has no switch to turn it off";
-        cmd.refuse("-noinsert", "no point insertion or deletion", no_switch);
-        cmd.refuse("-noswap", "no edge flipping", no_switch);
-        cmd.refuse("-nomove", "no point relocation", no_switch);
         cmd.parse(argc, argv);
         if (memory_set) cli::limit_memory_mb(memory_mb);
         input = cli::mmg_input_name(input);
@@ -171,6 +172,9 @@ int main(int argc, char** argv)
         settings.sizing.hgrad = size.hgrad_set ? size.hgrad : 1.3;
         settings.iterations = iterations;
         settings.use_hdi = use_hdi;
+        settings.insert = !noinsert;
+        settings.swap = !noswap;
+        settings.move = !nomove;
         settings.verbosity = verbosity > 1 ? verbosity - 1 : 0;
         if (has_sol)
             settings.input_sizes = read_sol_sizes(size.sol, static_cast<int>(mesh.n_vertices()));

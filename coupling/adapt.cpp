@@ -94,6 +94,8 @@ void apply_switches(const AdaptSwitches& switches, AdaptOptions& options)
     options.surface = !switches.nosurf && insert;
     options.optimizer.swap = !switches.noswap;
     options.optimizer.move = !switches.nomove;
+    options.surface_settings.swap = !switches.noswap;  // Mmg's switches hold on both meshes
+    options.surface_settings.move = !switches.nomove;
     options.optimizer.split = insert;
     options.optimizer.collapse = insert;  // a collapse removes a vertex
     for (hdi::FeatureOptions* features :

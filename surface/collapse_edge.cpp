@@ -166,6 +166,7 @@ OpStatus collapse_status(const OperatorContext& ctx, HalfedgeHandle h, double ma
 OpResult try_collapse(OperatorContext& ctx, HalfedgeHandle h, double max_new_length,
                       bool require_quality_gain, double min_new_angle_deg)
 {
+    if (!ctx.limits.insert) return refused(OpStatus::Disabled);
     SurfaceMesh& mesh = ctx.mesh;
     OpResult result;
     const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);

@@ -51,6 +51,7 @@ int ring_valence(const SurfaceMesh& mesh, VertexHandle v)
 
 OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
 {
+    if (!ctx.limits.swap) return refused(OpStatus::Disabled);
     using namespace detail;
     SurfaceMesh& mesh = ctx.mesh;
     OpResult result;

@@ -55,6 +55,7 @@ enum class OpStatus
     Hook,      // vetoed by an allow_* hook
     Geometry,  // a triangle would fold or turn too much, or leave the model
     Quality,   // legal but not better
+    Disabled,  // this kind of change is turned off (OperatorLimits::insert, swap, move)
 };
 
 struct OpResult
@@ -85,6 +86,9 @@ struct OperatorLimits
     /// the HDI model, its diffuse plane: method.md §5) instead of the ball's own plane; one
     /// projection more per shift.
     bool shift_in_model_plane = false;
+    /// Which kinds of change are allowed at all (Mmg's -noinsert, -noswap, -nomove): splits,
+    /// collapses and removals (a vertex more or less), flips, vertex moves.
+    bool insert = true, swap = true, move = true;
 };
 
 /// Everything an operator needs; the remesher builds one per call.
@@ -135,6 +139,7 @@ inline OpResult commit_move(OperatorContext& ctx, VertexHandle v, const Vec3d& p
                             int model_face)
 {
     OpResult result;
+    if (!ctx.limits.move) return refused(OpStatus::Disabled);
     if (ctx.hooks.allow_move && !ctx.hooks.allow_move(ctx.mesh, v, point))
     {
         result.status = OpStatus::Hook;

@@ -313,6 +313,9 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     refuse_count(expected_triangle_count(input, options.loop.size), "the size");
     options.loop.iterations = settings.iterations;
     options.loop.limits.shift_in_model_plane = model.has_smooth_projection();
+    options.loop.limits.insert = settings.insert;
+    options.loop.limits.swap = settings.swap;
+    options.loop.limits.move = settings.move;
     options.loop.verbosity = settings.verbosity;
     if (settings.max_model_distance >= 0.0)
         options.loop.max_model_distance = settings.max_model_distance;

@@ -127,6 +127,9 @@ struct SurfaceRemeshSettings
     /// over hsiz and input_sizes.
     std::function<double(const Vec3d&)> size_function;
     int iterations = 8;  // RemeshOptions::iterations
+    /// The kinds of change allowed (OperatorLimits::insert, swap, move; Mmg's -noinsert,
+    /// -noswap, -nomove).
+    bool insert = true, swap = true, move = true;
     /// With a uniform size: refine below it where the curvature needs it to stay within
     /// hausd (if given) or this fraction of the bbox diagonal (≤ 0: strictly uniform).
     double uniform_hausd_fraction = 0.0016;

@@ -71,6 +71,7 @@ HoleTriangulation triangulate_hole(const SurfaceMesh& mesh, const std::vector<Ve
 
 OpResult try_remove_vertex(OperatorContext& ctx, VertexHandle v)
 {
+    if (!ctx.limits.insert) return refused(OpStatus::Disabled);
     using namespace detail;
     SurfaceMesh& mesh = ctx.mesh;
     OpResult result;

@@ -16,6 +16,7 @@ constexpr double kMaxTurnAcrossCreaseDeg = 85.0;
 
 OpResult try_split(OperatorContext& ctx, EdgeHandle e, const Vec3d* at)
 {
+    if (!ctx.limits.insert) return refused(OpStatus::Disabled);
     using namespace detail;
     SurfaceMesh& mesh = ctx.mesh;
     OpResult result;

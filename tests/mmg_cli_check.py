@@ -5,6 +5,7 @@
   mmg_cli_check.py sol MESH OUT.sol SIZE [--tensor]   a constant size per vertex of MESH (.sol,
                                                type 1; --tensor: an isotropic metric, type 3)
   mmg_cli_check.py check MESH [--tets] [--max-edge H] [--min-edge H] [--at-most-vertices-of IN]
+                               [--same-vertices-as IN [--unmoved]]
 
 check: indices in range, every element non-degenerate (tets all of one orientation), a closed
 conforming boundary (every triangle edge in two triangles; with --tets every tet face in two tets
@@ -99,6 +100,13 @@ def check(args):
         fail(f'an edge of {length.max():.4g} is longer than {args.max_edge}')
     if args.min_edge is not None and length.min() < args.min_edge:
         fail(f'an edge of {length.min():.4g} is shorter than {args.min_edge}')
+    if args.same_vertices_as:  # -noinsert: as many; with -nomove, the same points
+        before = read_medit(args.same_vertices_as)['Vertices'][:, :3]
+        if n != len(before):
+            fail(f'{n} vertices, the input has {len(before)}')
+        if args.unmoved and not np.array_equal(np.unique(points, axis=0),
+                                                np.unique(before, axis=0)):
+            fail('a vertex moved')
     if args.at_most_vertices_of:
         before = len(read_medit(args.at_most_vertices_of)['Vertices'])
         if n > before:
@@ -141,6 +149,8 @@ c.add_argument('--tets', action='store_true')
 c.add_argument('--max-edge', type=float)
 c.add_argument('--min-edge', type=float)
 c.add_argument('--at-most-vertices-of')
+c.add_argument('--same-vertices-as')
+c.add_argument('--unmoved', action='store_true')
 c.set_defaults(run=check)
 m = sub.add_parser('medit')
 m.add_argument('obj')

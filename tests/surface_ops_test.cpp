@@ -123,6 +123,26 @@ TEST_CASE("split puts the new vertex on the model and keeps the sphere closed an
     check_on_unit_sphere(mesh);
 }
 
+TEST_CASE("Mmg's -noinsert, -noswap, -nomove: each kind of change refused, nothing changed")
+{
+    // the icosahedron again; with every kind turned off, no operator changes it
+    SurfaceMesh mesh = icosahedron();
+    SphereProjector sphere(Vec3d(0, 0, 0), 1.0);
+    OperatorLimits off;
+    off.insert = off.swap = off.move = false;
+    OperatorContext ctx(mesh, sphere, {}, off);
+    const EdgeHandle e = *mesh.edges().begin();
+    const VertexHandle v = *mesh.vertices().begin();
+    const Vec3d at = mesh.point(v);
+    CHECK(try_split(ctx, e).status == OpStatus::Disabled);
+    CHECK(try_collapse(ctx, mesh.halfedge_handle(e, 0), 10.0).status == OpStatus::Disabled);
+    CHECK(try_remove_vertex(ctx, v).status == OpStatus::Disabled);
+    CHECK(try_flip(ctx, e, FlipGoal::Valence).status == OpStatus::Disabled);
+    CHECK(commit_move(ctx, v, at * 0.9, -1).status == OpStatus::Disabled);
+    CHECK(mesh.n_vertices() == 12);
+    CHECK(mesh.point(v) == at);
+}
+
 TEST_CASE(
     "split of a boundary edge makes a boundary vertex on the same curve, only its halves are curve "
     "edges")

@@ -50,14 +50,14 @@ mmg_cli_test(mmg3d_ridge_angle adapt
 mmg_cli_test(mmg3d_optim adapt
     "$APP -in in.mesh -out out.mesh -optim -v 0; ${mmg_check} check out.mesh --tets --at-most-vertices-of in.mesh")
 mmg_cli_test(mmg3d_noinsert_noswap_nomove adapt
-    "$APP -in in.mesh -out out.mesh -hsiz 0.3 -noinsert -noswap -nomove -v 0; ${mmg_check} check out.mesh --tets --at-most-vertices-of in.mesh")
+    "$APP -in in.mesh -out out.mesh -hsiz 0.3 -noinsert -noswap -nomove -nreg -v 0; ${mmg_check} check out.mesh --tets --same-vertices-as in.mesh")
 # an input without extension is IN.mesh (Mmg tries IN.meshb first); -v -1 is silent; an -out
 # without extension takes the input's
 mmg_cli_test(mmg3d_names_and_verbosity adapt
     "$APP in -hsiz 0.3 -hausd 0.05 -v -1 > log.txt; test ! -s log.txt; ${mmg_check} check in.o.mesh --tets; $APP -v -in in.mesh -out res -hsiz 0.3 -hausd 0.05 > /dev/null; ${mmg_check} check res.mesh --tets")
 # refused: one line naming the flag, exit code 2, nothing written
 mmg_cli_test(mmg3d_refused adapt
-    "for f in -A -ls -lssurf -isoref -rmc -lag -opnbdy -nofem -optimLES -octree -rn -nsd -xreg -nreg -nosizreq -hgradreq -d -val -default -f; do rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 $f 1 2> err.txt || rc=$?; test $rc -eq 2; test $(wc -l < err.txt) -eq 1; grep -q -- \"^adapt: error: $f (.*) is an Mmg option hdimesh does not support\" err.txt; test ! -e out.mesh; done; rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 -noout 2> err.txt || rc=$?; test $rc -ne 0; grep -q \"unknown option '-noout'\" err.txt; test ! -e out.mesh")
+    "for f in -A -ls -lssurf -isoref -rmc -lag -opnbdy -nofem -optimLES -octree -rn -nsd -xreg -nosizreq -hgradreq -d -val -default -f; do rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 $f 1 2> err.txt || rc=$?; test $rc -eq 2; test $(wc -l < err.txt) -eq 1; grep -q -- \"^adapt: error: $f (.*) is an Mmg option hdimesh does not support\" err.txt; test ! -e out.mesh; done; rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 -noout 2> err.txt || rc=$?; test $rc -ne 0; grep -q \"unknown option '-noout'\" err.txt; test ! -e out.mesh")
 mmg_cli_test(mmg3d_anisotropic_sol adapt
     "${mmg_check} sol in.mesh aniso.sol 0.3 --tensor; rc=0; $APP -in in.mesh -sol aniso.sol -out out.mesh 2> err.txt || rc=$?; test $rc -ne 0; test $(wc -l < err.txt) -eq 1; grep -q '^adapt: error: aniso.sol:[0-9]*: only scalar solutions' err.txt; test ! -e out.mesh")
 mmg_cli_test(mmg3d_parameter_file adapt
@@ -82,10 +82,14 @@ mmg_cli_test(mmgs_ridge_angle surfremesh
     "$APP -in in.mesh -out out.mesh -hsiz 0.3 -ar 10 > log.txt; grep -q 'features: [1-9][0-9]* ridge edges' log.txt; ${mmg_check} check out.mesh; $APP -in in.mesh -out nr.mesh -hsiz 0.3 -ar 10 -nr > nr.txt; grep -q 'features: 0 ridge edges' nr.txt; ${mmg_check} check nr.mesh")
 mmg_cli_test(mmgs_optim surfremesh
     "$APP -in in.mesh -out out.mesh -optim -v 0; ${mmg_check} check out.mesh")
+# -noinsert: no vertex more or less; with -noswap -nomove nothing may change at all; -nreg (normal
+# regularization) is what the model always does
+mmg_cli_test(mmgs_noinsert surfremesh
+    "$APP -in in.mesh -out out.mesh -hsiz 0.1 -noinsert -v 0; ${mmg_check} check out.mesh --same-vertices-as in.mesh; $APP -in in.mesh -out still.mesh -hsiz 0.1 -noinsert -noswap -nomove -nreg -v 0; ${mmg_check} check still.mesh --same-vertices-as in.mesh --unmoved")
 mmg_cli_test(mmgs_refused surfremesh
-    "for f in -A -ls -lssurf -isoref -rmc -keep-ref -rn -nsd -xreg -nreg -nosizreq -hgradreq -d -val -default -f -noinsert -noswap -nomove; do rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 $f 2> err.txt || rc=$?; test $rc -eq 2; test $(wc -l < err.txt) -eq 1; grep -q -- \"^surfremesh: error: $f (.*) is an Mmg option hdimesh does not support\" err.txt; test ! -e out.mesh; done; rc=0; $APP -in in.mesh -out out.mesh -nosurf 2> err.txt || rc=$?; test $rc -ne 0; grep -q \"unknown option '-nosurf'\" err.txt; test ! -e out.mesh")
+    "for f in -A -ls -lssurf -isoref -rmc -keep-ref -rn -nsd -xreg -nosizreq -hgradreq -d -val -default -f; do rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 $f 2> err.txt || rc=$?; test $rc -eq 2; test $(wc -l < err.txt) -eq 1; grep -q -- \"^surfremesh: error: $f (.*) is an Mmg option hdimesh does not support\" err.txt; test ! -e out.mesh; done; rc=0; $APP -in in.mesh -out out.mesh -nosurf 2> err.txt || rc=$?; test $rc -ne 0; grep -q \"unknown option '-nosurf'\" err.txt; test ! -e out.mesh")
 mmg_cli_test(mmgs_help surfremesh
-    "$APP --help > help.txt; grep -qF -- '--hsiz X | -hsiz X' help.txt; grep -qF -- '--ridge-angle X | -ar X' help.txt; grep -qF -- '--optim | -optim' help.txt; grep -qF -- '-noswap  no edge flipping' help.txt")
+    "$APP --help > help.txt; grep -qF -- '--hsiz X | -hsiz X' help.txt; grep -qF -- '--ridge-angle X | -ar X' help.txt; grep -qF -- '--optim | -optim' help.txt; grep -qF -- '--noswap | -noswap' help.txt")
 
 # -m caps the address space: a run needing more stops with one line and writes nothing. Not in a
 # sanitizer build, whose shadow memory is reserved beyond any such cap (the tools refuse -m there).
