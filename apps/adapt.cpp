@@ -60,18 +60,15 @@ int main(int argc, char** argv)
                             "disjoint ones separate regions with refs 1, 2, ...).\n"
                             "mmg3d's command line works too: its spelling of an option is listed\n"
                             "beside ours, and its options without a counterpart are refused.");
-        cl.positional("IN", &input,
-                      "input tet mesh (.mesh .meshb .msh) or closed surface (.obj .off .stl .ply, "
-                      "or a mesh file with triangles and no tets); without an extension, as "
-                      "Mmg: IN.meshb if it exists, else IN.mesh");
-        cl.positional("OUT", &output,
-                      "output mesh (.mesh .meshb .msh .vtu); default, as Mmg: IN less its "
-                      "extension plus .o.mesh (.o.meshb, .o.msh for those inputs); without an "
-                      "extension, the input's",
-                      false);
-        cl.alias("-in", "IN");
-        cl.alias("-o", "OUT");
-        cl.alias("-out", "OUT");
+        cli::add_mmg_files(
+            cl, &input,
+            "input tet mesh (.mesh .meshb .msh) or closed surface (.obj .off .stl .ply, "
+            "or a mesh file with triangles and no tets); without an extension, as "
+            "Mmg: IN.meshb if it exists, else IN.mesh",
+            &output,
+            "output mesh (.mesh .meshb .msh .vtu); default, as Mmg: IN less its "
+            "extension plus .o.mesh (.o.meshb, .o.msh for those inputs); without an "
+            "extension, the input's");
         size.add_to(cl, true);
         size.add_mmg_aliases(cl, true);
         cl.option("--hausd", &hausd,

@@ -338,6 +338,16 @@ void refuse_mmg_options(CommandLine& cli, MmgTool tool)
     cli.refuse("-f", "parameter file");
 }
 
+void add_mmg_files(CommandLine& cli, std::string* input, const std::string& input_help,
+                   std::string* output, const std::string& output_help)
+{
+    cli.positional("IN", input, input_help);
+    cli.positional("OUT", output, output_help, false);
+    cli.alias("-in", "IN");
+    cli.alias("-o", "OUT");
+    cli.alias("-out", "OUT");
+}
+
 std::string mmg_input_name(const std::string& input)
 {
     if (!mmg_extension(input).empty()) return input;

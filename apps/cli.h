@@ -105,6 +105,10 @@ enum class MmgTool
 /// motion, anisotropy, parameter files, ...), each refused with its meaning (CommandLine::refuse).
 void refuse_mmg_options(CommandLine& cli, MmgTool tool);
 
+/// IN and an optional OUT, positional, with Mmg's spellings: -in IN, -o OUT, -out OUT.
+void add_mmg_files(CommandLine& cli, std::string* input, const std::string& input_help,
+                   std::string* output, const std::string& output_help);
+
 /// Mmg's input name: one without an extension (no '.' in its last path component, or only ".o")
 /// is X.meshb if that exists, else X.mesh; any other name is kept.
 std::string mmg_input_name(const std::string& input);

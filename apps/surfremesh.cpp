@@ -92,16 +92,12 @@ int main(int argc, char** argv)
                              "size.\nmmgs's command line works too: its spelling of an option "
                              "is listed beside ours,\nand its options without a counterpart are "
                              "refused.");
-        cmd.positional("IN", &input,
-                       "input surface; without an extension, as Mmg: IN.meshb if it exists, "
-                       "else IN.mesh");
-        cmd.positional("OUT", &output,
-                       "output surface (format by extension); default, as Mmg: IN less its "
-                       "extension plus .o.mesh; without an extension, the input's",
-                       false);
-        cmd.alias("-in", "IN");
-        cmd.alias("-o", "OUT");
-        cmd.alias("-out", "OUT");
+        cli::add_mmg_files(cmd, &input,
+                           "input surface; without an extension, as Mmg: IN.meshb if it exists, "
+                           "else IN.mesh",
+                           &output,
+                           "output surface (format by extension); default, as Mmg: IN less its "
+                           "extension plus .o.mesh; without an extension, the input's");
         size.add_to(cmd, true);
         size.add_mmg_aliases(cmd, true);
         cmd.option("--hausd", &hausd,

@@ -30,7 +30,10 @@ stage "assertions tests"
 ctest --test-dir build-assert --output-on-failure -j"$jobs"
 
 stage "ASan+UBSan build and tests"
+# -O1 -g1 (line tables only), as the sanitizers' docs advise: half the compile time of -O2 -g, and
+# the reports still name file and line
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHDIMESH_SANITIZE=ON "$unity" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF > /dev/null
 cmake --build build-asan -j"$jobs"
 stage "ASan+UBSan tests"

@@ -124,6 +124,15 @@ def test_progress_and_gil_released():
     assert hdimesh.check(result["mesh"]) == []
 
 
+def test_progress_can_stop_a_run():
+    def stop(stage, tets):
+        if stage == "pass 2":
+            raise KeyboardInterrupt("stopped by the caller")
+
+    with pytest.raises(KeyboardInterrupt, match="stopped by the caller"):
+        hdimesh.adapt(hdimesh.read(SPHERE), hsiz=0.1, progress=stop)
+
+
 def test_remesh_surface_and_mesh_volume():
     surface = hdimesh.read(ICOSPHERE)
     v, f = hdimesh.remesh_surface(surface.points, surface.triangles, hsiz=0.15, ridge_angle=60)
