@@ -110,10 +110,7 @@ int main(int argc, char** argv)
         cl.verbosity("-v", &verbosity, 2,
                      "0 silent, 1 summary (default), 2 a table per pass; Mmg's -1..10 clamped "
                      "to these (N optional, as Mmg)");
-        cl.option("-m", &memory_mb,
-                  "memory limit in MB: the process's address space is capped (RLIMIT_AS); a run "
-                  "that needs more stops with an error and writes nothing",
-                  &memory_set);
+        cli::add_memory_limit(cl, &memory_mb, &memory_set);
         cl.option("--max-passes", &options.max_passes, "refinement passes at most (default 40)");
         cli::refuse_mmg_options(cl, cli::MmgTool::mmg3d);
         cl.parse(argc, argv);

@@ -338,6 +338,14 @@ void refuse_mmg_options(CommandLine& cli, MmgTool tool)
     cli.refuse("-f", "parameter file");
 }
 
+void add_memory_limit(CommandLine& cli, int* megabytes, bool* was_set)
+{
+    cli.option("-m", megabytes,
+               "memory limit in MB: the process's address space is capped (RLIMIT_AS); a run "
+               "that needs more stops with an error and writes nothing",
+               was_set);
+}
+
 void add_mmg_files(CommandLine& cli, std::string* input, const std::string& input_help,
                    std::string* output, const std::string& output_help)
 {

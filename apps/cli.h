@@ -105,6 +105,9 @@ enum class MmgTool
 /// motion, anisotropy, parameter files, ...), each refused with its meaning (CommandLine::refuse).
 void refuse_mmg_options(CommandLine& cli, MmgTool tool);
 
+/// Mmg's "-m N": the memory limit in MB (limit_memory_mb applies it once parsed).
+void add_memory_limit(CommandLine& cli, int* megabytes, bool* was_set);
+
 /// IN and an optional OUT, positional, with Mmg's spellings: -in IN, -o OUT, -out OUT.
 void add_mmg_files(CommandLine& cli, std::string* input, const std::string& input_help,
                    std::string* output, const std::string& output_help);

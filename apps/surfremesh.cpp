@@ -126,10 +126,7 @@ int main(int argc, char** argv)
         cmd.verbosity("-v", &verbosity, 3,
                       "verbosity (0 quiet, 1 table, 2 per iteration, 3 refinement details); "
                       "Mmg's -1..10 clamped to these (N optional, as Mmg)");
-        cmd.option("-m", &memory_mb,
-                   "memory limit in MB: the process's address space is capped (RLIMIT_AS); a "
-                   "run that needs more stops with an error and writes nothing",
-                   &memory_set);
+        cli::add_memory_limit(cmd, &memory_mb, &memory_set);
         cli::refuse_mmg_options(cmd, cli::MmgTool::mmgs);
         cmd.parse(argc, argv);
         if (memory_set) cli::limit_memory_mb(memory_mb);
