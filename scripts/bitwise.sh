@@ -2,7 +2,9 @@
 # Checks that the working tree's outputs are bitwise identical to those of commit BASE: builds
 # both in Release (BASE from `git archive`, kept in build-bitwise/ for the next call), then
 # compares bench_surface --save's surfaces (cmp), bench_adapt's mesh digests, surfremesh's
-# adaptive outputs on data/*.obj and scripts/run_example.sh's mesh.
+# adaptive outputs on data/*.obj, scripts/run_example.sh's meshes (sphere480 case A; spot's volume
+# from its surface, also with --keep-surface; the Python example's .vtu), a coupled .msh input
+# (fandisk at 4 % of its diagonal) written as .msh and .vtu, and meshconvert's writers.
 #   scripts/bitwise.sh BASE [--cases AC]
 # HDIMESH_BITWISE_BASE_ONLY=1 makes BASE's outputs only (they are reused by later calls).
 # Prints BITWISE OK and exits 0 when every output matches; names each one that differs otherwise.
@@ -21,7 +23,7 @@ mkdir -p "$top" "$here"
 
 build() { # build SRC DIR
     cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DHDIMESH_BUILD_TESTS=OFF > /dev/null
-    cmake --build "$2" -j"$jobs" --target adapt surfremesh bench_surface bench_adapt \
+    cmake --build "$2" -j"$jobs" --target adapt surfremesh meshconvert bench_surface bench_adapt _hdimesh \
         > "$2/build.log" 2>&1 || { tail -30 "$2/build.log"; exit 1; }
 }
 
@@ -34,6 +36,16 @@ outputs() { # outputs BUILD OUTDIR
         "$b/apps/surfremesh" "$m" -o "$out/adaptive/$(basename "$m")" -v 0 > /dev/null
     done
     "$b/apps/adapt" data/sphere480.mesh -o "$out/sphere480_A.mesh" --bench-field A -v 0 > /dev/null
+    "$b/apps/adapt" data/spot.obj -o "$out/spot.mesh" --hsiz 0.05 -v 0 > /dev/null
+    "$b/apps/adapt" data/spot.obj -o "$out/spot_kept.mesh" --hsiz 0.05 --keep-surface -v 0 \
+        > /dev/null
+    "$b/apps/adapt" data/fandisk.msh -o "$out/fandisk_4.msh" --hsiz 0.3046 -v 0 > /dev/null
+    "$b/apps/adapt" data/fandisk.msh -o "$out/fandisk_4.vtu" --hsiz 0.3046 -v 0 > /dev/null
+    for f in msh vtu meshb; do
+        "$b/apps/meshconvert" "$out/sphere480_A.mesh" "$out/sphere480_A.$f" > /dev/null
+    done
+    PYTHONPATH=$b/python /usr/bin/python3 examples/adapt_gmsh_mesh.py data/box_with_ball.msh \
+        "$out/box_with_ball.vtu" > /dev/null
 }
 
 src_base=$top/src-$base

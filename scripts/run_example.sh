@@ -10,7 +10,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/install_deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DHDIMESH_BUILD_TESTS=OFF > /dev/null
+# the switches this job needs, set whatever build/ cached (scripts/run_tests.sh shares it; the
+# tests' switch is left as it is, only these targets are built)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON -DHDIMESH_BUILD_APPS=ON \
+    -DHDIMESH_BUILD_PYTHON=ON > /dev/null
 echo "building Release (log: build/build.log)..."
 cmake --build build -j"$(nproc)" --target adapt meshstat _hdimesh > build/build.log 2>&1 ||
     { tail -40 build/build.log; exit 1; }
