@@ -1,6 +1,7 @@
 #include "cli.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -257,6 +258,19 @@ std::string CommandLine::help() const
             out << "  " << r.name << "  " << r.what << (r.why.empty() ? "" : ": " + r.why) << "\n";
     }
     return out.str();
+}
+
+MessageSink print_messages()
+{
+    const bool terminal = isatty(STDERR_FILENO);
+    return [terminal](MessageKind kind, const std::string& text) {
+        if (kind == MessageKind::Report)
+            std::cout << text << std::flush;
+        else if (kind == MessageKind::Trace)
+            std::cerr << text << std::flush;
+        else if (terminal)
+            std::cerr << '\r' << text << std::flush;
+    };
 }
 
 int run(const char* program, const std::function<int()>& body)

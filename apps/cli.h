@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/messages.h"
 
 namespace hdimesh::cli
 {
@@ -136,6 +137,10 @@ void refuse_mmg_parameter_file(const std::string& input, const std::string& suff
 /// written. Registered by the tools as an option; refused in a sanitizer build, whose shadow
 /// memory is reserved up front.
 void limit_memory_mb(int megabytes);
+
+/// The apps' sink for the library's messages: Report lines to stdout, Trace lines to stderr,
+/// Progress lines to stderr as a '\r' status line when it is a terminal (dropped otherwise).
+MessageSink print_messages();
 
 /// Runs an app body: any exception becomes one line "program: error: message" on stderr and
 /// exit code 1 (2 for a bad command line).
