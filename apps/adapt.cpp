@@ -1,44 +1,14 @@
 // adapt: adapts a tet mesh and its boundary to a size field, or meshes the volume a closed
-// surface bounds (parse -> read -> adapt or mesh_volume_from_surface -> write).
-#include "coupling/adapt.h"
-
-#include <cstdio>
+// surface bounds (parse -> read -> coupling::run_adapt -> write).
 #include <iostream>
 
-#include "common/buffer_io.h"
-#include "common/errors.h"
-#include "common/sol_io.h"
-#include "coupling/mesh_from_surface.h"
+#include "coupling/adapt_request.h"
 #include "size_flags.h"
-#include "surface/surface_io.h"
-#include "volume/boundary_repair.h"
-#include "volume/check.h"
 #include "volume/quality_report.h"
-#include "volume/size_fields.h"
 #include "volume/tet_io.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;
-
-namespace
-{
-
-/// A surface format by extension, or a mesh file with triangles and no tets.
-bool read_input(const std::string& path, TetMesh& mesh, surface::TriangleSoup& soup)
-{
-    const std::string ext = io::lower_extension(path);
-    if (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply")
-    {
-        soup = surface::read_triangle_soup(path);
-        return true;
-    }
-    mesh = read_mesh(path);
-    if (mesh.num_live_tets() > 0 || mesh.triangles.empty()) return false;
-    soup = coupling::triangle_soup(mesh);
-    return true;
-}
-
-}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -49,8 +19,7 @@ int main(int argc, char** argv)
         bool check = false, keep_surface = false, has_hausd = false, strict = false;
         bool memory_set = false;
         double hausd = 0;
-        int verbosity = 1, memory_mb = 0;
-        coupling::AdaptOptions options;
+        int verbosity = 1, memory_mb = 0, max_passes = 40;
 
         cli::CommandLine cl("adapt",
                             "Adapts a tetrahedral mesh and its boundary to a size field; the\n"
@@ -111,7 +80,7 @@ int main(int argc, char** argv)
                      "0 silent, 1 summary (default), 2 a table per pass; Mmg's -1..10 clamped "
                      "to these (N optional, as Mmg)");
         cli::add_memory_limit(cl, &memory_mb, &memory_set);
-        cl.option("--max-passes", &options.max_passes, "refinement passes at most (default 40)");
+        cl.option("--max-passes", &max_passes, "refinement passes at most (default 40)");
         cli::refuse_mmg_options(cl, cli::MmgTool::mmg3d);
         cl.parse(argc, argv);
         if (memory_set) cli::limit_memory_mb(memory_mb);
@@ -134,86 +103,29 @@ int main(int argc, char** argv)
                 !size.sol_set && (has_hausd || size.hmin > 0 || size.hmax_set || size.hgrad_set);
         }
 
-        coupling::apply_switches(switches, options);
-        options.verbosity = verbosity;
-        options.optimizer.verbosity = verbosity;
-        TetMesh mesh;
-        surface::TriangleSoup soup;
-        std::shared_ptr<const SizeField> field;
-        if (read_input(input, mesh, soup))
-        {
-            if (optim_only) throw cli::UsageError("--optim needs a tet mesh, not a surface");
-            if (!size.any() && !has_hausd && !keep_surface)
-                throw InputError(
-                    "no size field: give --hsiz, --sol, --hausd or --bench-field (or "
-                    "--keep-surface)");
-            coupling::VolumeFromSurfaceOptions from_surface;
-            coupling::SurfaceSizing& sizing = from_surface.sizing;
-            sizing.hsiz = size.hsiz_set ? size.hsiz : 0.0;
-            if (size.hsiz_set && !(size.hsiz > 0)) throw cli::UsageError("--hsiz must be positive");
-            sizing.hausd = has_hausd ? hausd : 0.0;
-            if (has_hausd && !(hausd > 0)) throw cli::UsageError("--hausd must be positive");
-            if (size.sol_set)
-                sizing.vertex_sizes =
-                    read_sol_sizes(size.sol, static_cast<int>(soup.points.size()));
-            if (!size.bench_field.empty())
-            {
-                if (size.bench_field.size() > 1)
-                    throw cli::UsageError("--bench-field expects one letter A-E");
-                sizing.field = std::make_shared<BenchmarkSize>(benchmark_case(size.bench_field[0]));
-            }
-            sizing.hmin = size.hmin;
-            sizing.hmax = size.hmax;
-            sizing.hgrad = size.hgrad;
-            from_surface.keep_surface = keep_surface;
-            from_surface.refine = !switches.noinsert;
-            from_surface.optimize = !switches.no_optimize;
-            from_surface.adapt = options;
-            from_surface.remesh.features = options.surface_settings.features;
-            from_surface.source = input;
-            coupling::VolumeFromSurfaceReport report;
-            mesh = coupling::mesh_volume_from_surface(soup, from_surface, &report);
-            field = report.field;
-            if (verbosity >= 1)
-                std::cout << "input " << input << " (a surface)\n"
-                          << coupling::format_volume_from_surface_report(report);
-        }
-        else
-        {
-            if (keep_surface) throw cli::UsageError("--keep-surface applies to a surface input");
-            if (has_hausd && !(hausd > 0)) throw cli::UsageError("--hausd must be positive");
-            options.hausd = has_hausd ? hausd : 0.0;
-            for (const std::string& line : prepare_tet_input(mesh, input, strict))
-                std::cerr << "adapt: " << input << ": " << line << "\n";
-            if (check && verbosity >= 1) std::cout << "check input: clean\n";
+        if (has_hausd && !(hausd > 0)) throw cli::UsageError("--hausd must be positive");
+        coupling::AdaptRequest request;
+        request.size = size.spec();
+        if (size.sol_set) request.sol = size.sol;
+        request.bounds_given = size.own_sizes;
+        request.surface_hgrad = size.hgrad;
+        request.hausd = has_hausd ? hausd : 0.0;
+        request.switches = switches;
+        request.keep_surface = keep_surface;
+        request.strict = strict;
+        request.max_passes = max_passes;
+        request.verbosity = verbosity;
+        request.messages = cli::print_messages();
+        request.check = check;
+        request.source = input;
+        const coupling::AdaptResult result =
+            coupling::run_adapt(coupling::read_adapt_input(input), request);
 
-            if (!size.any() && !optim_only)
-                throw InputError("no size field: give --hsiz, --sol or --bench-field (or --optim)");
-            field = size.make(mesh);
-
-            if (verbosity >= 1)
-            {
-                std::cout << "input " << input << "\n"
-                          << format_quality_table(compute_quality_report(mesh, field.get()));
-            }
-            const coupling::AdaptReport report = coupling::adapt(mesh, *field, options);
-            // -v 1 is a summary; at -v 2 the pass rows were printed as they ran
-            if (verbosity >= 1) std::cout << coupling::format_adapt_report(report, false);
-        }
-
-        const auto violations = check_mesh(mesh);
-        if (check && verbosity >= 1)
-            std::cout << "check output: " << (violations.empty() ? "clean\n" : "\n")
-                      << format_violations(violations);
-        if (!violations.empty())
-            throw InputError("adaptation produced an invalid mesh (not written):\n" +
-                             format_violations(violations));
-
-        const QualityReport quality = compute_quality_report(mesh, field.get());
+        const QualityReport quality = compute_quality_report(result.mesh, result.field.get());
         if (verbosity >= 1)
             std::cout << "output " << output << "\n" << format_quality_table(quality);
         if (!stats_path.empty()) write_quality_json(quality, stats_path);
-        write_mesh(mesh, output);  // last: a run that fails leaves no output
+        write_mesh(result.mesh, output);  // last: a run that fails leaves no output
         return 0;
     });
 }

@@ -14,7 +14,7 @@ void SizeFlags::add_to(CommandLine& cli, bool with_bounds)
                "the paper's three-cylinder field, case A, B, C, D or E");
 }
 
-std::shared_ptr<const volume::SizeField> SizeFlags::make(const volume::TetMesh& input) const
+volume::SizeSpec SizeFlags::spec() const
 {
     const int given = int(hsiz_set) + int(sol_set) + int(!bench_field.empty());
     if (given > 1) throw UsageError("give only one of --hsiz, --sol and --bench-field");
@@ -24,12 +24,18 @@ std::shared_ptr<const volume::SizeField> SizeFlags::make(const volume::TetMesh& 
     if (bench_field.size() > 1) throw UsageError("--bench-field expects one letter A-E");
     volume::SizeSpec spec;
     spec.hsiz = hsiz_set ? hsiz : 0.0;
-    if (sol_set) spec.vertex_sizes = read_sol_sizes(sol, input.num_vertices());
     spec.benchmark = bench_field.empty() ? 0 : bench_field[0];
     spec.hmin = hmin;
     spec.hmax = hmax;
     spec.hgrad = hgrad > 0 ? hgrad : 0.0;
-    return volume::make_size_field(spec, input);
+    return spec;
+}
+
+std::shared_ptr<const volume::SizeField> SizeFlags::make(const volume::TetMesh& input) const
+{
+    volume::SizeSpec sizes = spec();
+    if (sol_set) sizes.vertex_sizes = read_sol_sizes(sol, input.num_vertices());
+    return volume::make_size_field(sizes, input);
 }
 
 }  // namespace hdimesh::cli

@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "volume/size_field.h"
+#include "volume/size_spec.h"
 #include "volume/tet_mesh.h"
 
 namespace hdimesh::cli
@@ -21,6 +22,9 @@ struct SizeFlags : SizeOptions
     /// Registers --hsiz, --sol, --bench-field and, when with_bounds, --hmin/--hmax/--hgrad.
     void add_to(CommandLine& cli, bool with_bounds);
     bool any() const { return hsiz_set || sol_set || !bench_field.empty() || own_sizes; }
+    /// The sizes as stated, checked (at most one of --hsiz, --sol, --bench-field; positive
+    /// values; --hgrad -1 is none), without the .sol's values. Throws UsageError.
+    volume::SizeSpec spec() const;
     /// The field they describe over `input` (the mesh the .sol belongs to). With no size flag:
     /// the input's own sizes (mean length of the edges at each vertex, linear in each tet), so
     /// --optim keeps the sizes. --hmin/--hmax clamp; --hgrad bounds the size ratio between

@@ -1,16 +1,14 @@
 #include "coupling/adapt.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <iostream>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
 
 #include "common/errors.h"
+#include "common/messages.h"
 #include "common/size_quality.h"
 #include "common/stage_timer.h"
 #include "coupling/boundary_map.h"
@@ -106,244 +104,295 @@ void apply_switches(const AdaptSwitches& switches, AdaptOptions& options)
     }
 }
 
+namespace
+{
+
+/// What the stages of one adapt() run share: the mesh, the fields, the boundary's models, the
+/// report. Each stage is a free function below that reads and changes it.
+struct AdaptState
+{
+    AdaptState(TetMesh& mesh, const SizeField& field, const AdaptOptions& options)
+        : mesh(mesh), field(field), volume_field(&field), options(options)
+    {
+        optimizer = options.optimizer;
+        if (!optimizer.messages) optimizer.messages = options.messages;
+    }
+
+    TetMesh& mesh;
+    const SizeField& field;  ///< the caller's
+    /// The field the volume follows: the caller's, or after a surface pass, `graded`
+    const SizeField* volume_field;
+    std::unique_ptr<BackgroundMeshSize> graded;
+    const AdaptOptions& options;
+    OptimizeOptions optimizer;  ///< options.optimizer, its messages to options.messages
+    /// The input boundary, classified once (its surface is the surface pass's model; its tet
+    /// ids go stale); empty when there is no surface pass
+    std::optional<BoundaryMap> input;
+    surface::SurfaceRemeshSettings settings;  ///< the surface pass's
+    std::unique_ptr<BoundaryProjector> projector;
+    /// The surface pass's model, kept for the refinement's splits after it
+    std::optional<surface::SurfaceModel> surface_model;
+    AdaptReport report;
+};
+
+/// A size far below the model's scale would run until memory is gone.
+void refuse_unreachable_size(const AdaptState& s)
+{
+    if (!s.options.refine && !s.options.surface) return;
+    const double expected = expected_tet_count(s.mesh, s.field);
+    if (expected <= kMaxTets) return;
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "the size field asks for about %.3g tets, more than the %.3g a mesh can hold: "
+                  "the size is far below the model's scale",
+                  expected, kMaxTets);
+    throw InputError(text);
+}
+
+/// One classification of the input boundary, given to both meshes before either model is
+/// built from it; without projection the polyhedron is kept, so there is no surface pass.
+void classify_boundary(AdaptState& s)
+{
+    if (!s.options.surface || !s.options.project) return;
+    const StageTimer timer(s.report.seconds_surface, s.report.cpu_seconds_surface);
+    s.report.surface_refusal = coupled_surface_refusal(s.mesh);
+    if (!s.report.surface_refusal.empty() || s.mesh.num_live_tets() == 0) return;
+    s.input = extract_boundary(s.mesh);
+    s.settings = surface_settings(s.input->surface, s.field, s.options);
+    surface::detect_features(s.input->surface, surface::feature_options(s.settings));
+    write_back(*s.input, s.mesh);
+}
+
+/// The HDI model of the input boundary, onto which new boundary vertices are projected.
+void build_projector(AdaptState& s)
+{
+    if (!s.options.project) return;
+    const StageTimer timer(s.report.seconds_project, s.report.cpu_seconds_project);
+    s.projector = std::make_unique<BoundaryProjector>(s.mesh, s.options.projection);
+}
+
+/// One refinement pass: split, project the new boundary vertices, repair around them.
+AdaptPassReport refinement_pass(AdaptState& s, const SizeField& target, int pass)
+{
+    AdaptPassReport row;
+    row.pass = pass;
+    const Stopwatch pass_clock;
+    RefinePassResult refined;
+    {
+        const StageTimer timer(s.report.seconds_refine, s.report.cpu_seconds_refine);
+        refined = volume::refine_pass(s.mesh, target);
+    }
+    row.edges_split = refined.report.edges_split;
+    if (row.edges_split == 0) return row;
+    if (s.projector)
+    {
+        const StageTimer timer(s.report.seconds_project, s.report.cpu_seconds_project);
+        const ProjectionReport moved = s.projector->project(s.mesh, refined.new_boundary_vertices);
+        row.projected = moved.projected;
+        row.shortened = moved.shortened;
+    }
+    if (s.options.optimize)
+    {
+        const StageTimer timer(s.report.seconds_optimize, s.report.cpu_seconds_optimize);
+        row.min_quality = improve_bad_elements(s.mesh, target, s.optimizer).min_quality_after;
+    }
+    else
+    {
+        row.min_quality = min_quality(s.mesh);
+    }
+    row.tets = s.mesh.num_live_tets();
+    row.vertices = s.mesh.num_vertices();
+    row.seconds = pass_clock.wall_seconds();
+    return row;
+}
+
+/// A few splits a pass that no longer decrease: the long edges left are where a split does not
+/// shorten them (beside a kept triangle longer than the size); more passes only stack slivers
+/// there. Only the passes since `first` count (a surface pass came before them).
+bool refinement_stalled(const AdaptState& s, int first)
+{
+    const std::vector<AdaptPassReport>& passes = s.report.passes;
+    const int n = static_cast<int>(passes.size());
+    return n - first + 1 > kStallPasses &&
+           passes.back().edges_split <=
+               kStallFraction * static_cast<double>(s.mesh.num_live_tets()) &&
+           passes.back().edges_split >= passes[n - 1 - kStallPasses].edges_split;
+}
+
+/// Refinement passes until no edge is too long for `target` (or they stall, or reach the cap).
+void refine_to_field(AdaptState& s, const SizeField& target)
+{
+    s.report.converged = !s.options.refine;
+    s.report.stalled = false;
+    const int first = static_cast<int>(s.report.passes.size()) + 1;
+    for (int pass = first; s.options.refine && pass < first + s.options.max_passes; ++pass)
+    {
+        const AdaptPassReport row = refinement_pass(s, target, pass);
+        if (row.edges_split == 0)
+        {
+            s.report.converged = true;
+            break;
+        }
+        s.report.passes.push_back(row);
+        if (s.options.verbosity >= 2)
+            emit(s.options.messages, MessageKind::Report, "%s", format_pass_row(row).c_str());
+        if (s.options.progress) s.options.progress("pass " + std::to_string(pass), row.tets);
+        if (s.options.verbosity >= 1)
+            emit(s.options.messages, MessageKind::Progress, "adapt: pass %d, %d tets", pass,
+                 row.tets);
+        if (refinement_stalled(s, first))
+        {
+            s.report.stalled = true;
+            break;
+        }
+    }
+}
+
+/// One model on both sides: smooth vertices go onto the projection's HDI surface where the
+/// input's facets are too coarse for the tolerance, trusted as far from their chords as those
+/// are from the smooth surface; elsewhere the facets are the finer model.
+void build_surface_model(AdaptState& s)
+{
+    const StageTimer timer(s.report.seconds_surface, s.report.cpu_seconds_surface);
+    const surface::SurfaceMesh& input = s.input->surface;
+    s.report.surface_triangles_before = static_cast<int>(input.n_faces());
+    s.settings.model_surface = &input;
+    s.surface_model.emplace(input);
+    surface::attach_hdi_projection(
+        *s.surface_model, s.projector->model(),
+        surface::coarse_input_options(
+            s.settings.hdi_projection,
+            surface::distance_tolerance(s.settings, surface::bounding_box_diagonal(input))));
+    s.settings.model = &*s.surface_model;
+}
+
+/// The boundary remeshed on the input's model, every change mirrored into the tets; the
+/// refinement's later splits on the boundary land on the same model. Returns the sizes the
+/// surface reached (the field's, or finer where the tolerance asked), by tet vertex.
+std::vector<double> remesh_boundary(AdaptState& s)
+{
+    s.mesh.compact();
+    if (!s.mesh.has_adjacency()) s.mesh.build_adjacency();
+    BoundaryMap boundary = extract_boundary(s.mesh);
+    const surface::SurfaceHooks hooks =
+        make_hooks(s.mesh, boundary, s.options.mirror, &s.report.mirror);
+    surface::remesh_surface(boundary.surface, s.settings, hooks);
+    s.projector->set_surface_target([&model = *s.surface_model](const Vec3& p) {
+        const surface::ProjectedPoint q = model.project(
+            surface::Vec3d(p[0], p[1], p[2]), surface::VertexClass::Smooth, surface::kNoCurve);
+        return q.ok ? std::optional<Vec3>(Vec3(q.point[0], q.point[1], q.point[2])) : std::nullopt;
+    });
+    write_back(boundary, s.mesh);
+    std::vector<double> surface_size(s.mesh.num_vertices(), 0.0);
+    const surface::SurfaceProperties props(boundary.surface);
+    for (auto v : boundary.surface.vertices())
+        surface_size[boundary.tet_vertex_of(v)] = boundary.surface.property(props.vertex_size, v);
+    s.report.surface_remeshed = true;
+    return surface_size;
+}
+
+/// The volume grades from the boundary's sizes to the field's (Mmg's hgrad) where the tolerance
+/// made them finer than the field's band, so the tets between that boundary and a coarse
+/// interior keep their shape. `surface_size` is by vertex before the compaction `maps`.
+void grade_from_boundary(AdaptState& s, const std::vector<double>& surface_size,
+                         const CompactionMaps& maps)
+{
+    std::vector<double> sizes = sample_vertex_sizes(s.mesh, s.field);
+    bool finer = false;
+    for (std::size_t old = 0; old < maps.old2new_verts.size(); ++old)
+    {
+        const int v = maps.old2new_verts[old];
+        // (within the field's band the tets keep the field: its edges are not too short)
+        if (v < 0 || !(surface_size[old] > 0.0) ||
+            !(surface_size[old] < kSizeQualityThreshold * sizes[v]))
+            continue;
+        sizes[v] = surface_size[old];
+        finer = true;
+    }
+    s.volume_field = &s.field;
+    s.graded.reset();
+    if (!finer) return;
+    grade_vertex_sizes(s.mesh, sizes, std::max(1.0, s.settings.sizing.hgrad));
+    s.graded = std::make_unique<BackgroundMeshSize>(s.mesh, std::move(sizes));
+    s.volume_field = s.graded.get();
+}
+
+/// One surface pass, then the volume's splits to the graded field (the surface's bands and the
+/// refills may leave a few edges too long on either side). True when those splits changed the
+/// boundary enough to call for another pass; the optimization after does not change it.
+bool surface_round(AdaptState& s)
+{
+    if (s.options.progress) s.options.progress("surface", s.mesh.num_live_tets());
+    int remeshed = 0;
+    {
+        const StageTimer timer(s.report.seconds_surface, s.report.cpu_seconds_surface);
+        const std::vector<double> surface_size = remesh_boundary(s);
+        const CompactionMaps maps = s.mesh.compact();
+        grade_from_boundary(s, surface_size, maps);
+        remeshed = static_cast<int>(s.mesh.triangles.size());
+    }
+    ++s.report.surface_passes;
+    refine_to_field(s, *s.volume_field);
+    s.report.surface_triangles_after = static_cast<int>(s.mesh.triangles.size());
+    return s.report.surface_triangles_after - remeshed > kSurfaceRepeatFraction * remeshed;
+}
+
+/// The final optimization, on a mesh renumbered along a space-filling curve.
+void optimize(AdaptState& s)
+{
+    if (!s.options.optimize) return;
+    if (s.options.progress) s.options.progress("optimize", s.mesh.num_live_tets());
+    const StageTimer timer(s.report.seconds_optimize, s.report.cpu_seconds_optimize);
+    s.mesh.compact();  // renumbering needs a compact mesh; the passes leave it so, this makes sure
+    renumber_spatially(s.mesh);
+    optimize_mesh(s.mesh, *s.volume_field, s.optimizer);
+}
+
+/// After a surface pass the boundary lies on the model already; else the refinement's
+/// shortened moves are finished, and the tets they reshape brought back to the final
+/// optimization's target, not only above the passes' "bad" threshold.
+void finish(AdaptState& s)
+{
+    if (s.projector && !s.report.surface_remeshed)
+    {
+        {
+            const StageTimer timer(s.report.seconds_project, s.report.cpu_seconds_project);
+            s.report.final_projection = s.projector->project_all(s.mesh);
+        }
+        if (s.options.optimize &&
+            s.report.final_projection.shortened + s.report.final_projection.projected > 0)
+        {
+            const StageTimer timer(s.report.seconds_optimize, s.report.cpu_seconds_optimize);
+            OptimizeOptions repair = s.optimizer;
+            repair.bad_quality = std::max(repair.bad_quality, repair.target_quality);
+            improve_bad_elements(s.mesh, *s.volume_field, repair);
+        }
+    }
+    if (!s.mesh.has_adjacency()) s.mesh.build_adjacency();
+}
+
+}  // namespace
+
 AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& options)
 {
-    AdaptReport report;
     const Stopwatch clock;
+    AdaptState state(mesh, field, options);
     if (!mesh.has_adjacency()) mesh.build_adjacency();
-    if (options.refine || options.surface)
-    {
-        // A size far below the model's scale would run until memory is gone.
-        const double expected = expected_tet_count(mesh, field);
-        if (!(expected <= kMaxTets))
-        {
-            char text[200];
-            std::snprintf(text, sizeof text,
-                          "the size field asks for about %.3g tets, more than the %.3g a mesh "
-                          "can hold: the size is far below the model's scale",
-                          expected, kMaxTets);
-            throw InputError(text);
-        }
-    }
-
-    // One classification of the input boundary, given to both meshes before either model is
-    // built from it.
-    std::optional<BoundaryMap> input;  // its surface is the model's; its tet ids go stale
-    surface::SurfaceRemeshSettings settings;
-    if (options.surface && options.project)  // no projection: the polyhedron is kept
-    {
-        const StageTimer timer(report.seconds_surface, report.cpu_seconds_surface);
-        report.surface_refusal = coupled_surface_refusal(mesh);
-        if (report.surface_refusal.empty() && mesh.num_live_tets() > 0)
-        {
-            input = extract_boundary(mesh);
-            settings = surface_settings(input->surface, field, options);
-            surface::detect_features(input->surface, surface::feature_options(settings));
-            write_back(*input, mesh);
-        }
-    }
-
-    std::unique_ptr<BoundaryProjector> projector;
-    if (options.project)
-    {
-        const StageTimer timer(report.seconds_project, report.cpu_seconds_project);
-        projector = std::make_unique<BoundaryProjector>(mesh, options.projection);
-    }
-
-    if (options.verbosity >= 2) std::cout << kPassHeader;
-
-    // Refinement passes, each followed by projection and local repair, until no edge is too
-    // long (or they stall, or reach the cap).
-    auto refine_to_field = [&](const SizeField& target) {
-        report.converged = !options.refine;
-        report.stalled = false;
-        const int first = static_cast<int>(report.passes.size()) + 1;
-        for (int pass = first; options.refine && pass < first + options.max_passes; ++pass)
-        {
-            AdaptPassReport row;
-            row.pass = pass;
-            const Stopwatch pass_clock;
-
-            RefinePassResult refined;
-            {
-                const StageTimer timer(report.seconds_refine, report.cpu_seconds_refine);
-                refined = refine_pass(mesh, target);
-            }
-            row.edges_split = refined.report.edges_split;
-            if (row.edges_split == 0)
-            {
-                report.converged = true;
-                break;
-            }
-
-            if (projector)
-            {
-                const StageTimer timer(report.seconds_project, report.cpu_seconds_project);
-                const ProjectionReport moved =
-                    projector->project(mesh, refined.new_boundary_vertices);
-                row.projected = moved.projected;
-                row.shortened = moved.shortened;
-            }
-            if (options.optimize)
-            {
-                const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-                row.min_quality =
-                    improve_bad_elements(mesh, target, options.optimizer).min_quality_after;
-            }
-            else
-            {
-                row.min_quality = min_quality(mesh);
-            }
-
-            row.tets = mesh.num_live_tets();
-            row.vertices = mesh.num_vertices();
-            row.seconds = pass_clock.wall_seconds();
-            report.passes.push_back(row);
-            if (options.verbosity >= 2) std::cout << format_pass_row(row) << std::flush;
-            if (options.progress) options.progress("pass " + std::to_string(pass), row.tets);
-            if (options.verbosity >= 1 && isatty(STDERR_FILENO))
-                std::fprintf(stderr, "\radapt: pass %d, %d tets", pass, row.tets);
-            // A few splits a pass that no longer decrease: the long edges left are where a split
-            // does not shorten them (beside a kept triangle longer than the size); more passes only
-            // stack slivers there.
-            // (this call's passes only: the second call follows a surface pass, not these)
-            const int n = static_cast<int>(report.passes.size());
-            if (n - first + 1 > kStallPasses &&
-                row.edges_split <= kStallFraction * static_cast<double>(mesh.num_live_tets()) &&
-                row.edges_split >= report.passes[n - 1 - kStallPasses].edges_split)
-            {
-                report.stalled = true;
-                break;
-            }
-        }
-    };
-    refine_to_field(field);
-
-    if (options.verbosity >= 1 && isatty(STDERR_FILENO) && !report.passes.empty())
-        std::fprintf(stderr, "\radapt: surface and final optimization...\n");
-
-    // The surface pass on the input's model, once the tets are at the field's size near the
-    // boundary: the tets follow every change (the mirror).
-    std::optional<surface::SurfaceModel> surface_model;  // the surface pass's, kept for the
-                                                         // splits after it
-    std::unique_ptr<BackgroundMeshSize> graded;
-    const SizeField* volume_field = &field;
-    // One surface pass: the boundary remeshed with the tets mirrored, then the volume's sizes
-    // graded from what the surface reached. Its triangle count.
-    auto surface_pass = [&] {
-        const StageTimer timer(report.seconds_surface, report.cpu_seconds_surface);
-        mesh.compact();
-        if (!mesh.has_adjacency()) mesh.build_adjacency();
-        BoundaryMap boundary = extract_boundary(mesh);
-        if (!surface_model)
-        {
-            report.surface_triangles_before = static_cast<int>(input->surface.n_faces());
-            settings.model_surface = &input->surface;
-            // One model on both sides: smooth vertices go onto the projection's HDI surface
-            // where the input's facets are too coarse for the tolerance, trusted as far from
-            // their chords as those are from the smooth surface; elsewhere the facets are the
-            // finer model.
-            surface_model.emplace(input->surface);
-            surface::attach_hdi_projection(
-                *surface_model, projector->model(),
-                surface::coarse_input_options(
-                    settings.hdi_projection,
-                    surface::distance_tolerance(settings,
-                                                surface::bounding_box_diagonal(input->surface))));
-            settings.model = &*surface_model;
-        }
-        const surface::SurfaceHooks hooks =
-            make_hooks(mesh, boundary, options.mirror, &report.mirror);
-        surface::remesh_surface(boundary.surface, settings, hooks);
-        // The splits the refinement still makes on the boundary land on the same model.
-        projector->set_surface_target([&model = *surface_model](const Vec3& p) {
-            const surface::ProjectedPoint q = model.project(
-                surface::Vec3d(p[0], p[1], p[2]), surface::VertexClass::Smooth, surface::kNoCurve);
-            return q.ok ? std::optional<Vec3>(Vec3(q.point[0], q.point[1], q.point[2]))
-                        : std::nullopt;
-        });
-        write_back(boundary, mesh);
-        // The sizes the surface reached (the field's, or finer where the tolerance asked),
-        // by tet vertex across the compaction.
-        std::vector<double> surface_size(mesh.num_vertices(), 0.0);
-        const surface::SurfaceProperties props(boundary.surface);
-        for (auto v : boundary.surface.vertices())
-            surface_size[boundary.tet_vertex_of(v)] =
-                boundary.surface.property(props.vertex_size, v);
-        const CompactionMaps maps = mesh.compact();
-        report.surface_remeshed = true;
-        // The volume grades from the boundary's sizes to the field's (Mmg's hgrad) where the
-        // tolerance made them finer than the field's band, so the tets between that boundary
-        // and a coarse interior keep their shape.
-        std::vector<double> sizes = sample_vertex_sizes(mesh, field);
-        bool finer = false;
-        for (std::size_t old = 0; old < maps.old2new_verts.size(); ++old)
-        {
-            const int v = maps.old2new_verts[old];
-            // (within the field's band the tets keep the field: its edges are not too short)
-            if (v < 0 || !(surface_size[old] > 0.0) ||
-                !(surface_size[old] < kSizeQualityThreshold * sizes[v]))
-                continue;
-            sizes[v] = surface_size[old];
-            finer = true;
-        }
-        volume_field = &field;
-        graded.reset();
-        if (finer)
-        {
-            grade_vertex_sizes(mesh, sizes, std::max(1.0, settings.sizing.hgrad));
-            graded = std::make_unique<BackgroundMeshSize>(mesh, std::move(sizes));
-            volume_field = graded.get();
-        }
-        return static_cast<int>(mesh.triangles.size());
-    };
-    // The surface pass, then the volume's splits to the graded field, until the volume leaves
-    // the boundary (nearly) as the surface pass made it: its splits of the edges the pass left
-    // too long change it, the optimization after does not.
-    for (int round = 0; input && round < kSurfaceRounds; ++round)
-    {
-        if (options.progress) options.progress("surface", mesh.num_live_tets());
-        const int remeshed = surface_pass();
-        ++report.surface_passes;
-        // The surface's bands and the refills may leave a few edges too long on either side.
-        refine_to_field(*volume_field);
-        report.surface_triangles_after = static_cast<int>(mesh.triangles.size());
-        if (report.surface_triangles_after - remeshed <= kSurfaceRepeatFraction * remeshed) break;
-    }
-
-    // the final optimization, then the moves the guard had shortened
-    if (options.optimize)
-    {
-        if (options.progress) options.progress("optimize", mesh.num_live_tets());
-        const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-        mesh.compact();  // renumbering needs a compact mesh; the passes leave it so, this makes
-                         // sure
-        renumber_spatially(mesh);
-        optimize_mesh(mesh, *volume_field, options.optimizer);
-    }
-    // After a surface pass the boundary lies on the model already; else the refinement's
-    // shortened moves are left to finish.
-    if (projector && !report.surface_remeshed)
-    {
-        {
-            const StageTimer timer(report.seconds_project, report.cpu_seconds_project);
-            report.final_projection = projector->project_all(mesh);
-        }
-        if (options.optimize &&
-            report.final_projection.shortened + report.final_projection.projected > 0)
-        {
-            const StageTimer timer(report.seconds_optimize, report.cpu_seconds_optimize);
-            // the moved boundary vertices reshape tets the final optimization had lifted above
-            // its target: bring them back there, not only above the passes' "bad" threshold
-            OptimizeOptions repair = options.optimizer;
-            repair.bad_quality = std::max(repair.bad_quality, repair.target_quality);
-            improve_bad_elements(mesh, *volume_field, repair);
-        }
-    }
-    if (!mesh.has_adjacency()) mesh.build_adjacency();
-    report.seconds_total = clock.wall_seconds();
-    report.cpu_seconds_total = clock.cpu_seconds();
-    return report;
+    refuse_unreachable_size(state);
+    classify_boundary(state);
+    build_projector(state);
+    if (options.verbosity >= 2) emit(options.messages, MessageKind::Report, "%s", kPassHeader);
+    refine_to_field(state, field);
+    if (options.verbosity >= 1 && !state.report.passes.empty())
+        emit(options.messages, MessageKind::Progress, "adapt: surface and final optimization...\n");
+    if (state.input) build_surface_model(state);
+    for (int round = 0; state.input && round < kSurfaceRounds; ++round)
+        if (!surface_round(state)) break;
+    optimize(state);
+    finish(state);
+    state.report.seconds_total = clock.wall_seconds();
+    state.report.cpu_seconds_total = clock.cpu_seconds();
+    return std::move(state.report);
 }
 
 std::string format_adapt_report(const AdaptReport& report, bool with_passes)

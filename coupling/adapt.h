@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/messages.h"
 #include "coupling/boundary_projection.h"
 #include "coupling/mirror.h"
 #include "surface/remesh_surface.h"
@@ -50,9 +51,11 @@ struct AdaptOptions
     MirrorOptions mirror;
     volume::OptimizeOptions optimizer;
     ProjectionOptions projection;
-    /// 0 silent; 1 progress on stderr when it is a terminal; 2 also a table row per pass on
-    /// stdout as the passes run.
+    /// 0 silent; 1 a progress line per pass; 2 also a table row per pass as the passes run
+    /// (and the optimizer's and surface pass's own lines, at their verbosity).
     int verbosity = 1;
+    /// Where those lines go (Progress and Report messages); empty: nowhere.
+    MessageSink messages;
     /// Told after each refinement pass ("pass 3") and as the surface pass and the final
     /// optimization start, with the live tet count; it may throw to stop the run.
     std::function<void(const std::string& stage, int tets)> progress;

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 #include "common/buffer_io.h"
 #include "common/errors.h"
 #include "coupling/adapt.h"
+#include "coupling/adapt_request.h"
 #include "coupling/mesh_from_surface.h"
 #include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
@@ -250,28 +252,16 @@ std::function<void(const std::string&, int)> progress_callback(const py::object&
     };
 }
 
-coupling::VolumeFromSurfaceOptions volume_options(const volume::SizeSpec& spec, double hausd,
-                                                  bool keep_surface, bool noinsert,
-                                                  bool no_optimize,
-                                                  const coupling::AdaptOptions& adapt)
+/// The library's messages on the C++ streams, as the tools print them; none when silent.
+MessageSink print_messages(int verbose)
 {
-    coupling::VolumeFromSurfaceOptions o;
-    o.sizing.hsiz = spec.hsiz;
-    o.sizing.hausd = hausd;
-    o.sizing.vertex_sizes = spec.vertex_sizes;
-    if (spec.benchmark != 0)
-        o.sizing.field =
-            std::make_shared<volume::BenchmarkSize>(volume::benchmark_case(spec.benchmark));
-    o.sizing.hmin = spec.hmin;
-    o.sizing.hmax = spec.hmax;
-    o.sizing.hgrad = spec.hgrad;
-    o.keep_surface = keep_surface;
-    o.refine = !noinsert;
-    o.optimize = !no_optimize;
-    o.adapt = adapt;
-    o.remesh.features = adapt.surface_settings.features;
-    o.source = "mesh";
-    return o;
+    if (verbose <= 0) return {};
+    return [](MessageKind kind, const std::string& text) {
+        if (kind == MessageKind::Report)
+            std::cout << text << std::flush;
+        else if (kind == MessageKind::Trace)
+            std::cerr << text << std::flush;
+    };
 }
 
 /// adapt(): the app's two pipelines, a tet mesh adapted or a closed surface filled.
@@ -281,54 +271,31 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
                bool nomove, bool optim, bool no_optimize, bool keep_surface, bool strict,
                int max_passes, double ridge_angle, bool no_ridges)
 {
-    TetMesh mesh = to_mesh(m);
-    const volume::SizeSpec spec = size_spec(hsiz, sizes, bench_field, hmin, hmax, hgrad);
-    if (hausd < 0) throw InputError("hausd must be positive");
-    coupling::AdaptOptions options;
-    coupling::AdaptSwitches switches;
-    switches.nosurf = nosurf;
-    switches.noinsert = noinsert;
-    switches.noswap = noswap;
-    switches.nomove = nomove;
-    switches.optim = optim;
-    switches.no_optimize = no_optimize;
-    switches.no_ridges = no_ridges;
-    switches.ridge_angle = ridge_angle;
-    coupling::apply_switches(switches, options);
-    options.verbosity = verbose;
-    options.optimizer.verbosity = verbose;
-    options.max_passes = max_passes;
-    options.progress = progress_callback(progress);
-    options.hausd = hausd;
-    std::vector<std::string> notes;  // what the input's repair changed
+    coupling::AdaptInput input = coupling::adapt_input_from_mesh(to_mesh(m));
+    coupling::AdaptRequest request;
+    request.size = size_spec(hsiz, sizes, bench_field, hmin, hmax, hgrad);
+    request.surface_hgrad = request.size.hgrad;
+    request.hausd = hausd;
+    request.switches.nosurf = nosurf;
+    request.switches.noinsert = noinsert;
+    request.switches.noswap = noswap;
+    request.switches.nomove = nomove;
+    request.switches.optim = optim;
+    request.switches.no_optimize = no_optimize;
+    request.switches.no_ridges = no_ridges;
+    request.switches.ridge_angle = ridge_angle;
+    request.keep_surface = keep_surface;
+    request.strict = strict;
+    request.max_passes = max_passes;
+    request.verbosity = verbose;
+    request.messages = print_messages(verbose);
+    request.progress = progress_callback(progress);
+    coupling::AdaptResult result;
     {
         py::gil_scoped_release release;
-        if (mesh.tets.empty())
-        {
-            if (optim) throw InputError("optim needs a tet mesh, not a surface");
-            if (!spec.any() && !(hausd > 0) && !keep_surface)
-                throw InputError("no size field: give hsiz, sizes, hausd or bench_field");
-            const surface::TriangleSoup soup = coupling::triangle_soup(mesh);
-            coupling::VolumeFromSurfaceOptions o =
-                volume_options(spec, hausd, keep_surface, noinsert, no_optimize, options);
-            mesh = coupling::mesh_volume_from_surface(soup, o, nullptr);
-        }
-        else
-        {
-            if (keep_surface) throw InputError("keep_surface applies to a surface input");
-            notes = volume::prepare_tet_input(mesh, "mesh", strict);
-            if (!spec.any() && !optim)
-                throw InputError("no size field: give hsiz, sizes or bench_field (or optim=True)");
-            const auto field = volume::make_size_field(spec, mesh);
-            coupling::adapt(mesh, *field, options);
-        }
-        if (const auto violations = volume::check_mesh(mesh); !violations.empty())
-            throw Error("adaptation produced an invalid mesh:\n" +
-                        volume::format_violations(violations));
+        result = coupling::run_adapt(std::move(input), request);
     }
-    if (verbose > 0)
-        for (const std::string& line : notes) py::print("hdimesh.adapt: mesh:", line);
-    return from_mesh(std::move(mesh));
+    return from_mesh(std::move(result.mesh));
 }
 
 }  // namespace

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "common/stage_timer.h"
@@ -71,8 +70,8 @@ public:
         for (int k = 0; k < kNumOperators; ++k) report_.operators.push_back({kOperatorNames[k]});
         report_.min_quality_before = summarize_quality(mesh_, context_).min;
         if (options_.verbosity >= 2)
-            std::printf("%-6s %-20s %10s %10s %9s %9s %9s\n", "sweep", "operator", "attempts",
-                        "successes", "min Qe", "%Qe>=0.5", "time(s)");
+            emit(options_.messages, MessageKind::Report, "%-6s %-20s %10s %10s %9s %9s %9s\n",
+                 "sweep", "operator", "attempts", "successes", "min Qe", "%Qe>=0.5", "time(s)");
     }
 
     /// Collapses too-short edges with a free endpoint, shortest (relative to the size) first,
@@ -313,8 +312,8 @@ public:
         report_.min_quality_after = summarize_quality(mesh_, context_).min;
         mesh_.compact();
         if (options_.verbosity >= 2)
-            std::printf("min Qe %.4f -> %.4f after %d sweeps\n", report_.min_quality_before,
-                        report_.min_quality_after, report_.sweeps);
+            emit(options_.messages, MessageKind::Report, "min Qe %.4f -> %.4f after %d sweeps\n",
+                 report_.min_quality_before, report_.min_quality_after, report_.sweeps);
         return report_;
     }
 
@@ -500,11 +499,10 @@ private:
             const long attempts = report_.operators[k].attempts - before[k][0];
             const long successes = report_.operators[k].successes - before[k][1];
             if (attempts == 0) continue;
-            std::printf("%-6s %-20s %10ld %10ld %9.4f %8.2f%% %9.3f\n", label.c_str(),
-                        kOperatorNames[k], attempts, successes, q.min, 100.0 * q.fraction_good,
-                        report_.operators[k].seconds);
+            emit(options_.messages, MessageKind::Report,
+                 "%-6s %-20s %10ld %10ld %9.4f %8.2f%% %9.3f\n", label.c_str(), kOperatorNames[k],
+                 attempts, successes, q.min, 100.0 * q.fraction_good, report_.operators[k].seconds);
         }
-        std::fflush(stdout);
     }
 
     TetMesh& mesh_;

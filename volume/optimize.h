@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/messages.h"
 #include "volume/size_field.h"
 #include "volume/tet_mesh.h"
 
@@ -27,8 +28,9 @@ struct OptimizeOptions
     double target_quality = 0.5;        ///< optimize_mesh works on every tet below this
     double collapse_min_quality = 0.3;  ///< a collapse may not create a tet worse than this
     int max_sweeps = 10;
-    int verbosity = 0;  ///< 2: per-sweep table on stdout (operator, attempts, successes, min Qe, %
-                        ///< Qe>=0.5, time)
+    int verbosity = 0;  ///< 2: a per-sweep table (operator, attempts, successes, min Qe, %
+                        ///< Qe>=0.5, time) to `messages`, as Report lines
+    MessageSink messages;
 };
 
 struct OperatorStats

@@ -1,0 +1,152 @@
+#include "coupling/adapt_request.h"
+
+#include "common/buffer_io.h"
+#include "common/errors.h"
+#include "common/sol_io.h"
+#include "volume/boundary_repair.h"
+#include "volume/check.h"
+#include "volume/quality_report.h"
+#include "volume/size_fields.h"
+#include "volume/tet_io.h"
+
+namespace hdimesh::coupling
+{
+
+namespace
+{
+
+/// The adaptation's options as the request's switches and verbosity ask.
+AdaptOptions adapt_options(const AdaptRequest& request)
+{
+    AdaptOptions options;
+    apply_switches(request.switches, options);
+    options.verbosity = request.verbosity;
+    options.optimizer.verbosity = request.verbosity;
+    options.max_passes = request.max_passes;
+    options.progress = request.progress;
+    options.messages = request.messages;
+    return options;
+}
+
+/// The surface's sizes and the fill's settings; its volume is then adapted with `options`.
+VolumeFromSurfaceOptions fill_options(const AdaptRequest& request, const AdaptOptions& options,
+                                      int points)
+{
+    const volume::SizeSpec& size = request.size;
+    if (!size.any() && request.sol.empty() && !(request.hausd > 0) && !request.keep_surface &&
+        !request.bounds_given)
+        throw InputError(
+            "no size field: give hsiz, sol (sizes at the vertices), hausd or bench_field (or "
+            "keep_surface)");
+    VolumeFromSurfaceOptions o;
+    o.sizing.hsiz = size.hsiz;
+    o.sizing.hausd = request.hausd;
+    o.sizing.vertex_sizes =
+        request.sol.empty() ? size.vertex_sizes : read_sol_sizes(request.sol, points);
+    if (size.benchmark != 0)
+        o.sizing.field =
+            std::make_shared<volume::BenchmarkSize>(volume::benchmark_case(size.benchmark));
+    o.sizing.hmin = size.hmin;
+    o.sizing.hmax = size.hmax;
+    o.sizing.hgrad = request.surface_hgrad;
+    o.keep_surface = request.keep_surface;
+    o.refine = !request.switches.noinsert;
+    o.optimize = !request.switches.no_optimize;
+    o.adapt = options;
+    o.remesh.features = options.surface_settings.features;
+    o.source = request.source;
+    return o;
+}
+
+AdaptResult fill_surface(const surface::TriangleSoup& soup, const AdaptRequest& request,
+                         const AdaptOptions& options)
+{
+    if (request.switches.optim) throw InputError("optim needs a tet mesh, not a surface");
+    const VolumeFromSurfaceOptions o =
+        fill_options(request, options, static_cast<int>(soup.points.size()));
+    VolumeFromSurfaceReport report;
+    AdaptResult result;
+    result.mesh = mesh_volume_from_surface(soup, o, &report);
+    result.field = report.field;
+    if (request.verbosity >= 1)
+        emit(request.messages, MessageKind::Report, "input %s (a surface)\n%s",
+             request.source.c_str(), format_volume_from_surface_report(report).c_str());
+    return result;
+}
+
+AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptOptions options)
+{
+    if (request.keep_surface) throw InputError("keep_surface applies to a surface input");
+    options.hausd = request.hausd;
+    AdaptResult result;
+    result.repairs = volume::prepare_tet_input(mesh, request.source, request.strict);
+    for (const std::string& line : result.repairs)
+        emit(request.messages, MessageKind::Trace, "adapt: %s: %s\n", request.source.c_str(),
+             line.c_str());
+    if (request.check && request.verbosity >= 1)
+        emit(request.messages, MessageKind::Report, "check input: clean\n");
+    const bool own_sizes = !request.size.any() && request.sol.empty() && request.bounds_given;
+    if (!request.size.any() && request.sol.empty() && !own_sizes && !request.switches.optim)
+        throw InputError("no size field: give hsiz, sol (sizes at the vertices) or bench_field "
+                         "(or optim)");
+    volume::SizeSpec spec = request.size;
+    if (!request.sol.empty()) spec.vertex_sizes = read_sol_sizes(request.sol, mesh.num_vertices());
+    result.field = volume::make_size_field(spec, mesh);
+    if (request.verbosity >= 1)
+        emit(request.messages, MessageKind::Report, "input %s\n%s", request.source.c_str(),
+             volume::format_quality_table(volume::compute_quality_report(mesh, result.field.get()))
+                 .c_str());
+    const AdaptReport report = adapt(mesh, *result.field, options);
+    // -v 1 is a summary; at -v 2 the pass rows were reported as they ran
+    if (request.verbosity >= 1)
+        emit(request.messages, MessageKind::Report, "%s",
+             format_adapt_report(report, false).c_str());
+    result.mesh = std::move(mesh);
+    return result;
+}
+
+}  // namespace
+
+AdaptInput read_adapt_input(const std::string& path)
+{
+    AdaptInput input;
+    const std::string ext = io::lower_extension(path);
+    if (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply")
+    {
+        input.surface = surface::read_triangle_soup(path);
+        input.is_surface = true;
+        return input;
+    }
+    return adapt_input_from_mesh(volume::read_mesh(path));
+}
+
+AdaptInput adapt_input_from_mesh(volume::TetMesh mesh)
+{
+    AdaptInput input;
+    if (mesh.num_live_tets() > 0 || mesh.triangles.empty())
+    {
+        input.mesh = std::move(mesh);
+        return input;
+    }
+    input.surface = triangle_soup(mesh);
+    input.is_surface = true;
+    return input;
+}
+
+AdaptResult run_adapt(AdaptInput input, const AdaptRequest& request)
+{
+    if (!(request.hausd >= 0)) throw InputError("hausd must be positive");
+    const AdaptOptions options = adapt_options(request);
+    AdaptResult result = input.is_surface ? fill_surface(input.surface, request, options)
+                                          : adapt_tets(std::move(input.mesh), request, options);
+    const auto violations = volume::check_mesh(result.mesh);
+    if (request.check && request.verbosity >= 1)
+        emit(request.messages, MessageKind::Report, "check output: %s%s",
+             violations.empty() ? "clean\n" : "\n", volume::format_violations(violations).c_str());
+    if (!violations.empty())
+        throw Error("adaptation produced an invalid mesh:\n" +
+                    volume::format_violations(violations));
+    return result;
+}
+
+}  // namespace hdimesh::coupling

@@ -1,0 +1,75 @@
+#pragma once
+// The front door: one call that takes what a user hands adapt (a tet mesh, or a closed surface
+// to fill) and a request stated as Mmg's options, checks that a size is given, mends a tet
+// input, adapts or fills, and checks the result. The command-line tool and the Python module
+// both call it, so the two read the same request the same way.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/messages.h"
+#include "coupling/adapt.h"
+#include "coupling/mesh_from_surface.h"
+#include "surface/surface_io.h"
+#include "volume/size_field.h"
+#include "volume/size_spec.h"
+#include "volume/tet_mesh.h"
+
+namespace hdimesh::coupling
+{
+
+/// A tet mesh, or a surface whose volume is to be filled (is_surface).
+struct AdaptInput
+{
+    volume::TetMesh mesh;           ///< the tets (unused for a surface)
+    surface::TriangleSoup surface;  ///< the surface's triangles
+    bool is_surface = false;
+};
+
+/// A surface format by extension (.obj .off .stl .ply) or a mesh file with triangles and no
+/// tets is a surface; any other mesh file is a tet mesh. Throws InputError/IoError naming path.
+AdaptInput read_adapt_input(const std::string& path);
+
+/// A mesh with tets as a tet input; with triangles only, as a surface.
+AdaptInput adapt_input_from_mesh(volume::TetMesh mesh);
+
+/// What the user asked for, in Mmg's terms.
+struct AdaptRequest
+{
+    /// The sizes as stated (hsiz, sizes at the input's vertices, a benchmark case; hmin, hmax,
+    /// hgrad > 1 or 0 for none).
+    volume::SizeSpec size;
+    std::string sol;  ///< non-empty: a .sol/.solb with the sizes at the input's vertices
+    /// A distance bound, hmin, hmax or hgrad was given: with no size, a tet input keeps its own
+    /// sizes within them (Mmg grades the boundary's curvature sizes inward instead).
+    bool bounds_given = false;
+    /// A surface input's gradation as given (0: the remesher's default, <= 1: none).
+    double surface_hgrad = 0;
+    double hausd = 0;  ///< > 0: the boundary's distance bound to the input
+    AdaptSwitches switches;
+    bool keep_surface = false;  ///< a surface input's triangles are the boundary, exactly
+    bool strict = false;        ///< a tet input's triangles refused, not mended
+    int max_passes = 40;        ///< refinement passes at most
+    int verbosity = 1;          ///< 0 silent, 1 a summary, 2 a table per pass
+    /// Where the report lines (Report), the input's repairs (Trace) and progress go.
+    MessageSink messages;
+    std::function<void(const std::string& stage, int tets)> progress;  ///< may throw to stop
+    bool check = false;         ///< report the checker's verdict on the input and output
+    std::string source = "mesh";  ///< the input's name in messages
+};
+
+struct AdaptResult
+{
+    volume::TetMesh mesh;  ///< valid (check_mesh clean)
+    /// The field it was adapted to (the surface's sizes carried into the volume for a surface)
+    std::shared_ptr<const volume::SizeField> field;
+    std::vector<std::string> repairs;  ///< what mending a tet input changed, one line each
+};
+
+/// Adapts a tet input to the request, or fills a surface input's volume. Throws InputError
+/// when no size is given or a value is invalid, and Error when the result is not valid.
+AdaptResult run_adapt(AdaptInput input, const AdaptRequest& request);
+
+}  // namespace hdimesh::coupling
