@@ -276,6 +276,8 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
     request.size = size_spec(hsiz, sizes, bench_field, hmin, hmax, hgrad);
     request.surface_hgrad = request.size.hgrad;
     request.hausd = hausd;
+    // as the app: a tet mesh given only bounds or hausd keeps its own sizes within them
+    request.bounds_given = hausd > 0 || hmin > 0 || hmax > 0 || hgrad > 0;
     request.switches.nosurf = nosurf;
     request.switches.noinsert = noinsert;
     request.switches.noswap = noswap;

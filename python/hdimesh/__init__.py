@@ -217,7 +217,9 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
     ratio between neighbours. A callable is evaluated in batches, never once per point: at the
     vertices of the mesh, which is then adapted to those sizes; repeated on the result (at most
     ``size_rounds`` times, as Mmg users iterate) until 99 % of the edges conform to the
-    callable at their midpoints. ``hausd`` bounds the boundary's distance to the input.
+    callable at their midpoints. ``hausd`` bounds the boundary's distance to the input. As
+    with the app, a tet mesh given no size but ``hausd``, ``hmin``, ``hmax`` or ``hgrad`` keeps
+    its own sizes within them.
 
     The switches are the app's: ``nosurf`` (keep the boundary, only split and projected),
     ``noinsert`` (no vertex inserted or removed), ``noswap``, ``nomove``, ``optim`` (optimize only, keep the sizes),

@@ -89,6 +89,16 @@ def test_adapt_matches_the_app(tmp_path):
     assert hdimesh.check(ours) == []
 
 
+def test_bounds_alone_keep_the_input_sizes_as_the_app(tmp_path):
+    """Only hausd and hmax given: the tet mesh keeps its own sizes within them, as `adapt`."""
+    out = tmp_path / "app.mesh"
+    subprocess.run([ADAPT, SPHERE, "-o", str(out), "--hausd", "0.01", "--hmax", "0.3", "-v", "0"],
+                   check=True)
+    ours = hdimesh.adapt(hdimesh.read(SPHERE), hausd=0.01, hmax=0.3)
+    same_mesh(hdimesh.read(out), ours)
+    assert hdimesh.check(ours) == []
+
+
 def test_callable_sizes_in_batches():
     calls = []
 
