@@ -118,8 +118,13 @@ int main(int argc, char** argv)
         request.messages = cli::print_messages();
         request.check = check;
         request.source = input;
-        const coupling::AdaptResult result =
-            coupling::run_adapt(coupling::read_adapt_input(input), request);
+        coupling::AdaptInput in = coupling::read_adapt_input(input);
+        // (the library refuses these too; on the command line they are usage errors)
+        if (keep_surface && !in.is_surface)
+            throw cli::UsageError("--keep-surface applies to a surface input");
+        if (optim_only && in.is_surface)
+            throw cli::UsageError("--optim needs a tet mesh, not a surface");
+        const coupling::AdaptResult result = coupling::run_adapt(std::move(in), request);
 
         const QualityReport quality = compute_quality_report(result.mesh, result.field.get());
         if (verbosity >= 1)

@@ -57,6 +57,7 @@ surface::SurfaceRemeshSettings surface_settings(const surface::SurfaceMesh& boun
                                                 const SizeField& field, const AdaptOptions& options)
 {
     surface::SurfaceRemeshSettings settings = options.surface_settings;
+    settings.features = options.features;
     auto size = [&field](const surface::Vec3d& p) { return field.size(Vec3(p[0], p[1], p[2])); };
     double lo = std::numeric_limits<double>::max(), hi = 0.0;
     for (auto v : boundary.vertices())
@@ -96,12 +97,8 @@ void apply_switches(const AdaptSwitches& switches, AdaptOptions& options)
     options.surface_settings.move = !switches.nomove;
     options.optimizer.split = insert;
     options.optimizer.collapse = insert;  // a collapse removes a vertex
-    for (hdi::FeatureOptions* features :
-         {&options.surface_settings.features, &options.projection.features})
-    {
-        features->detect_ridges = !switches.no_ridges;
-        features->ridge_angle_deg = switches.ridge_angle;
-    }
+    options.features.detect_ridges = !switches.no_ridges;
+    options.features.ridge_angle_deg = switches.ridge_angle;
 }
 
 namespace
@@ -129,9 +126,9 @@ struct AdaptState
     /// ids go stale); empty when there is no surface pass
     std::optional<BoundaryMap> input;
     surface::SurfaceRemeshSettings settings;  ///< the surface pass's
+    /// The input boundary's model (HDI, and the surface pass's), built once for both meshes
+    std::unique_ptr<BoundaryModel> model;
     std::unique_ptr<BoundaryProjector> projector;
-    /// The surface pass's model, kept for the refinement's splits after it
-    std::optional<surface::SurfaceModel> surface_model;
     AdaptReport report;
 };
 
@@ -168,7 +165,9 @@ void build_projector(AdaptState& s)
 {
     if (!s.options.project) return;
     const StageTimer timer(s.report.seconds_project, s.report.cpu_seconds_project);
-    s.projector = std::make_unique<BoundaryProjector>(s.mesh, s.options.projection);
+    s.model =
+        std::make_unique<BoundaryModel>(s.mesh, s.options.features, s.options.projection.model);
+    s.projector = std::make_unique<BoundaryProjector>(*s.model, s.options.projection);
 }
 
 /// One refinement pass: split, project the new boundary vertices, repair around them.
@@ -257,13 +256,9 @@ void build_surface_model(AdaptState& s)
     const surface::SurfaceMesh& input = s.input->surface;
     s.report.surface_triangles_before = static_cast<int>(input.n_faces());
     s.settings.model_surface = &input;
-    s.surface_model.emplace(input);
-    surface::attach_hdi_projection(
-        *s.surface_model, s.projector->model(),
-        surface::coarse_input_options(
-            s.settings.hdi_projection,
-            surface::distance_tolerance(s.settings, surface::bounding_box_diagonal(input))));
-    s.settings.model = &*s.surface_model;
+    s.settings.model = &s.model->build_surface_model(
+        input, s.settings.hdi_projection,
+        surface::distance_tolerance(s.settings, surface::bounding_box_diagonal(input)));
 }
 
 /// The boundary remeshed on the input's model, every change mirrored into the tets; the
@@ -277,11 +272,7 @@ std::vector<double> remesh_boundary(AdaptState& s)
     const surface::SurfaceHooks hooks =
         make_hooks(s.mesh, boundary, s.options.mirror, &s.report.mirror);
     surface::remesh_surface(boundary.surface, s.settings, hooks);
-    s.projector->set_surface_target([&model = *s.surface_model](const Vec3& p) {
-        const surface::ProjectedPoint q = model.project(
-            surface::Vec3d(p[0], p[1], p[2]), surface::VertexClass::Smooth, surface::kNoCurve);
-        return q.ok ? std::optional<Vec3>(Vec3(q.point[0], q.point[1], q.point[2])) : std::nullopt;
-    });
+    s.model->place_on_surface_model();
     write_back(boundary, s.mesh);
     std::vector<double> surface_size(s.mesh.num_vertices(), 0.0);
     const surface::SurfaceProperties props(boundary.surface);

@@ -48,6 +48,9 @@ struct AdaptOptions
     /// The surface pass's settings; its sizes (hsiz, or the field itself) and hausd come from
     /// the field and `hausd`.
     surface::SurfaceRemeshSettings surface_settings;
+    /// The boundary's features, found once for both meshes: the HDI model's and the surface
+    /// pass's (surface_settings.features is set from it).
+    hdi::FeatureOptions features;
     MirrorOptions mirror;
     volume::OptimizeOptions optimizer;
     ProjectionOptions projection;

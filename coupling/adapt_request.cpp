@@ -53,7 +53,7 @@ VolumeFromSurfaceOptions fill_options(const AdaptRequest& request, const AdaptOp
     o.refine = !request.switches.noinsert;
     o.optimize = !request.switches.no_optimize;
     o.adapt = options;
-    o.remesh.features = options.surface_settings.features;
+    o.remesh.features = options.features;
     o.source = request.source;
     return o;
 }
@@ -87,8 +87,9 @@ AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptO
         emit(request.messages, MessageKind::Report, "check input: clean\n");
     const bool own_sizes = !request.size.any() && request.sol.empty() && request.bounds_given;
     if (!request.size.any() && request.sol.empty() && !own_sizes && !request.switches.optim)
-        throw InputError("no size field: give hsiz, sol (sizes at the vertices) or bench_field "
-                         "(or optim)");
+        throw InputError(
+            "no size field: give hsiz, sol (sizes at the vertices) or bench_field "
+            "(or optim)");
     volume::SizeSpec spec = request.size;
     if (!request.sol.empty()) spec.vertex_sizes = read_sol_sizes(request.sol, mesh.num_vertices());
     result.field = volume::make_size_field(spec, mesh);

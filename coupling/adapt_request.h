@@ -56,7 +56,7 @@ struct AdaptRequest
     /// Where the report lines (Report), the input's repairs (Trace) and progress go.
     MessageSink messages;
     std::function<void(const std::string& stage, int tets)> progress;  ///< may throw to stop
-    bool check = false;         ///< report the checker's verdict on the input and output
+    bool check = false;           ///< report the checker's verdict on the input and output
     std::string source = "mesh";  ///< the input's name in messages
 };
 

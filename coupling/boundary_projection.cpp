@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <unordered_map>
 
 #include "volume/tet_topology.h"
 
@@ -40,49 +39,6 @@ double shortest_edge(const TetMesh& mesh, const std::vector<int>& ball, int v)
 
 }  // namespace
 
-BoundaryProjector::BoundaryProjector(const TetMesh& mesh, const ProjectionOptions& options)
-    : options_(options)
-{
-    // the model's nodes are the boundary vertices, renumbered densely
-    std::unordered_map<int, int> mesh2model;
-    std::vector<hdi::Vec3> points;
-    auto model_id = [&](int v) {
-        auto [it, inserted] = mesh2model.emplace(v, static_cast<int>(points.size()));
-        if (inserted) points.push_back(mesh.points[v]);
-        return it->second;
-    };
-    std::vector<std::array<int, 3>> triangles;
-    triangles.reserve(mesh.triangles.size());
-    for (const auto& tri : mesh.triangles)
-        triangles.push_back({model_id(tri[0]), model_id(tri[1]), model_id(tri[2])});
-
-    // features: detected on the input by the surface's rules (borders between triangle refs
-    // included), plus the ridges and corners the file declares
-    const std::vector<int> no_refs;
-    const std::vector<int>& refs =
-        mesh.triangle_refs.size() == mesh.triangles.size() ? mesh.triangle_refs : no_refs;
-    hdi::FeatureSet features =
-        hdi::feature_set(hdi::classify_features(points, triangles, options.features, {}, refs));
-    for (int e : mesh.ridges)
-    {
-        const auto& edge = mesh.edges[e];
-        auto a = mesh2model.find(edge[0]), b = mesh2model.find(edge[1]);
-        if (a != mesh2model.end() && b != mesh2model.end())
-            features.ridge_edges.push_back({a->second, b->second});
-    }
-    for (int v : mesh.corners)
-        if (auto it = mesh2model.find(v); it != mesh2model.end())
-            features.corners.push_back(it->second);
-    std::sort(features.corners.begin(), features.corners.end());
-    features.corners.erase(std::unique(features.corners.begin(), features.corners.end()),
-                           features.corners.end());
-
-    model_ = std::make_unique<hdi::HdiSurface>(std::move(points), std::move(triangles), features,
-                                               options.model);
-}
-
-BoundaryProjector::~BoundaryProjector() = default;
-
 ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int>& vertices) const
 {
     ProjectionReport report;
@@ -96,19 +52,9 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
         if (seeds[v] < 0) continue;  // a vertex no tet uses has nothing to keep valid
         vertex_ball(mesh, seeds[v], v, ball);
         const Vec3 from = mesh.points[v];
-        hdi::Projection target;
-        const bool exact = cls == VertexClass::Surface && static_cast<bool>(surface_target_);
-        if (exact)
-        {
-            const std::optional<Vec3> to = surface_target_(from);
-            target.point = to.value_or(from);
-            target.status = to ? hdi::ProjectionStatus::Ok : hdi::ProjectionStatus::Failed;
-        }
-        else
-        {
-            target =
-                cls == VertexClass::Ridge ? model_->project_to_ridge(from) : model_->project(from);
-        }
+        const BoundaryFoot foot = model_.project(from, cls);
+        const hdi::Projection& target = foot.target;
+        const bool exact = foot.exact;
         // (the far-move test guards against a fit gone wrong, not the target's exact foot)
         if (target.status == hdi::ProjectionStatus::Failed ||
             (!exact && (target.point - from).norm() >

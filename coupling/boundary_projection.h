@@ -1,15 +1,11 @@
 #pragma once
-// Keeps the boundary vertices of a tet mesh on the HDI model of the input boundary (paper §4):
-// the model is built once from the input's boundary triangles; after every refinement pass
-// the new boundary vertices are projected onto it, never inverting a tet.
+// Keeps the boundary vertices of a tet mesh on the model of the input boundary (paper §4,
+// coupling/boundary_model.h): after every refinement pass the new boundary vertices are
+// projected onto it, never inverting a tet.
 
-#include <functional>
-#include <memory>
-#include <optional>
 #include <vector>
 
-#include "hdi/features.h"
-#include "hdi/hdi_surface.h"
+#include "coupling/boundary_model.h"
 #include "volume/tet_mesh.h"
 
 namespace hdimesh::coupling
@@ -17,8 +13,7 @@ namespace hdimesh::coupling
 
 struct ProjectionOptions
 {
-    hdi::HdiOptions model;         ///< the meshfree model's neighbours, weights, tolerances
-    hdi::FeatureOptions features;  ///< feature detection on the input boundary (as the surface's)
+    hdi::HdiOptions model;  ///< the meshfree model's neighbours, weights, tolerances
     /// A move that would push a tet's quality below this is shortened (halved until valid).
     double min_quality_after_move = 1e-3;
     int max_halvings = 6;
@@ -37,14 +32,15 @@ struct ProjectionReport
     double max_remaining_distance = 0;  ///< of the shortened vertices, from the model
 };
 
-/// The input boundary's meshfree model, and the guarded projection of tet-mesh vertices onto it.
+/// The guarded projection of tet-mesh vertices onto the boundary's model.
 class BoundaryProjector
 {
 public:
-    /// Builds the model from mesh.triangles (all boundary and interface triangles), with the
-    /// mesh's ridges and corners as features plus those hdi::classify_features finds.
-    BoundaryProjector(const volume::TetMesh& mesh, const ProjectionOptions& options = {});
-    ~BoundaryProjector();
+    /// `model` must outlive the projector.
+    BoundaryProjector(const BoundaryModel& model, const ProjectionOptions& options = {})
+        : options_(options), model_(model)
+    {
+    }
 
     /// Moves each listed Surface/Ridge vertex onto the model (Ridge vertices onto the ridge
     /// fit; Corner and Interior vertices are left alone). Vertex balls are walked over the
@@ -54,19 +50,9 @@ public:
     /// Projects every Surface/Ridge vertex of the mesh (finishes earlier shortened moves).
     ProjectionReport project_all(volume::TetMesh& mesh) const;
 
-    const hdi::HdiSurface& model() const { return *model_; }
-
-    /// Where a Surface vertex goes instead of the HDI model (empty optional: nowhere): the
-    /// model a surface pass placed the others on, once it has run (its facets where they are
-    /// finer than the HDI fit), so that later splits land on the same geometry. Its feet are
-    /// taken however far (max_move_fraction guards the fit only); the tets still shorten them.
-    using SurfaceTarget = std::function<std::optional<volume::Vec3>(const volume::Vec3&)>;
-    void set_surface_target(SurfaceTarget target) { surface_target_ = std::move(target); }
-
 private:
     ProjectionOptions options_;
-    std::unique_ptr<hdi::HdiSurface> model_;
-    SurfaceTarget surface_target_;
+    const BoundaryModel& model_;
 };
 
 }  // namespace hdimesh::coupling
