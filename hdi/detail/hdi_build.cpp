@@ -1,7 +1,9 @@
 // The HDI model's build: the input checked, the features normalized, the smooth patches and
 // the per-side node normals, the incidences and the feature lines' search structures.
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <string>
 
