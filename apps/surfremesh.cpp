@@ -169,6 +169,7 @@ int main(int argc, char** argv)
         settings.swap = !noswap;
         settings.move = !nomove;
         settings.verbosity = verbosity > 1 ? verbosity - 1 : 0;
+        settings.messages = cli::print_messages();
         if (has_sol)
             settings.input_sizes = read_sol_sizes(size.sol, static_cast<int>(mesh.n_vertices()));
         if (optim) settings.input_sizes = mean_incident_edge_lengths(mesh);

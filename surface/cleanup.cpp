@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <queue>
 
+#include "common/messages.h"
 #include "surface/detail/local_ops_geometry.h"
 #include "surface/fit_curve_vertex.h"
 #include "surface/surface_quality.h"
@@ -134,8 +134,8 @@ std::size_t Cleanup::collapse_short_keeping_tolerance()
         }
         total += done;
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: budget collapse pass %d: %zu collapses\n", pass + 1,
-                         done);
+            hdimesh::emit(run_.options.messages, hdimesh::MessageKind::Trace,
+                          "remesh: budget collapse pass %d: %zu collapses\n", pass + 1, done);
         if (done == 0) break;
     }
     // The stars of the kept vertices settle: quality flips and smart shifts that keep the
@@ -199,7 +199,8 @@ std::size_t Cleanup::fit_curves()
         }
         moved += done;
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: curve fit sweep %d: %zu moves\n", sweep + 1, done);
+            hdimesh::emit(run_.options.messages, hdimesh::MessageKind::Trace,
+                          "remesh: curve fit sweep %d: %zu moves\n", sweep + 1, done);
         if (done == 0) break;
     }
     report_.shifts += moved;
@@ -301,8 +302,9 @@ void Cleanup::cleanup_worst_triangles(Keep keep)
                 ++changed;
         }
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: cleanup round %d: %zu bad triangles, %zu improved\n",
-                         round + 1, bad.size(), changed);
+            hdimesh::emit(run_.options.messages, hdimesh::MessageKind::Trace,
+                          "remesh: cleanup round %d: %zu bad triangles, %zu improved\n", round + 1,
+                          bad.size(), changed);
         if (changed == 0) break;
         // Let the neighbourhood settle after the topological changes.
         for (const FaceHandle f : bad)
@@ -445,7 +447,8 @@ std::size_t Cleanup::raise_poor_triangles(double quality, Keep keep)
             if (changed) ++done;
         }
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: raise round %d: %zu changes\n", round + 1, done);
+            hdimesh::emit(run_.options.messages, hdimesh::MessageKind::Trace,
+                          "remesh: raise round %d: %zu changes\n", round + 1, done);
         changes += done;
         if (done == 0) break;
     }
@@ -521,9 +524,9 @@ std::size_t Cleanup::repair_small_angles()
         }
         repaired += moved;
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr,
-                         "remesh: angle repair round %d: %zu small-angle triangles, %zu moves\n",
-                         round + 1, bad.size(), moved);
+            hdimesh::emit(run_.options.messages, hdimesh::MessageKind::Trace,
+                          "remesh: angle repair round %d: %zu small-angle triangles, %zu moves\n",
+                          round + 1, bad.size(), moved);
         if (moved == 0) break;
     }
     return repaired;
@@ -564,8 +567,8 @@ void Cleanup::slide_curve_vertices_of_needles()
             }
         }
         if (run_.options.verbosity > 0)
-            std::fprintf(stderr, "remesh: slide round %d: %zu curve vertices slid\n", round + 1,
-                         done);
+            hdimesh::emit(run_.options.messages, hdimesh::MessageKind::Trace,
+                          "remesh: slide round %d: %zu curve vertices slid\n", round + 1, done);
         if (done == 0) break;
     }
 }

@@ -49,6 +49,72 @@ int ring_valence(const SurfaceMesh& mesh, VertexHandle v)
     return count;
 }
 
+namespace
+{
+
+// Whether flipping ab to cd brings the four ring valences nearer their targets.
+bool valence_improves(const SurfaceMesh& mesh, VertexHandle a, VertexHandle b, VertexHandle c,
+                      VertexHandle d)
+{
+    const int va = ring_valence(mesh, a), vb = ring_valence(mesh, b);
+    const int vc = ring_valence(mesh, c), vd = ring_valence(mesh, d);
+    const int ta = target_valence(mesh, a), tb = target_valence(mesh, b);
+    const int tc = target_valence(mesh, c), td = target_valence(mesh, d);
+    const int before =
+        std::abs(va - ta) + std::abs(vb - tb) + std::abs(vc - tc) + std::abs(vd - td);
+    const int after = std::abs(va - 1 - ta) + std::abs(vb - 1 - tb) + std::abs(vc + 1 - tc) +
+                      std::abs(vd + 1 - td);
+    return after < before;
+}
+
+// Whether new triangle t (normal n) follows the model under its centroid within the turn limit.
+bool follows_model(OperatorContext& ctx, const std::array<Vec3d, 3>& t, const Vec3d& n,
+                   VertexHandle near, double min_cos)
+{
+    const ProjectedPoint foot = ctx.model.project_near(
+        (t[0] + t[1] + t[2]) / 3.0, VertexClass::Smooth, kNoCurve, ctx.model_face(near));
+    // (A degenerate input face has no normal: turn_ok_cos would take any turn.)
+    return foot.ok && foot.normal.sqrnorm() > 0.5 && detail::turn_ok_cos(foot.normal, n, min_cos);
+}
+
+// Geometry: neither new triangle turns much, and the pair does not fold more than it was
+// (or than a gently curved surface would).
+bool flip_geometry_ok(OperatorContext& ctx, FlipGoal goal, const std::array<Vec3d, 3>& old0,
+                      const std::array<Vec3d, 3>& old1, const std::array<Vec3d, 3>& new0,
+                      const std::array<Vec3d, 3>& new1, VertexHandle c)
+{
+    using namespace detail;
+    const Vec3d n_old0 = normal(old0), n_old1 = normal(old1), n_new0 = normal(new0),
+                n_new1 = normal(new1);
+    Vec3d n_mean = n_old0 + n_old1;
+    if (n_mean.norm() > 0.0) n_mean.normalize();
+    static const double gentle_fold_cos = cos_deg(20.0);
+    const double min_cos = cos_deg(ctx.limits.max_normal_turn_deg);
+    const bool turns_little =
+        turn_ok_cos(n_mean, n_new0, min_cos) && turn_ok_cos(n_mean, n_new1, min_cos);
+    // A chord across a crease the features dropped folds its pair over the crease; the distance
+    // flip that lays the two triangles onto the crease's two sides turns them a lot, which is the
+    // point of it (the mean of a folded pair's normals is no reference). Then each new triangle
+    // must follow the model under its centroid within the turn limit.
+    const bool across_crease = !turns_little && goal == FlipGoal::Distance &&
+                               follows_model(ctx, new0, n_new0, c, min_cos) &&
+                               follows_model(ctx, new1, n_new1, c, min_cos);
+    return !((!turns_little && !across_crease) ||
+             OpenMesh::dot(n_new0, n_new1) <
+                 std::min(OpenMesh::dot(n_old0, n_old1), gentle_fold_cos) - 1e-12);
+}
+
+// The farthest from the model of an edge's midpoint and its two triangles' centroids.
+double farthest_sample(OperatorContext& ctx, const Vec3d& mid, VertexHandle near,
+                       const std::array<Vec3d, 3>& t0, const std::array<Vec3d, 3>& t1)
+{
+    return std::max({ctx.distance_to_model(mid, near),
+                     ctx.distance_to_model((t0[0] + t0[1] + t0[2]) / 3.0, near),
+                     ctx.distance_to_model((t1[0] + t1[1] + t1[2]) / 3.0, near)});
+}
+
+}  // namespace
+
 OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
 {
     if (!ctx.limits.swap) return refused(OpStatus::Disabled);
@@ -82,21 +148,10 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     // and the reported layer). Valence: four ring counts refuse most edges of a settled mesh;
     // the topology test looks for the flipped edge in a ring. (c and d exist: a boundary
     // edge is a feature.)
-    if (goal == FlipGoal::Valence)
+    if (goal == FlipGoal::Valence && !valence_improves(mesh, a, b, c, d))
     {
-        const int va = ring_valence(mesh, a), vb = ring_valence(mesh, b);
-        const int vc = ring_valence(mesh, c), vd = ring_valence(mesh, d);
-        const int ta = target_valence(mesh, a), tb = target_valence(mesh, b);
-        const int tc = target_valence(mesh, c), td = target_valence(mesh, d);
-        const int before =
-            std::abs(va - ta) + std::abs(vb - tb) + std::abs(vc - tc) + std::abs(vd - td);
-        const int after = std::abs(va - 1 - ta) + std::abs(vb - 1 - tb) + std::abs(vc + 1 - tc) +
-                          std::abs(vd + 1 - td);
-        if (after >= before)
-        {
-            result.status = OpStatus::Quality;
-            return result;
-        }
+        result.status = OpStatus::Quality;
+        return result;
     }
     if (!flip_topology_ok(mesh, e))
     {
@@ -113,31 +168,7 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
         result.status = OpStatus::Quality;
         return result;
     }
-    const Vec3d n_old0 = normal(old0), n_old1 = normal(old1), n_new0 = normal(new0),
-                n_new1 = normal(new1);
-    Vec3d n_mean = n_old0 + n_old1;
-    if (n_mean.norm() > 0.0) n_mean.normalize();
-    // Geometry: neither new triangle turns much, and the pair does not fold more than it was
-    // (or than a gently curved surface would).
-    static const double gentle_fold_cos = cos_deg(20.0);
-    const double min_cos = cos_deg(ctx.limits.max_normal_turn_deg);
-    const bool turns_little =
-        turn_ok_cos(n_mean, n_new0, min_cos) && turn_ok_cos(n_mean, n_new1, min_cos);
-    // A chord across a crease the features dropped folds its pair over the crease; the distance
-    // flip that lays the two triangles onto the crease's two sides turns them a lot, which is the
-    // point of it (the mean of a folded pair's normals is no reference). Then each new triangle
-    // must follow the model under its centroid within the turn limit.
-    auto follows_model = [&](const std::array<Vec3d, 3>& t, const Vec3d& n, VertexHandle near) {
-        const ProjectedPoint foot = ctx.model.project_near(
-            (t[0] + t[1] + t[2]) / 3.0, VertexClass::Smooth, kNoCurve, ctx.model_face(near));
-        // (A degenerate input face has no normal: turn_ok_cos would take any turn.)
-        return foot.ok && foot.normal.sqrnorm() > 0.5 && turn_ok_cos(foot.normal, n, min_cos);
-    };
-    const bool across_crease = !turns_little && goal == FlipGoal::Distance &&
-                               follows_model(new0, n_new0, c) && follows_model(new1, n_new1, c);
-    if ((!turns_little && !across_crease) ||
-        OpenMesh::dot(n_new0, n_new1) <
-            std::min(OpenMesh::dot(n_old0, n_old1), gentle_fold_cos) - 1e-12)
+    if (!flip_geometry_ok(ctx, goal, old0, old1, new0, new1, c))
     {
         result.status = OpStatus::Geometry;
         return result;
@@ -145,14 +176,8 @@ OpResult try_flip(OperatorContext& ctx, EdgeHandle e, FlipGoal goal)
     // Distance to the model last: it is the expensive test.
     if (goal == FlipGoal::Distance)
     {
-        auto farthest = [&](const Vec3d& mid, VertexHandle near, const std::array<Vec3d, 3>& t0,
-                            const std::array<Vec3d, 3>& t1) {
-            return std::max({ctx.distance_to_model(mid, near),
-                             ctx.distance_to_model((t0[0] + t0[1] + t0[2]) / 3.0, near),
-                             ctx.distance_to_model((t1[0] + t1[1] + t1[2]) / 3.0, near)});
-        };
-        if (!(farthest(0.5 * (pc + pd), c, new0, new1) <
-              kDistanceFlipGain * farthest(0.5 * (pa + pb), a, old0, old1)))
+        if (!(farthest_sample(ctx, 0.5 * (pc + pd), c, new0, new1) <
+              kDistanceFlipGain * farthest_sample(ctx, 0.5 * (pa + pb), a, old0, old1)))
         {
             result.status = OpStatus::Quality;
             return result;

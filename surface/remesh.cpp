@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cstdio>
 #include <cstdlib>
 #include <utility>
 
 #include "common/errors.h"
+#include "common/messages.h"
 #include "surface/detail/local_ops_geometry.h"
 #include "surface/detail/remesh_run.h"
 #include "surface/hdi_projection.h"
@@ -293,11 +293,11 @@ void run_iterations(RemeshRun& run)
         shift_vertices(run, false);
         ++run.report.iterations;
         if (run.options.verbosity > 0)
-            std::fprintf(stderr,
-                         "remesh: iteration %d: %zu vertices, %zu splits, %zu collapses, %zu "
-                         "flips, %zu shifts\n",
-                         it + 1, run.count_vertices(), run.report.splits, run.report.collapses,
-                         run.report.flips, run.report.shifts);
+            hdimesh::emit(run.options.messages, hdimesh::MessageKind::Trace,
+                          "remesh: iteration %d: %zu vertices, %zu splits, %zu collapses, %zu "
+                          "flips, %zu shifts\n",
+                          it + 1, run.count_vertices(), run.report.splits, run.report.collapses,
+                          run.report.flips, run.report.shifts);
     }
 }
 
@@ -311,9 +311,10 @@ RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options, const Proje
     run.update_sizes();
     detail::run_iterations(run);
     if (options.verbosity > 0)
-        std::fprintf(stderr, "remesh: %d iterations (%.2f s, cpu %.3f s): %zu vertices\n",
-                     run.report.iterations, run.clock.wall_seconds(), run.clock.cpu_seconds(),
-                     run.count_vertices());
+        hdimesh::emit(options.messages, hdimesh::MessageKind::Trace,
+                      "remesh: %d iterations (%.2f s, cpu %.3f s): %zu vertices\n",
+                      run.report.iterations, run.clock.wall_seconds(), run.clock.cpu_seconds(),
+                      run.count_vertices());
     mesh.garbage_collection();
     return run.report;
 }

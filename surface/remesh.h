@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <functional>
 
+#include "common/messages.h"
 #include "surface/local_ops.h"
 #include "surface/projector.h"
 #include "surface/surface_mesh.h"
@@ -36,7 +37,9 @@ struct RemeshOptions
     /// single operator's): in the remesher the flips after each split resolve such caps.
     double min_angle_across_crease_deg = 4.0;
     OperatorLimits limits;
-    int verbosity = 0;  // > 0: one line per iteration on stderr
+    int verbosity = 0;  // > 0: one line per iteration (a Trace message)
+    /// Where the verbose lines go (empty: dropped).
+    MessageSink messages;
 };
 
 struct RemeshReport

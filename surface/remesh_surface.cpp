@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/messages.h"
 #include "common/size_quality.h"
 #include "common/stage_timer.h"
 #include "surface/detail/change_log.h"
@@ -44,11 +45,11 @@ void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& k
         else if (is_too_long(length, size))
             ++long_edges;
     }
-    std::fprintf(stderr,
-                 "remesh: after %s (%.2f s, cpu %.3f s): %zu edges, %zu too short, %zu too long, "
-                 "%zu short for the reference\n",
-                 stage, run.clock.wall_seconds(), run.clock.cpu_seconds(), edges, short_edges,
-                 long_edges, keeper.count_short_edges());
+    hdimesh::emit(run.options.messages, hdimesh::MessageKind::Trace,
+                  "remesh: after %s (%.2f s, cpu %.3f s): %zu edges, %zu too short, %zu too long, "
+                  "%zu short for the reference\n",
+                  stage, run.clock.wall_seconds(), run.clock.cpu_seconds(), edges, short_edges,
+                  long_edges, keeper.count_short_edges());
 }
 
 // The fraction of the area of `mesh` whose faces' mean vertex size is under `limit`.
@@ -78,6 +79,170 @@ double expected_triangle_count(const SurfaceMesh& input,
         count += input.calc_face_area(f) / (0.25 * std::sqrt(3.0) * h * h);
     }
     return count;
+}
+
+// Verbose: the CPU time of the fixed costs before the remesher starts (features, model, sizes).
+void report_setup(const SurfaceRemeshSettings& settings, const Stopwatch& clock, const char* stage)
+{
+    if (settings.verbosity > 0)
+        hdimesh::emit(settings.messages, hdimesh::MessageKind::Trace,
+                      "remesh_surface: after %s (%.2f s, cpu %.3f s)\n", stage,
+                      clock.wall_seconds(), clock.cpu_seconds());
+}
+
+// A size far below the model's scale would run until memory is gone: refused.
+void refuse_count(double expected, const char* what, double diagonal)
+{
+    if (expected <= kMaxTriangles) return;
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "%s asks for about %.3g triangles, more than the %.3g a surface can hold: "
+                  "it is far below the model's scale (diagonal %.3g)",
+                  what, expected, kMaxTriangles, diagonal);
+    throw InputError(text);
+}
+
+// The sizes to remesh to: uniform (capped where the curvature needs finer edges for the
+// tolerance), per input vertex, or curvature-adaptive; `coarse`: the tolerance wins over the
+// uniform size.
+SizeMap choose_sizes(const SurfaceMesh& input, const SurfaceModel& model,
+                     const SurfaceRemeshSettings& settings, SurfaceRemeshResult& result,
+                     bool& coarse)
+{
+    SizeMap sizes = SizeMap::uniform(settings.sizing.hsiz);
+    coarse = false;
+    if (settings.sizing.hsiz > 0.0 && settings.uniform_hausd_fraction > 0.0)
+    {
+        // A uniform size, but no coarser than the curvature allows for the tolerance: a fillet
+        // narrower than h would otherwise be cut by chords (the Hausdorff target).
+        SizingOptions capped = settings.sizing;
+        capped.hmax = settings.sizing.hsiz;
+        capped.hausd = distance_tolerance(settings, result.diagonal);
+        std::vector<double> local = curvature_sizes(input, model, capped);
+        // Where the tolerance needs edges too short for the size on a few places, the size
+        // wins (a short-edge budget); on much of the surface, the tolerance does (Mmg's hausd
+        // over hsiz), the size an upper bound.
+        coarse = area_fraction_below(input, local, kSizeQualityThreshold * settings.sizing.hsiz) >
+                 settings.tolerance_wins_area_fraction;
+        const double size_floor = coarse ? settings.coarse_size_floor : settings.uniform_size_floor;
+        // Never below the floor (edges shorter than 0.66·hsiz fail the size criterion); on ridges
+        // down to half of it: a curved ridge must stay within its tolerance. Open boundaries of
+        // scans zig-zag, so their turning is no curvature to follow.
+        OpenMesh::VPropHandleT<VertexClass> input_class;
+        input.get_property_handle(input_class, property_names::vertex_class);
+        for (auto v : input.vertices())
+        {
+            const bool ridge = input.property(input_class, v) == VertexClass::Ridge;
+            const double floor = (ridge ? 0.5 : 1.0) * size_floor * settings.sizing.hsiz;
+            local[v.idx()] = std::max(local[v.idx()], floor);
+        }
+        const double hsiz = settings.sizing.hsiz;
+        const bool all_uniform =
+            std::all_of(local.begin(), local.end(), [hsiz](double s) { return s >= hsiz; });
+        if (!all_uniform) sizes = SizeMap::per_input_vertex(model, std::move(local));
+    }
+    if (!settings.input_sizes.empty())
+    {
+        if (settings.input_sizes.size() != input.n_vertices())
+            throw InputError("remesh_surface: " + std::to_string(settings.input_sizes.size()) +
+                             " sizes for " + std::to_string(input.n_vertices()) + " vertices");
+        std::vector<double> graded = settings.input_sizes;
+        bound_and_grade(input, graded, settings.sizing);
+        sizes = SizeMap::per_input_vertex(model, std::move(graded));
+        result.adaptive = true;
+    }
+    else if (!(settings.sizing.hsiz > 0.0) && !settings.size_function)
+    {
+        sizes = SizeMap::per_input_vertex(model, curvature_sizes(input, model, settings.sizing));
+        result.adaptive = true;
+    }
+    return sizes;
+}
+
+// Each vertex's first hint of the model face it lies on.
+void set_model_face_hints(SurfaceMesh& mesh, const SurfaceModel& model,
+                          const SurfaceRemeshSettings& settings)
+{
+    const SurfaceProperties props(mesh);
+    if (settings.model_surface)
+    {
+        // Another surface: each vertex's first hint is the input face it lies nearest.
+        for (auto v : mesh.vertices())
+            mesh.property(props.vertex_model_face, v) = model.closest_on_input(mesh.point(v)).face;
+    }
+    else
+    {
+        // The remeshed surface starts as the model's own input: each vertex's first hint is
+        // a face of its own (the model numbers the input faces in iteration order).
+        int model_face = 0;
+        for (auto f : mesh.faces())
+        {
+            for (auto v : mesh.fv_range(f)) mesh.property(props.vertex_model_face, v) = model_face;
+            ++model_face;
+        }
+    }
+}
+
+// The points the tolerance is measured at: the input's vertices, and on a faceted model its
+// edge midpoints.
+void add_model_points(const SurfaceMesh& input, const SurfaceModel& model,
+                      ToleranceOptions& tolerance)
+{
+    OpenMesh::VPropHandleT<VertexClass> input_class;
+    OpenMesh::EPropHandleT<int> input_curve;
+    input.get_property_handle(input_class, property_names::vertex_class);
+    input.get_property_handle(input_curve, property_names::edge_curve);
+    tolerance.model_points.reserve(input.n_vertices() + input.n_edges());
+    tolerance.model_point_smooth.reserve(input.n_vertices() + input.n_edges());
+    for (auto v : input.vertices())
+    {
+        if (input.is_isolated(v)) continue;
+        tolerance.model_points.push_back(input.point(v));
+        tolerance.model_point_smooth.push_back(input.property(input_class, v) ==
+                                               VertexClass::Smooth);
+    }
+    // Edge midpoints too (the Hausdorff samples of the input): a crease the features dropped
+    // is farthest from the output between its vertices. With a uniform size too: the
+    // short-edge budget then goes to those creases (docs/tuning.md). Not on a smooth
+    // model: a chord's midpoint is off it.
+    if (!model.has_smooth_projection())
+        for (auto e : input.edges())
+        {
+            const auto h = input.halfedge_handle(e, 0);
+            const Vec3d mid = 0.5 * (input.point(input.from_vertex_handle(h)) +
+                                     input.point(input.to_vertex_handle(h)));
+            tolerance.model_points.push_back(mid);
+            tolerance.model_point_smooth.push_back(input.property(input_curve, e) == kNoCurve &&
+                                                   !input.is_boundary(e));
+        }
+}
+
+// The stages' settings after the loop's: the tolerance, its points, the budgets.
+void set_tolerance_options(const SurfaceMesh& input, const SurfaceModel& model,
+                           const SurfaceRemeshSettings& settings, double diagonal, bool coarse,
+                           SurfaceRemeshOptions& options)
+{
+    options.tolerance.tolerance = distance_tolerance(settings, diagonal);
+    if (settings.refine_to_tolerance && options.tolerance.tolerance > 0.0)
+        add_model_points(input, model, options.tolerance);
+    if (!settings.refine_to_tolerance) options.tolerance.tolerance = 0.0;
+    options.tolerance.reference_size = coarse ? 0.0 : settings.sizing.hsiz;
+    options.refinement.short_edge_budget = coarse ? 1.0 : settings.refine_short_edge_budget;
+    // Where the tolerance wins over the size, it is the contract: the refinement's splits may
+    // go below the size's floor, as in the curvature-adaptive mode.
+    if (coarse) options.tolerance.min_length_ratio = kContractMinLengthRatio;
+    options.refinement.final_short_edge_budget =
+        std::max(settings.refine_final_short_edge_budget, options.refinement.short_edge_budget);
+    if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty() && !settings.size_function)
+    {
+        // Curvature-adaptive: the tolerance is the contract (no size target to keep), with a
+        // margin for the samples the refinement does not look at (input edge midpoints, centroids).
+        options.tolerance.tolerance *= kAdaptiveToleranceMargin;
+        options.refinement.short_edge_budget = 1.0;
+        options.refinement.final_short_edge_budget = 1.0;
+        options.tolerance.min_length_ratio = kContractMinLengthRatio;
+        options.refinement.rounds = 20;
+    }
 }
 
 }  // namespace
@@ -173,14 +338,9 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     SurfaceRemeshResult result;
     // Verbose: the CPU time of the fixed costs before the remesher starts (features, model, sizes).
     const Stopwatch clock;
-    auto report_setup = [&](const char* stage) {
-        if (settings.verbosity > 0)
-            std::fprintf(stderr, "remesh_surface: after %s (%.2f s, cpu %.3f s)\n", stage,
-                         clock.wall_seconds(), clock.cpu_seconds());
-    };
     if (!settings.keep_classification)
         result.features = detect_features(mesh, feature_options(settings));
-    report_setup("features");
+    report_setup(settings, clock, "features");
     // The model's surface: the mesh itself, or the input it was derived from (a coupled pass on
     // a refined boundary stays on the input's geometry).
     const SurfaceMesh& input = settings.model_surface ? *settings.model_surface : mesh;
@@ -204,16 +364,7 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         throw InputError("remesh_surface: a model without the surface it was built on");
     }
     const SurfaceModel& model = settings.model ? *settings.model : *own_model;
-    report_setup("model");
-    auto refuse_count = [&](double expected, const char* what) {
-        if (expected <= kMaxTriangles) return;
-        char text[240];
-        std::snprintf(text, sizeof text,
-                      "%s asks for about %.3g triangles, more than the %.3g a surface can hold: "
-                      "it is far below the model's scale (diagonal %.3g)",
-                      what, expected, kMaxTriangles, result.diagonal);
-        throw InputError(text);
-    };
+    report_setup(settings, clock, "model");
     if (settings.sizing.hausd > 0.0)
     {
         // the tolerance's own sizes (h = sqrt(3 hausd / k)): the refinement would chase them
@@ -222,56 +373,13 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         const std::vector<double> local = curvature_sizes(input, model, tolerance_only);
         const SizeMap tolerance_sizes = SizeMap::per_input_vertex(model, local);
         refuse_count(
-            expected_triangle_count(input, [&](const Vec3d& p) { return tolerance_sizes.at(p); }),
-            "the distance bound");
+            expected_triangle_count(
+                input, [&tolerance_sizes](const Vec3d& p) { return tolerance_sizes.at(p); }),
+            "the distance bound", result.diagonal);
     }
 
-    SizeMap sizes = SizeMap::uniform(settings.sizing.hsiz);
     bool coarse = false;  // the tolerance wins over the uniform size
-    if (settings.sizing.hsiz > 0.0 && settings.uniform_hausd_fraction > 0.0)
-    {
-        // A uniform size, but no coarser than the curvature allows for the tolerance: a fillet
-        // narrower than h would otherwise be cut by chords (the Hausdorff target).
-        SizingOptions capped = settings.sizing;
-        capped.hmax = settings.sizing.hsiz;
-        capped.hausd = distance_tolerance(settings, result.diagonal);
-        std::vector<double> local = curvature_sizes(input, model, capped);
-        // Where the tolerance needs edges too short for the size on a few places, the size
-        // wins (a short-edge budget); on much of the surface, the tolerance does (Mmg's hausd
-        // over hsiz), the size an upper bound.
-        coarse = area_fraction_below(input, local, kSizeQualityThreshold * settings.sizing.hsiz) >
-                 settings.tolerance_wins_area_fraction;
-        const double size_floor = coarse ? settings.coarse_size_floor : settings.uniform_size_floor;
-        // Never below the floor (edges shorter than 0.66·hsiz fail the size criterion); on ridges
-        // down to half of it: a curved ridge must stay within its tolerance. Open boundaries of
-        // scans zig-zag, so their turning is no curvature to follow.
-        OpenMesh::VPropHandleT<VertexClass> input_class;
-        input.get_property_handle(input_class, property_names::vertex_class);
-        for (auto v : input.vertices())
-        {
-            const bool ridge = input.property(input_class, v) == VertexClass::Ridge;
-            const double floor = (ridge ? 0.5 : 1.0) * size_floor * settings.sizing.hsiz;
-            local[v.idx()] = std::max(local[v.idx()], floor);
-        }
-        const bool all_uniform = std::all_of(local.begin(), local.end(),
-                                             [&](double s) { return s >= settings.sizing.hsiz; });
-        if (!all_uniform) sizes = SizeMap::per_input_vertex(model, std::move(local));
-    }
-    if (!settings.input_sizes.empty())
-    {
-        if (settings.input_sizes.size() != input.n_vertices())
-            throw InputError("remesh_surface: " + std::to_string(settings.input_sizes.size()) +
-                             " sizes for " + std::to_string(input.n_vertices()) + " vertices");
-        std::vector<double> graded = settings.input_sizes;
-        bound_and_grade(input, graded, settings.sizing);
-        sizes = SizeMap::per_input_vertex(model, std::move(graded));
-        result.adaptive = true;
-    }
-    else if (!(settings.sizing.hsiz > 0.0) && !settings.size_function)
-    {
-        sizes = SizeMap::per_input_vertex(model, curvature_sizes(input, model, settings.sizing));
-        result.adaptive = true;
-    }
+    const SizeMap sizes = choose_sizes(input, model, settings, result, coarse);
     result.uniform_size = settings.sizing.hsiz > 0.0 ? settings.sizing.hsiz : sizes.uniform_size();
 
     SurfaceRemeshOptions options;
@@ -287,93 +395,25 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
         };
         result.adaptive = true;
     }
-    {
-        const SurfaceProperties props(mesh);
-        if (settings.model_surface)
-        {
-            // Another surface: each vertex's first hint is the input face it lies nearest.
-            for (auto v : mesh.vertices())
-                mesh.property(props.vertex_model_face, v) =
-                    model.closest_on_input(mesh.point(v)).face;
-        }
-        else
-        {
-            // The remeshed surface starts as the model's own input: each vertex's first hint is
-            // a face of its own (the model numbers the input faces in iteration order).
-            int model_face = 0;
-            for (auto f : mesh.faces())
-            {
-                for (auto v : mesh.fv_range(f))
-                    mesh.property(props.vertex_model_face, v) = model_face;
-                ++model_face;
-            }
-        }
-    }
+    set_model_face_hints(mesh, model, settings);
     // A size far below the model's scale would run until memory is gone.
-    refuse_count(expected_triangle_count(input, options.loop.size), "the size");
+    refuse_count(expected_triangle_count(input, options.loop.size), "the size", result.diagonal);
     options.loop.iterations = settings.iterations;
     options.loop.limits.shift_in_model_plane = model.has_smooth_projection();
     options.loop.limits.insert = settings.insert;
     options.loop.limits.swap = settings.swap;
     options.loop.limits.move = settings.move;
     options.loop.verbosity = settings.verbosity;
+    options.loop.messages = settings.messages;
     if (settings.max_model_distance >= 0.0)
         options.loop.max_model_distance = settings.max_model_distance;
     else if (settings.sizing.hausd > 0.0)
         options.loop.max_model_distance = settings.sizing.hausd;
     else
         options.loop.max_model_distance = 0.002 * result.diagonal;
-    options.tolerance.tolerance = distance_tolerance(settings, result.diagonal);
-    if (settings.refine_to_tolerance && options.tolerance.tolerance > 0.0)
-    {
-        OpenMesh::VPropHandleT<VertexClass> input_class;
-        OpenMesh::EPropHandleT<int> input_curve;
-        input.get_property_handle(input_class, property_names::vertex_class);
-        input.get_property_handle(input_curve, property_names::edge_curve);
-        options.tolerance.model_points.reserve(input.n_vertices() + input.n_edges());
-        options.tolerance.model_point_smooth.reserve(input.n_vertices() + input.n_edges());
-        for (auto v : input.vertices())
-        {
-            if (input.is_isolated(v)) continue;
-            options.tolerance.model_points.push_back(input.point(v));
-            options.tolerance.model_point_smooth.push_back(input.property(input_class, v) ==
-                                                           VertexClass::Smooth);
-        }
-        // Edge midpoints too (the Hausdorff samples of the input): a crease the features dropped
-        // is farthest from the output between its vertices. With a uniform size too: the
-        // short-edge budget then goes to those creases (docs/tuning.md). Not on a smooth
-        // model: a chord's midpoint is off it.
-        if (!model.has_smooth_projection())
-            for (auto e : input.edges())
-            {
-                const auto h = input.halfedge_handle(e, 0);
-                const Vec3d mid = 0.5 * (input.point(input.from_vertex_handle(h)) +
-                                         input.point(input.to_vertex_handle(h)));
-                options.tolerance.model_points.push_back(mid);
-                options.tolerance.model_point_smooth.push_back(
-                    input.property(input_curve, e) == kNoCurve && !input.is_boundary(e));
-            }
-    }
-    if (!settings.refine_to_tolerance) options.tolerance.tolerance = 0.0;
-    options.tolerance.reference_size = coarse ? 0.0 : settings.sizing.hsiz;
-    options.refinement.short_edge_budget = coarse ? 1.0 : settings.refine_short_edge_budget;
-    // Where the tolerance wins over the size, it is the contract: the refinement's splits may
-    // go below the size's floor, as in the curvature-adaptive mode.
-    if (coarse) options.tolerance.min_length_ratio = kContractMinLengthRatio;
-    options.refinement.final_short_edge_budget =
-        std::max(settings.refine_final_short_edge_budget, options.refinement.short_edge_budget);
-    if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty() && !settings.size_function)
-    {
-        // Curvature-adaptive: the tolerance is the contract (no size target to keep), with a
-        // margin for the samples the refinement does not look at (input edge midpoints, centroids).
-        options.tolerance.tolerance *= kAdaptiveToleranceMargin;
-        options.refinement.short_edge_budget = 1.0;
-        options.refinement.final_short_edge_budget = 1.0;
-        options.tolerance.min_length_ratio = kContractMinLengthRatio;
-        options.refinement.rounds = 20;
-    }
+    set_tolerance_options(input, model, settings, result.diagonal, coarse, options);
     options.project_first = settings.model_surface != nullptr;
-    report_setup("sizes and model points");
+    report_setup(settings, clock, "sizes and model points");
     result.report = remesh_surface(mesh, options, model, hooks);
     return result;
 }

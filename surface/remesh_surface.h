@@ -155,6 +155,8 @@ struct SurfaceRemeshSettings
     /// edges under Qt 0.66, less 0.1 % for the repair (docs/tuning.md).
     double refine_final_short_edge_budget = 0.009;
     int verbosity = 0;
+    /// Where the verbose lines go (Trace messages; empty: dropped).
+    MessageSink messages;
 };
 
 struct SurfaceRemeshResult

@@ -26,6 +26,142 @@ constexpr double kMinAngleGainDeg = 0.1;
 // The fractions of the way to the target tried, the whole way first.
 constexpr double kSnapSteps[] = {1.0, 0.75, 0.5, 0.35};
 
+// A snap's trial positions q of v judged: geometry, quality, distance both ways (a status, Done
+// when legal). The 2-ring and the witnesses' distances before: computed once, when a position
+// gets that far.
+class SnapCheck
+{
+public:
+    SnapCheck(OperatorContext& ctx, VertexHandle v, const Vec3d& target, const SnapOptions& options,
+              double star_length)
+        : ctx_(ctx), mesh_(ctx.mesh), v_(v), cls_(ctx.vertex_class(v)), p_(ctx.mesh.point(v)),
+          target_(target), options_(options), star_length_(star_length), patch_(ctx.mesh, v)
+    {
+    }
+
+    OpStatus operator()(const Vec3d& q, const ProjectedPoint& q_on_model)
+    {
+        // The target must come within the tolerance: the point of the move (not of a repair).
+        if (!options_.raise_min_angle && patch_.distance(target_, &q) > options_.tolerance)
+            return OpStatus::Geometry;
+        const OpStatus shape = shape_status(q, q_on_model);
+        if (shape != OpStatus::Done) return shape;
+        const OpStatus sizes = size_status(q);
+        if (sizes != OpStatus::Done) return sizes;
+        return distance_status(q);
+    }
+
+private:
+    // The star's triangles: no fold, turn or poor shape, and the smallest angle kept (a repair:
+    // raised).
+    OpStatus shape_status(const Vec3d& q, const ProjectedPoint& q_on_model) const
+    {
+        using namespace detail;
+        double old_min_angle = 180.0, new_min_angle = 180.0;
+        // Bending over a crest needs the larger turn; a repair move is an ordinary smoothing
+        // move and keeps the operators' limit.
+        const double turn_limit = options_.raise_min_angle
+                                      ? ctx_.limits.max_normal_turn_deg
+                                      : std::max(ctx_.limits.max_normal_turn_deg, kMaxSnapTurnDeg);
+        const double turn_limit_cos = cos_deg(turn_limit),
+                     from_model_cos = cos_deg(kMaxTurnFromModelDeg);
+        for (auto f : mesh_.vf_range(v_))
+        {
+            const auto before = face_points(mesh_, f), after = face_points_with(mesh_, f, v_, q);
+            const Vec3d n_after = normal(after);
+            old_min_angle =
+                std::min(old_min_angle, triangle_min_angle_deg(before[0], before[1], before[2]));
+            new_min_angle =
+                std::min(new_min_angle, triangle_min_angle_deg(after[0], after[1], after[2]));
+            if (!turn_ok_cos(normal(before), n_after, turn_limit_cos) ||
+                qe(after) < ctx_.limits.min_new_quality)
+                return OpStatus::Geometry;
+            if (cls_ == VertexClass::Smooth && q_on_model.ok)
+            {
+                const ProjectedPoint under = ctx_.model.project_near(
+                    (after[0] + after[1] + after[2]) / 3.0, VertexClass::Smooth, kNoCurve,
+                    q_on_model.face >= 0 ? q_on_model.face : ctx_.model_face(v_));
+                if (!turn_ok_cos(under.ok ? under.normal : q_on_model.normal, n_after,
+                                 from_model_cos))
+                    return OpStatus::Geometry;
+            }
+        }
+        if (options_.raise_min_angle
+                ? !(new_min_angle > old_min_angle + kMinAngleGainDeg)
+                : new_min_angle < std::min(options_.min_angle_deg, old_min_angle))
+            return OpStatus::Quality;
+        return OpStatus::Done;
+    }
+
+    // Sizes: no edge of the star leaves the band or gets farther out of it; a repair may
+    // trade (a needle's short edge is what it repairs) but not add an edge out of the band.
+    OpStatus size_status(const Vec3d& q) const
+    {
+        using namespace detail;
+        int out_before = 0, out_after = 0;
+        for (auto w : mesh_.vv_range(v_))
+        {
+            const Vec3d r = mesh_.point(w);
+            const double before =
+                out_of_band((r - p_).norm(), options_.min_length, options_.max_length);
+            const double after =
+                out_of_band((r - q).norm(), options_.min_length, options_.max_length);
+            out_before += before > 0.0;
+            out_after += after > 0.0;
+            const double length = (r - q).norm();
+            const bool shorter_above_floor = options_.floor_length > 0.0 &&
+                                             length < options_.min_length &&
+                                             length >= options_.floor_length;
+            if (!options_.raise_min_angle && after > 0.0 && after > before && !shorter_above_floor)
+                return OpStatus::Quality;
+        }
+        if (out_after > out_before) return OpStatus::Quality;
+        return OpStatus::Done;
+    }
+
+    // Distance both ways: the star's samples no farther out than before, nor the witnesses.
+    OpStatus distance_status(const Vec3d& q)
+    {
+        const double bound = options_.tolerance;
+        const double star_after = worst_sample(q);
+        if (star_after > bound)
+        {
+            if (star_before_ < 0.0) star_before_ = worst_sample(p_);
+            if (star_after > star_before_) return OpStatus::Geometry;
+        }
+        if (witness_before_.size() != options_.witnesses.size())
+        {
+            witness_before_.clear();
+            for (const Vec3d& w : options_.witnesses)
+                witness_before_.push_back(patch_.distance(w, nullptr));
+        }
+        for (std::size_t i = 0; i < options_.witnesses.size(); ++i)
+        {
+            const double after = patch_.distance(options_.witnesses[i], &q);
+            if (after > bound && after > witness_before_[i] + 1e-12 * star_length_)
+                return OpStatus::Geometry;
+        }
+        return OpStatus::Done;
+    }
+
+    double worst_sample(const Vec3d& at) const
+    {
+        return detail::star_samples_beyond(ctx_, v_, at, options_.tolerance);
+    }
+
+    OperatorContext& ctx_;
+    const SurfaceMesh& mesh_;
+    const VertexHandle v_;
+    const VertexClass cls_;
+    const Vec3d p_;  // v's point before
+    const Vec3d& target_;
+    const SnapOptions& options_;
+    const double star_length_;
+    const detail::TwoRingPatch patch_;
+    std::vector<double> witness_before_;
+    double star_before_ = -1.0;  // the worst sample of the star before, computed when needed
+};
+
 }  // namespace
 
 OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& target,
@@ -74,91 +210,7 @@ OpResult try_snap_vertex(OperatorContext& ctx, VertexHandle v, const Vec3d& targ
     }
 
     // The star with v at q: geometry, quality, distance both ways (a status, Done when legal).
-    // The 2-ring and the witnesses' distances before: computed once, when a position gets that far.
-    const TwoRingPatch patch(mesh, v);
-    std::vector<double> witness_before;
-    double star_before = -1.0;  // the worst sample of the star before, computed when needed
-    const double bound = options.tolerance;
-    auto worst_sample = [&](const Vec3d& at) {
-        return star_samples_beyond(ctx, v, at, options.tolerance);
-    };
-    auto check = [&](const Vec3d& q, const ProjectedPoint& q_on_model) {
-        // The target must come within the tolerance: the point of the move (not of a repair).
-        if (!options.raise_min_angle && patch.distance(target, &q) > options.tolerance)
-            return OpStatus::Geometry;
-        double old_min_angle = 180.0, new_min_angle = 180.0;
-        // Bending over a crest needs the larger turn; a repair move is an ordinary smoothing
-        // move and keeps the operators' limit.
-        const double turn_limit = options.raise_min_angle
-                                      ? ctx.limits.max_normal_turn_deg
-                                      : std::max(ctx.limits.max_normal_turn_deg, kMaxSnapTurnDeg);
-        const double turn_limit_cos = cos_deg(turn_limit),
-                     from_model_cos = cos_deg(kMaxTurnFromModelDeg);
-        for (auto f : mesh.vf_range(v))
-        {
-            const auto before = face_points(mesh, f), after = face_points_with(mesh, f, v, q);
-            const Vec3d n_after = normal(after);
-            old_min_angle =
-                std::min(old_min_angle, triangle_min_angle_deg(before[0], before[1], before[2]));
-            new_min_angle =
-                std::min(new_min_angle, triangle_min_angle_deg(after[0], after[1], after[2]));
-            if (!turn_ok_cos(normal(before), n_after, turn_limit_cos) ||
-                qe(after) < ctx.limits.min_new_quality)
-                return OpStatus::Geometry;
-            if (cls == VertexClass::Smooth && q_on_model.ok)
-            {
-                const ProjectedPoint under = ctx.model.project_near(
-                    (after[0] + after[1] + after[2]) / 3.0, VertexClass::Smooth, kNoCurve,
-                    q_on_model.face >= 0 ? q_on_model.face : ctx.model_face(v));
-                if (!turn_ok_cos(under.ok ? under.normal : q_on_model.normal, n_after,
-                                 from_model_cos))
-                    return OpStatus::Geometry;
-            }
-        }
-        if (options.raise_min_angle
-                ? !(new_min_angle > old_min_angle + kMinAngleGainDeg)
-                : new_min_angle < std::min(options.min_angle_deg, old_min_angle))
-            return OpStatus::Quality;
-        // Sizes: no edge of the star leaves the band or gets farther out of it; a repair may
-        // trade (a needle's short edge is what it repairs) but not add an edge out of the band.
-        int out_before = 0, out_after = 0;
-        for (auto w : mesh.vv_range(v))
-        {
-            const Vec3d r = mesh.point(w);
-            const double before =
-                out_of_band((r - p).norm(), options.min_length, options.max_length);
-            const double after =
-                out_of_band((r - q).norm(), options.min_length, options.max_length);
-            out_before += before > 0.0;
-            out_after += after > 0.0;
-            const double length = (r - q).norm();
-            const bool shorter_above_floor = options.floor_length > 0.0 &&
-                                             length < options.min_length &&
-                                             length >= options.floor_length;
-            if (!options.raise_min_angle && after > 0.0 && after > before && !shorter_above_floor)
-                return OpStatus::Quality;
-        }
-        if (out_after > out_before) return OpStatus::Quality;
-        const double star_after = worst_sample(q);
-        if (star_after > bound)
-        {
-            if (star_before < 0.0) star_before = worst_sample(p);
-            if (star_after > star_before) return OpStatus::Geometry;
-        }
-        if (witness_before.size() != options.witnesses.size())
-        {
-            witness_before.clear();
-            for (const Vec3d& w : options.witnesses)
-                witness_before.push_back(patch.distance(w, nullptr));
-        }
-        for (std::size_t i = 0; i < options.witnesses.size(); ++i)
-        {
-            const double after = patch.distance(options.witnesses[i], &q);
-            if (after > bound && after > witness_before[i] + 1e-12 * star_length)
-                return OpStatus::Geometry;
-        }
-        return OpStatus::Done;
-    };
+    SnapCheck check(ctx, v, target, options, star_length);
 
     // All the way onto the target, else part of the way (back onto the model): the target only
     // has to come within the tolerance, and a shorter move keeps the star's shape.

@@ -144,16 +144,10 @@ double quadric_curvature(const std::vector<Vec3d>& points, const VertexStars& st
     return std::max(std::abs(k(0)), std::abs(k(1))) / scale;
 }
 
-}  // namespace
-
-SurfaceModel::~SurfaceModel() = default;
-
-std::size_t SurfaceModel::curve_count() const { return curves_.size(); }
-
-SurfaceModel::SurfaceModel(const SurfaceMesh& input)
+// The model numbers input vertices and faces by handle index: a mesh with deleted elements
+// (an operator's result before its garbage collection) would leave holes in every table.
+void check_no_deleted_elements(const SurfaceMesh& input)
 {
-    // The model numbers input vertices and faces by handle index: a mesh with deleted elements
-    // (an operator's result before its garbage collection) would leave holes in every table.
     if (input.has_vertex_status() && input.has_face_status())
     {
         for (auto v : input.all_vertices())
@@ -165,28 +159,60 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
                 throw InputError("SurfaceModel: the input mesh has deleted faces (e.g. face " +
                                  std::to_string(f.idx()) + "): garbage-collect it first");
     }
+}
+
+// An edge's curve (kNoCurve: none, or an unclassified input).
+int edge_curve_of(const SurfaceMesh& input, bool classified, OpenMesh::EPropHandleT<int> edge_curve,
+                  EdgeHandle e)
+{
+    return classified ? input.property(edge_curve, e) : kNoCurve;
+}
+
+// Whether a vertex is smooth (every vertex of an unclassified input is).
+bool vertex_is_smooth(const SurfaceMesh& input, bool classified,
+                      OpenMesh::VPropHandleT<VertexClass> vertex_class, VertexHandle v)
+{
+    return !classified || input.property(vertex_class, v) == VertexClass::Smooth;
+}
+
+}  // namespace
+
+SurfaceModel::~SurfaceModel() = default;
+
+std::size_t SurfaceModel::curve_count() const { return curves_.size(); }
+
+SurfaceModel::SurfaceModel(const SurfaceMesh& input)
+{
+    check_no_deleted_elements(input);
     // Read-only look-up: an unclassified input is all smooth, without curves.
     OpenMesh::VPropHandleT<VertexClass> vertex_class;
     OpenMesh::EPropHandleT<int> edge_curve;
     const bool classified = input.get_property_handle(vertex_class, property_names::vertex_class) &&
                             input.get_property_handle(edge_curve, property_names::edge_curve);
-    auto curve_of = [&](EdgeHandle e) {
-        return classified ? input.property(edge_curve, e) : kNoCurve;
-    };
-    auto is_smooth = [&](VertexHandle v) {
-        return !classified || input.property(vertex_class, v) == VertexClass::Smooth;
-    };
     diagonal_ = bounding_box_diagonal(input);
     points_.reserve(input.n_vertices());
     for (auto v : input.vertices()) points_.push_back(input.point(v));
 
+    std::vector<Vec3d> face_normal_by_index;
+    std::vector<int> model_face_by_index;  // face handle index -> index here
+    build_faces(input, face_normal_by_index, model_face_by_index);
+    build_vertex_faces();
+    build_curves(input, classified, edge_curve, face_normal_by_index, model_face_by_index);
+    build_curvatures(input, classified, vertex_class, face_normal_by_index);
+}
+
+// The input's faces: their points, normals and planes, the tree over them, their neighbours
+// across each edge; per input face handle index its normal and its index here.
+void SurfaceModel::build_faces(const SurfaceMesh& input, std::vector<Vec3d>& face_normal_by_index,
+                               std::vector<int>& model_face_by_index)
+{
     std::vector<std::array<Vec3d, 3>> tris;
     tris.reserve(input.n_faces());
     face_vertices_.reserve(input.n_faces());
     face_normals_.reserve(input.n_faces());
     face_planes_.reserve(input.n_faces());
-    std::vector<Vec3d> face_normal_by_index(input.n_faces());
-    std::vector<int> model_face_by_index(input.n_faces(), -1);  // face handle index -> index here
+    face_normal_by_index.assign(input.n_faces(), Vec3d());
+    model_face_by_index.assign(input.n_faces(), -1);
     for (auto f : input.faces())
     {
         auto vi = input.cfv_iter(f);
@@ -214,6 +240,11 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         }
         face_neighbours_.push_back(across);
     }
+}
+
+// The faces around each vertex (CSR) and the angle-weighted vertex normals.
+void SurfaceModel::build_vertex_faces()
+{
     vertex_face_offsets_.assign(points_.size() + 1, 0);
     for (const auto& fv : face_vertices_)
         for (const int v : fv) ++vertex_face_offsets_[v + 1];
@@ -243,15 +274,24 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     }
     for (Vec3d& n : vertex_normals_)
         if (n.norm() > 0.0) n.normalize();
+}
 
+// The feature curves: a tree over each curve's segments, and per segment the mean normal and a
+// face beside it.
+void SurfaceModel::build_curves(const SurfaceMesh& input, bool classified,
+                                OpenMesh::EPropHandleT<int> edge_curve,
+                                const std::vector<Vec3d>& face_normal_by_index,
+                                const std::vector<int>& model_face_by_index)
+{
     int curve_count = 0;
-    for (auto e : input.edges()) curve_count = std::max(curve_count, curve_of(e) + 1);
+    for (auto e : input.edges())
+        curve_count = std::max(curve_count, edge_curve_of(input, classified, edge_curve, e) + 1);
     std::vector<std::vector<std::array<Vec3d, 2>>> segments(curve_count);
     curve_normals_.assign(curve_count, {});
     curve_faces_.assign(curve_count, {});
     for (auto e : input.edges())
     {
-        const int c = curve_of(e);
+        const int c = edge_curve_of(input, classified, edge_curve, e);
         if (c < 0) continue;
         const auto h = input.halfedge_handle(e, 0);
         segments[c].push_back(
@@ -270,7 +310,13 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
         curve_normals_[c].push_back(len > 0 ? n / len : n);
     }
     for (const auto& s : segments) curves_.push_back(ClosestPointTree::from_segments(s));
+}
 
+// The curvature of each smooth vertex, from a quadric fit of its 2-ring.
+void SurfaceModel::build_curvatures(const SurfaceMesh& input, bool classified,
+                                    OpenMesh::VPropHandleT<VertexClass> vertex_class,
+                                    const std::vector<Vec3d>& face_normal_by_index)
+{
     curvature_.assign(input.n_vertices(), 0.0);
     // Each face's area once (the vertex normals of the fit read those of their faces).
     std::vector<double> face_area(input.n_faces());
@@ -278,7 +324,8 @@ SurfaceModel::SurfaceModel(const SurfaceMesh& input)
     const VertexStars stars(input, face_normal_by_index, face_area);
     QuadricFitScratch scratch;
     std::vector<char> smooth(input.n_vertices());
-    for (auto v : input.vertices()) smooth[v.idx()] = is_smooth(v);
+    for (auto v : input.vertices())
+        smooth[v.idx()] = vertex_is_smooth(input, classified, vertex_class, v);
     for (auto v : input.vertices())
         if (smooth[v.idx()])
             curvature_[v.idx()] = quadric_curvature(points_, stars, smooth, v.idx(),

@@ -90,6 +90,18 @@ public:
     std::size_t curve_count() const;
 
 private:
+    // The constructor's steps, in order.
+    void build_faces(const SurfaceMesh& input, std::vector<Vec3d>& face_normal_by_index,
+                     std::vector<int>& model_face_by_index);
+    void build_vertex_faces();
+    void build_curves(const SurfaceMesh& input, bool classified,
+                      OpenMesh::EPropHandleT<int> edge_curve,
+                      const std::vector<Vec3d>& face_normal_by_index,
+                      const std::vector<int>& model_face_by_index);
+    void build_curvatures(const SurfaceMesh& input, bool classified,
+                          OpenMesh::VPropHandleT<VertexClass> vertex_class,
+                          const std::vector<Vec3d>& face_normal_by_index);
+
     // A face's plane for the descent's lower bound on the distance to the face: |normal · p -
     // offset| is within margin + 1e-9 (|p_x| + |p_y| + |p_z|) of p's distance to the plane of
     // the exact triangle, and the descent's computed foot on it no nearer than that distance

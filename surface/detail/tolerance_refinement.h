@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "surface/detail/change_log.h"
@@ -81,6 +82,48 @@ public:
     std::size_t refine(bool after_polish);
 
 private:
+    // One call of refine: its settings, and what a round hands on to the next.
+    struct RefineCall
+    {
+        bool after_polish = false;
+        bool snap = false;  // a far point is first offered a snap (after the polish)
+        double budget = 0.0;
+        std::vector<VertexHandle> split_vertices;  // of the last round (and ends of its flips)
+        std::vector<VertexHandle> revisit;         // ends of the last round's candidates not tried
+        std::vector<FarHit> far_known;             // the hits of the points still far after it
+    };
+    // A round's changes (splits and distance flips), splits, and the budget's counts.
+    struct RoundCounts
+    {
+        std::size_t done = 0, splits = 0, short_edges = 0, edges = 0;
+    };
+    // An edge to split and its distance from the model.
+    using EdgeCandidate = std::pair<double, EdgeHandle>;
+
+    std::size_t refine_round(int round, RefineCall& call);
+    void mark_near_changes(RefineCall& call);
+    void mark_near_change(VertexHandle v);
+    void prepare_round_caches();
+    void check_chords(bool first_round);
+    void check_face(FaceHandle f);
+    void check_edge(EdgeHandle e);
+    bool raise_error(EdgeHandle e, double distance);
+    void mark_edge(EdgeHandle e, double distance, std::size_t target);
+    void mark_longest(FaceHandle f, double distance, std::size_t target);
+    bool snapped_end(EdgeHandle e) const;
+    void note_snap(VertexHandle v, RefineCall& call);
+    std::vector<std::size_t> unproven_points(bool first_round, const std::vector<FarHit>& far_known,
+                                             std::vector<FarHit>& far_hits);
+    void search_far_points(const std::vector<std::size_t>& unproven, std::vector<FarHit>& far_hits);
+    std::size_t snap_or_mark_far_points(const std::vector<FarHit>& far_hits, RefineCall& call);
+    std::vector<EdgeCandidate> split_candidates();
+    std::size_t snap_chord_ends(const std::vector<EdgeCandidate>& candidates, RefineCall& call);
+    std::size_t split_farthest(const std::vector<EdgeCandidate>& candidates, RefineCall& call,
+                               RoundCounts& counts);
+    bool flip_toward_model(EdgeHandle e, RefineCall& call);
+    OpResult split_candidate(EdgeHandle e, double error, bool snap);
+    void settle_new_vertices(const RefineCall& call);
+
     OpResult split_toward(EdgeHandle e, const Vec3d& target, bool part_of_the_way);
     OpResult split_beside(EdgeHandle e);
     EdgeHandle nearest_curve_edge(FaceHandle f, std::size_t point) const;
