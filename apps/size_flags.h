@@ -6,8 +6,8 @@
 #include <string>
 
 #include "cli.h"
-#include "volume/size_field.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/size_field.h"
+#include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::cli
 {

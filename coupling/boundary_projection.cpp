@@ -4,7 +4,7 @@
 #include <limits>
 #include <unordered_map>
 
-#include "volume/tet_topology.h"
+#include "volume/mesh/tet_topology.h"
 
 namespace hdimesh::coupling
 {

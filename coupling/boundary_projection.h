@@ -10,7 +10,7 @@
 
 #include "hdi/features.h"
 #include "hdi/hdi_surface.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::coupling
 {

@@ -6,8 +6,8 @@
 #include <memory>
 #include <unordered_map>
 
-#include "volume/tet_tables.h"
-#include "volume/tet_topology.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/mesh/tet_topology.h"
 
 namespace hdimesh::coupling
 {
