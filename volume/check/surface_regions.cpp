@@ -23,6 +23,31 @@ int find_root(std::vector<int>& parent, int i)
     return i;
 }
 
+/// Union-find parents of the faces, the faces sharing an edge joined (find_root gives a face's
+/// component).
+std::vector<int> join_faces_by_edges(const std::vector<Triangle>& triangles)
+{
+    const int num_faces = static_cast<int>(triangles.size());
+    std::vector<int> parent(num_faces);
+    std::iota(parent.begin(), parent.end(), 0);
+    std::vector<std::array<int, 3>> edges;  // (a, b, face), a < b
+    edges.reserve(3 * static_cast<std::size_t>(num_faces));
+    for (int f = 0; f < num_faces; ++f)
+        for (int k = 0; k < 3; ++k)
+        {
+            const int a = triangles[f][k], b = triangles[f][(k + 1) % 3];
+            edges.push_back({std::min(a, b), std::max(a, b), f});
+        }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t k = 1; k < edges.size(); ++k)
+        if (edges[k][0] == edges[k - 1][0] && edges[k][1] == edges[k - 1][1])
+        {
+            const int x = find_root(parent, edges[k][2]), y = find_root(parent, edges[k - 1][2]);
+            if (x != y) parent[std::max(x, y)] = std::min(x, y);
+        }
+    return parent;
+}
+
 std::array<double, 3> coordinates(const Vec3& p) { return {p[0], p[1], p[2]}; }
 
 }  // namespace
@@ -64,23 +89,7 @@ SurfaceRegions find_surface_regions(const std::vector<Vec3>& points,
                                     const std::vector<Triangle>& triangles)
 {
     const int num_faces = static_cast<int>(triangles.size());
-    std::vector<int> parent(num_faces);
-    std::iota(parent.begin(), parent.end(), 0);
-    std::vector<std::array<int, 3>> edges;  // (a, b, face), a < b
-    edges.reserve(3 * static_cast<std::size_t>(num_faces));
-    for (int f = 0; f < num_faces; ++f)
-        for (int k = 0; k < 3; ++k)
-        {
-            const int a = triangles[f][k], b = triangles[f][(k + 1) % 3];
-            edges.push_back({std::min(a, b), std::max(a, b), f});
-        }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t k = 1; k < edges.size(); ++k)
-        if (edges[k][0] == edges[k - 1][0] && edges[k][1] == edges[k - 1][1])
-        {
-            const int x = find_root(parent, edges[k][2]), y = find_root(parent, edges[k - 1][2]);
-            if (x != y) parent[std::max(x, y)] = std::min(x, y);
-        }
+    std::vector<int> parent = join_faces_by_edges(triangles);
 
     // shells by root, then in geometric order
     std::vector<int> shell_of_root(num_faces, -1);

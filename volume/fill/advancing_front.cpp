@@ -11,187 +11,14 @@
 #include <sstream>
 
 #include "common/morton.h"
-#include "volume/fill/cavity.h"
-#include "volume/fill/detail/cavity_stages.h"
-#include "volume/fill/detail/front.h"
+#include "volume/fill/detail/front_mesher.h"
 #include "volume/mesh/predicates.h"
 #include "volume/mesh/tet_tables.h"
 
 namespace hdimesh::volume
 {
-namespace
+namespace detail::front_mesher
 {
-using detail::Front;
-
-constexpr double kTwoThirdsRoot = 0.816496580927726;  // sqrt(2/3): a regular tet's height / edge
-constexpr double kMinSizeFactor = 0.6;                // d never below this times the face's edge
-constexpr double kMaxSizeFactor = 1.6;                // ... nor above this
-constexpr double kPreferExisting = 0.8;       // an existing vertex wins at this fraction of P*'s Qe
-constexpr double kSearchRadius = 0.7;         // vertex candidates within this times d of P* ...
-constexpr double kRadiusGrowth = 0.5;         // ... plus this times d per failure
-constexpr double kVolumeFloor = 1e-6;         // 6 V >= this times the face's mean edge cubed
-constexpr double kCrowdingRelax = 0.8;        // the new-point distance shrinks so per failure
-constexpr int kExtraAttempts = 2;             // attempts at the last floor before a face is stuck
-constexpr double kGridCellFactor = 1.5;       // grid cell = this times the typical size
-constexpr int kBruteForceFaces = 256;         // a front this small is searched in one cell
-constexpr double kRetreatPreferFactor = 0.6;  // existing vertices win more easily per retreat
-constexpr int kRetreatRings = 1;    // tet layers a retreat clears beyond the open faces, at most
-constexpr double kFoldSine = 1e-7;  // a new face this flat against a front face folds
-
-struct Box
-{
-    Vec3 lo, hi;
-    bool overlaps(const Box& o) const
-    {
-        return lo[0] <= o.hi[0] && o.lo[0] <= hi[0] && lo[1] <= o.hi[1] && o.lo[1] <= hi[1] &&
-               lo[2] <= o.hi[2] && o.lo[2] <= hi[2];
-    }
-};
-
-Box box_of(const Vec3& a, const Vec3& b, const Vec3& c)
-{
-    return {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
-}
-
-/// p strictly on the positive side of the plane through a with normal n (n = (b-a)x(c-a)
-/// computed in doubles), decided in floating point only when the margin covers the round-off
-/// of the products; false means "not sure or not outside", the exact test decides then.
-bool surely_positive(const Vec3& a, const Vec3& n, double n_scale, const Vec3& p)
-{
-    const Vec3 d = p - a;
-    const double value = n.dot(d);
-    const double bound = 1e-13 * n_scale * (std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]));
-    return value > bound;
-}
-
-/// The sizes a cavity's own faces ask for, when no field is given: each input vertex's mean
-/// incident edge length, blended by inverse distance, so that sizes cannot drift down as the
-/// front's faces shrink (the front would then never close).
-class InputSizeField final : public SizeField
-{
-public:
-    void build(const std::vector<Vec3>& points, const std::vector<Triangle>& faces)
-    {
-        const int n = static_cast<int>(points.size());
-        std::vector<double> sum(n, 0.0);
-        std::vector<int> count(n, 0);
-        for (const Triangle& t : faces)
-            for (int k = 0; k < 3; ++k)
-            {
-                const double length = (points[t[k]] - points[t[(k + 1) % 3]]).norm();
-                sum[t[k]] += length;
-                sum[t[(k + 1) % 3]] += length;
-                count[t[k]] += 1;
-                count[t[(k + 1) % 3]] += 1;
-            }
-        // a large input is sampled evenly: the blend is smooth and the query stays cheap
-        const int step = std::max(1, n / kMaxSamples);
-        samples_.clear();
-        sizes_.clear();
-        for (int v = 0; v < n; v += step)
-            if (count[v] > 0)
-            {
-                samples_.push_back(points[v]);
-                sizes_.push_back(sum[v] / count[v]);
-            }
-    }
-
-    double size(const Vec3& p) const override
-    {
-        double weighted = 0, total = 0;
-        for (std::size_t k = 0; k < samples_.size(); ++k)
-        {
-            const double d2 = (samples_[k] - p).squaredNorm();
-            const double w = 1.0 / (d2 * d2 + 1e-300);
-            weighted += w * sizes_[k];
-            total += w;
-        }
-        return weighted / total;
-    }
-
-private:
-    static constexpr int kMaxSamples = 1024;
-    std::vector<Vec3> samples_;
-    std::vector<double> sizes_;
-};
-
-class FrontMesher
-{
-public:
-    FrontMesher(const std::vector<Vec3>& points, const std::vector<Triangle>& faces,
-                const SizeField* field, const AdvancingFrontOptions& options)
-        : input_points_(points), input_faces_(faces), field_(field), options_(options)
-    {
-    }
-
-    bool run(std::vector<TetVertices>& tets_out, std::vector<Vec3>& new_points_out,
-             std::string& failure, FrontReport* report);
-
-private:
-    bool setup(std::string& failure);
-    void build_grid();
-    void compute_components();
-    /// Per vertex, the smallest vertex id of its group: the live front faces joined through
-    /// shared vertices (a vertex on no live face is its own group).
-    std::vector<int> front_vertex_groups() const;
-    bool advance();  // true when the front is empty
-    bool attempt(int face);
-    void gather_vertices(const Box& region);
-    void gather_faces(int face, const Box& region);
-    bool valid_tet(int face, int p, bool is_new);
-    bool folds_onto(const TetVertices& tet, int shared_mask, const Triangle& t) const;
-    void commit(int face, int p);
-    void add_face(const Triangle& t);
-    void remove_face(int id);
-    int close_leftovers();
-    bool retreat();
-    float face_size(const Triangle& t) const;
-    std::uint64_t order_key(const Triangle& t) const;
-
-    // input
-    const std::vector<Vec3>& input_points_;
-    const std::vector<Triangle>& input_faces_;
-    const SizeField* field_;
-    const AdvancingFrontOptions& options_;
-    InputSizeField input_sizes_;  // the field when none is given
-
-    // local numbering: input vertices first (global id in local_to_global_), then new points
-    std::vector<int> local_to_global_;
-    int num_input_vertices_ = 0;
-    std::vector<Vec3> points_;
-    std::vector<int> component_;  // per point
-    std::vector<int> layer_;      // per point: 0 on the input, a new point one above its base
-    std::vector<std::uint8_t> in_grid_;
-    std::vector<TetVertices> tets_;
-    Vec3 order_origin_ = Vec3::Zero();  // the input's box, for the Z-order keys
-    double order_inverse_extent_ = 1.0;
-    double order_scale_ = 1.0;
-
-    Front front_;
-    detail::BucketGrid grid_;
-    bool use_grid_ = false;
-
-    // scratch of one attempt, reused so the inner loop does not allocate
-    std::vector<int> local_vertices_;
-    std::vector<detail::BucketGrid::FaceEntry> local_faces_;
-    struct Candidate
-    {
-        double quality;
-        int vertex;  // -1: the new point new_positions_[slot]
-        int slot;
-    };
-    std::vector<Candidate> candidates_;
-    std::vector<std::uint32_t> vertex_stamp_;  // valid_tet's per-vertex masks, by call
-    std::vector<std::uint8_t> vertex_mask_;
-    std::uint32_t stamp_ = 0;
-    int last_blocker_ = -1;  // index in local_faces_ of the face that refused the last candidate
-    std::array<Vec3, 3> new_positions_;
-
-    long iteration_budget_ = 0;
-    long iterations_ = 0;
-    int retreat_rounds_ = 0;
-    int leftover_groups_ = 0;
-};
 
 float FrontMesher::face_size(const Triangle& t) const
 {
@@ -443,157 +270,6 @@ void FrontMesher::gather_faces(int face, const Box& region)
     });
 }
 
-/// True when front face t, sharing an edge with a new side face of `tet`, lies flat against it
-/// on the same side of the edge: the pocket between them would need a tet flat in doubles.
-bool FrontMesher::folds_onto(const TetVertices& tet, int shared_mask, const Triangle& t) const
-{
-    int edge[2], n = 0, w = -1;
-    for (int j = 0; j < 4; ++j)
-        if (shared_mask & (1 << j)) edge[n++] = tet[j];
-    for (int v : t)
-        if (v != edge[0] && v != edge[1]) w = v;
-    const Vec3 &X = points_[edge[0]], &Y = points_[edge[1]], &W = points_[w];
-    const Vec3 e = Y - X;
-    const double e2 = e.squaredNorm();
-    if (!(e2 > 0)) return false;
-    const Vec3 uw = (W - X) - e * ((W - X).dot(e) / e2);
-    // the tet's faces through the edge other than the base (which leaves the front)
-    for (int j = 0; j < 4; ++j)
-    {
-        const int q = tet[j];
-        if (q == edge[0] || q == edge[1]) continue;
-        int other = -1;
-        for (int k = 0; k < 4; ++k)
-            if (tet[k] != edge[0] && tet[k] != edge[1] && tet[k] != q) other = tet[k];
-        // the face (edge, q) is the base when the fourth vertex is the apex
-        if (other == tet[3]) continue;
-        const Vec3& Q = points_[q];
-        const Vec3 uq = (Q - X) - e * ((Q - X).dot(e) / e2);
-        if (!(uq.dot(uw) > 0)) continue;
-        const double sine = uq.cross(uw).norm() / (uq.norm() * uw.norm());
-        if (sine < kFoldSine && front_.find({edge[0], edge[1], q}) < 0) return true;
-    }
-    return false;
-}
-
-bool FrontMesher::valid_tet(int face, int p, bool is_new)
-{
-    const Triangle& base = front_.vertices[face];
-    const int a = base[0], b = base[1], c = base[2];
-    const Vec3 &A = points_[a], &B = points_[b], &C = points_[c], &P = points_[p];
-    if (orient3d(A, B, C, P) <= 0) return false;
-
-    // A new face that is already on the front the same way would overlap the tets behind it.
-    const std::array<Triangle, 3> sides{{{a, b, p}, {b, c, p}, {c, a, p}}};
-    if (!is_new)
-        for (const Triangle& s : sides)
-        {
-            const int g = front_.find(s);
-            if (g >= 0 && same_orientation(s, front_.vertices[g])) return false;
-        }
-
-    const TetVertices tet{a, b, c, p};
-    const Box tet_box{A.cwiseMin(B).cwiseMin(C).cwiseMin(P), A.cwiseMax(B).cwiseMax(C).cwiseMax(P)};
-    // the four face planes of the tet, outward normals, for the floating-point quick rejects
-    std::array<Vec3, 4> normal, origin;
-    std::array<double, 4> scale;
-    for (int i = 0; i < 4; ++i)
-    {
-        const auto& fv = tet::kFaceVertices[i];
-        const Vec3 &u = points_[tet[fv[0]]], &v = points_[tet[fv[1]]], &w = points_[tet[fv[2]]];
-        const Vec3 e1 = v - u, e2 = w - u;
-        normal[i] = e1.cross(e2);
-        origin[i] = u;
-        scale[i] = (e1.cwiseAbs().sum()) * (e2.cwiseAbs().sum());
-    }
-    auto surely_outside = [&](int i, int v) {
-        return surely_positive(origin[i], normal[i], scale[i], points_[v]);
-    };
-    // Per vertex, once per call (a front vertex is in about six of the local faces): bit i when
-    // it is surely outside face plane i or a vertex of face i; bit 4 + j when it is tet[j].
-    if (vertex_stamp_.size() < points_.size())
-    {
-        vertex_stamp_.resize(points_.size() + points_.size() / 2 + 16, 0);
-        vertex_mask_.resize(vertex_stamp_.size(), 0);
-    }
-    if (++stamp_ == 0)
-    {
-        std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
-        stamp_ = 1;
-    }
-    for (int j = 0; j < 4; ++j)
-    {
-        vertex_stamp_[tet[j]] = stamp_;
-        vertex_mask_[tet[j]] = static_cast<std::uint8_t>((0xF & ~(1 << j)) | (1 << (4 + j)));
-    }
-    auto mask_of = [&](int v) {
-        if (vertex_stamp_[v] != stamp_)
-        {
-            vertex_stamp_[v] = stamp_;
-            std::uint8_t m = 0;
-            for (int i = 0; i < 4; ++i)
-                if (surely_outside(i, v)) m |= static_cast<std::uint8_t>(1 << i);
-            vertex_mask_[v] = m;
-        }
-        return vertex_mask_[v];
-    };
-
-    // true when front face `entry` forbids the tet
-    auto blocks = [&](const detail::BucketGrid::FaceEntry& entry) {
-        const Triangle& t = entry.vertices;
-        if (!tet_box.overlaps({Vec3(entry.lo[0], entry.lo[1], entry.lo[2]),
-                               Vec3(entry.hi[0], entry.hi[1], entry.hi[2])}))
-            return false;
-        const std::uint8_t m0 = mask_of(t[0]), m1 = mask_of(t[1]), m2 = mask_of(t[2]);
-        const int shared_mask = (m0 | m1 | m2) >> 4;
-        const int shared = ((m0 >> 4) != 0) + ((m1 >> 4) != 0) + ((m2 >> 4) != 0);
-        if (shared == 3) return false;  // the face the new tet closes against
-        if (shared == 2 && folds_onto(tet, shared_mask, t)) return true;
-        // quick reject: every vertex of t strictly outside one face plane or on it as a vertex
-        if (m0 & m1 & m2 & 0xF) return false;
-        // quick reject: the tet's other vertices strictly on one side of t's plane
-        {
-            const Vec3 &u = points_[t[0]], e1 = points_[t[1]] - u, e2 = points_[t[2]] - u;
-            const Vec3 n = e1.cross(e2);
-            const double n_scale = e1.cwiseAbs().sum() * e2.cwiseAbs().sum();
-            int above = 0, below = 0, others = 0;
-            for (int j = 0; j < 4; ++j)
-            {
-                if (shared_mask & (1 << j)) continue;
-                ++others;
-                const Vec3& X = points_[tet[j]];
-                above += surely_positive(u, n, n_scale, X);
-                below += surely_positive(u, -n, n_scale, X);
-            }
-            if (above == others || below == others) return false;
-        }
-        return tet_triangle_intersect(points_, tet, t);
-    };
-    // The face that refused the attempt's last candidate is tried first: the same obstacle
-    // usually stands in the way of the next ones.
-    if (last_blocker_ >= 0 && blocks(local_faces_[last_blocker_])) return false;
-    for (std::size_t k = 0; k < local_faces_.size(); ++k)
-        if (static_cast<int>(k) != last_blocker_ && blocks(local_faces_[k]))
-        {
-            last_blocker_ = static_cast<int>(k);
-            return false;
-        }
-
-    for (int v : local_vertices_)
-    {
-        if (v == a || v == b || v == c || v == p) continue;
-        const Vec3& X = points_[v];
-        if (X[0] < tet_box.lo[0] || X[0] > tet_box.hi[0] || X[1] < tet_box.lo[1] ||
-            X[1] > tet_box.hi[1] || X[2] < tet_box.lo[2] || X[2] > tet_box.hi[2])
-            continue;
-        bool outside = false;
-        for (int i = 0; i < 4 && !outside; ++i) outside = surely_outside(i, v);
-        if (outside) continue;
-        if (point_in_tet(points_, v, tet)) return false;
-    }
-    return true;
-}
-
 /// A face's generation is its vertices' lowest layer (Netgen's FrontNr): the faces a tet raises
 /// beside the boundary stay in the boundary's layer, so valleys close before the next layer.
 void FrontMesher::add_face(const Triangle& t)
@@ -646,6 +322,26 @@ void FrontMesher::commit(int face, int p)
         else
             add_face(s);
     }
+}
+
+/// Existing vertices scoring >= 0.8 of the best new point first, then new points, then the
+/// other vertices; by quality inside each class, ties by vertex id.
+void FrontMesher::sort_candidates(double ideal_quality)
+{
+    // each retreat round leans further towards existing vertices, so a rerun takes another path
+    const double prefer =
+        kPreferExisting * std::pow(kRetreatPreferFactor, retreat_rounds_) * ideal_quality;
+    auto rank = [&](const Candidate& x) {
+        if (x.vertex >= 0) return x.quality >= prefer ? 0 : 2;
+        return 1;
+    };
+    std::sort(candidates_.begin(), candidates_.end(), [&](const Candidate& x, const Candidate& y) {
+        const int rx = rank(x), ry = rank(y);
+        if (rx != ry) return rx < ry;
+        if (x.quality != y.quality) return x.quality > y.quality;
+        if (x.vertex != y.vertex) return x.vertex < y.vertex;
+        return x.slot < y.slot;
+    });
 }
 
 bool FrontMesher::attempt(int face)
@@ -715,22 +411,7 @@ bool FrontMesher::attempt(int face)
         }
     }
     if (ideal_quality == 0) ideal_quality = best_new;
-    // Existing vertices scoring >= 0.8 of the best new point first, then new points, then the
-    // other vertices; by quality inside each class, ties by vertex id.
-    // each retreat round leans further towards existing vertices, so a rerun takes another path
-    const double prefer =
-        kPreferExisting * std::pow(kRetreatPreferFactor, retreat_rounds_) * ideal_quality;
-    auto rank = [&](const Candidate& x) {
-        if (x.vertex >= 0) return x.quality >= prefer ? 0 : 2;
-        return 1;
-    };
-    std::sort(candidates_.begin(), candidates_.end(), [&](const Candidate& x, const Candidate& y) {
-        const int rx = rank(x), ry = rank(y);
-        if (rx != ry) return rx < ry;
-        if (x.quality != y.quality) return x.quality > y.quality;
-        if (x.vertex != y.vertex) return x.vertex < y.vertex;
-        return x.slot < y.slot;
-    });
+    sort_candidates(ideal_quality);
 
     if (candidates_.empty()) return false;
     // the faces that may meet any candidate tet: those overlapping the union of their boxes
@@ -792,161 +473,6 @@ bool FrontMesher::advance()
             front_.push(face);
         }
     }
-}
-
-/// Closes the small groups of the front left over by the small-cavity stages; returns how many.
-int FrontMesher::close_leftovers()
-{
-    const int n = static_cast<int>(points_.size());
-    const std::vector<int> group = front_vertex_groups();
-    auto root = [&group](int v) { return group[v]; };
-    std::vector<int> open;
-    for (int f = 0; f < static_cast<int>(front_.vertices.size()); ++f)
-        if (front_.alive[f]) open.push_back(f);
-    // groups in the order of their smallest face id
-    std::vector<std::pair<int, int>> by_group;  // (root, face)
-    for (int f : open) by_group.push_back({root(front_.vertices[f][0]), f});
-    std::stable_sort(by_group.begin(), by_group.end(),
-                     [](const auto& x, const auto& y) { return x.first < y.first; });
-    CavityOptions cavity_options;
-    cavity_options.max_exhaustive_points = options_.max_leftover_points;
-    int closed = 0;
-    std::vector<int> group_faces, group_vertices;
-    for (std::size_t i = 0; i < by_group.size();)
-    {
-        std::size_t j = i;
-        group_faces.clear();
-        while (j < by_group.size() && by_group[j].first == by_group[i].first)
-            group_faces.push_back(by_group[j++].second);
-        i = j;
-        group_vertices.clear();
-        for (int f : group_faces)
-            for (int v : front_.vertices[f]) group_vertices.push_back(v);
-        std::sort(group_vertices.begin(), group_vertices.end());
-        group_vertices.erase(std::unique(group_vertices.begin(), group_vertices.end()),
-                             group_vertices.end());
-        if (static_cast<int>(group_vertices.size()) > options_.max_leftover_points) continue;
-        std::vector<Vec3> group_points;
-        for (int v : group_vertices) group_points.push_back(points_[v]);
-        auto local = [&](int v) {
-            return static_cast<int>(
-                std::lower_bound(group_vertices.begin(), group_vertices.end(), v) -
-                group_vertices.begin());
-        };
-        std::vector<Triangle> outward;
-        for (int f : group_faces)
-        {
-            const Triangle& t = front_.vertices[f];
-            outward.push_back({local(t[0]), local(t[2]), local(t[1])});
-        }
-        CavityFill fill;
-        if (!detail::fill_small_cavity(group_points, outward, cavity_options, fill)) continue;
-        // The group is closed, but another part of the front might lie inside it; and a tet
-        // flat in doubles would fail the checker's volume test (a sliver is kept: a flat pocket
-        // has no other fill, the optimizer takes it apart).
-        const int m = static_cast<int>(group_vertices.size());
-        std::vector<Vec3> fill_points = group_points;
-        fill_points.insert(fill_points.end(), fill.new_points.begin(), fill.new_points.end());
-        bool clear = true;
-        for (const TetVertices& t : fill.tets)
-            if (!(signed_volume(fill_points[t[0]], fill_points[t[1]], fill_points[t[2]],
-                                fill_points[t[3]]) > 0))
-                clear = false;
-        for (int v = 0; v < n && clear; ++v)
-        {
-            if (front_.valence[v] == 0 ||
-                std::binary_search(group_vertices.begin(), group_vertices.end(), v))
-                continue;
-            fill_points.push_back(points_[v]);
-            const int probe = static_cast<int>(fill_points.size()) - 1;
-            for (const TetVertices& t : fill.tets)
-                if (point_in_tet(fill_points, probe, t))
-                {
-                    clear = false;
-                    break;
-                }
-            fill_points.pop_back();
-        }
-        if (!clear) continue;
-        std::vector<int> global(m + fill.new_points.size());
-        for (int k = 0; k < m; ++k) global[k] = group_vertices[k];
-        for (std::size_t k = 0; k < fill.new_points.size(); ++k)
-        {
-            global[m + k] = static_cast<int>(points_.size());
-            points_.push_back(fill.new_points[k]);
-            front_.valence.push_back(0);
-            component_.push_back(0);
-            in_grid_.push_back(0);
-            layer_.push_back(0);
-        }
-        for (const TetVertices& t : fill.tets)
-            tets_.push_back({global[t[0]], global[t[1]], global[t[2]], global[t[3]]});
-        for (int f : group_faces) remove_face(f);
-        ++closed;
-    }
-    return closed;
-}
-
-/// Netgen's RemoveProblem: removes every tet with a vertex on an open face and the new points
-/// nothing uses any more; the freed faces rejoin the front with their failures forgotten.
-bool FrontMesher::retreat()
-{
-    const int n = static_cast<int>(points_.size());
-    std::vector<std::uint8_t> on_front(n, 0);
-    for (int v = 0; v < n; ++v) on_front[v] = front_.valence[v] > 0;
-    // later rounds also clear the tets one layer beyond: a wider region re-advances more
-    // volume and strands more faces than it frees
-    const int rings = std::min(retreat_rounds_, kRetreatRings);
-    for (int ring = 0; ring < rings; ++ring)
-    {
-        std::vector<std::uint8_t> grown = on_front;
-        for (const TetVertices& t : tets_)
-            if (on_front[t[0]] || on_front[t[1]] || on_front[t[2]] || on_front[t[3]])
-                for (int v : t) grown[v] = 1;
-        on_front.swap(grown);
-    }
-    std::vector<TetVertices> kept;
-    kept.reserve(tets_.size());
-    std::vector<TetVertices> removed;
-    for (const TetVertices& t : tets_)
-    {
-        if (on_front[t[0]] || on_front[t[1]] || on_front[t[2]] || on_front[t[3]])
-            removed.push_back(t);
-        else
-            kept.push_back(t);
-    }
-    if (removed.empty()) return false;
-    tets_.swap(kept);
-    for (const TetVertices& t : removed)
-        for (int i = 0; i < 4; ++i)
-        {
-            const auto& fv = tet::kFaceVertices[i];
-            const Triangle outward{t[fv[0]], t[fv[1]], t[fv[2]]};
-            const int g = front_.find(outward);
-            if (g >= 0)
-            {
-                assert(same_orientation(outward, front_.vertices[g]));
-                front_.remove(g);
-            }
-            else
-            {
-                const Triangle inward{outward[0], outward[2], outward[1]};
-                const int lowest =
-                    std::min({layer_[inward[0]], layer_[inward[1]], layer_[inward[2]]});
-                front_.add(inward, lowest, face_size(inward), order_key(inward));
-            }
-        }
-    // every surviving face starts over: heap, grid and components rebuilt from the front
-    front_.heap.clear();
-    for (int f = 0; f < static_cast<int>(front_.vertices.size()); ++f)
-        if (front_.alive[f])
-        {
-            front_.fail[f] = 0;
-            front_.push(f);
-        }
-    compute_components();
-    build_grid();
-    return true;
 }
 
 bool FrontMesher::run(std::vector<TetVertices>& tets_out, std::vector<Vec3>& new_points_out,
@@ -1027,7 +553,7 @@ bool FrontMesher::run(std::vector<TetVertices>& tets_out, std::vector<Vec3>& new
     return true;
 }
 
-}  // namespace
+}  // namespace detail::front_mesher
 
 bool advance_front(const std::vector<Vec3>& points, const std::vector<Triangle>& faces,
                    const SizeField* field, const AdvancingFrontOptions& options,
@@ -1039,7 +565,7 @@ bool advance_front(const std::vector<Vec3>& points, const std::vector<Triangle>&
         failure = "advancing front: no faces";
         return false;
     }
-    FrontMesher mesher(points, faces, field, options);
+    detail::front_mesher::FrontMesher mesher(points, faces, field, options);
     return mesher.run(tets, new_points, failure, report);
 }
 

@@ -16,26 +16,12 @@
 #include <string>
 #include <vector>
 
+#include "volume/fill/fill_common.h"
 #include "volume/mesh/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::volume
 {
-
-struct AdvancingFrontOptions
-{
-    /// Quality floors, relaxed in this order as a face keeps failing; the last is "positive".
-    std::vector<double> quality_floors{0.3, 0.1, 0.02, 0.0};
-    int max_retreat_rounds = 10;
-    /// Leftover groups with at most this many points go to stages 1-3.
-    int max_leftover_points = 32;
-    /// No new point closer than this fraction of the local size to a front vertex.
-    double min_point_distance = 0.65;
-    /// > 0: face attempts at most, over all retreat rounds (else enough for every tet the
-    /// sizes ask for, many times over). A caller that may refuse (a mirrored surface operation)
-    /// caps it: a cavity whose shortest face edge is tiny would otherwise get a huge budget.
-    long max_attempts = 0;
-};
 
 struct FrontReport
 {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "volume/fill/advancing_front.h"
 #include "volume/fill/detail/cavity_stages.h"
 #include "volume/fill/detail/kernel.h"
 #include "volume/mesh/predicates.h"

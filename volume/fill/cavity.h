@@ -18,74 +18,16 @@
 // so the output is a function of the input alone.
 
 #include <array>
-#include <cstdint>
 #include <string>
 #include <vector>
 
-#include "volume/fill/advancing_front.h"
+#include "volume/fill/fill_common.h"
 #include "volume/mesh/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 #include "volume/mesh/tet_topology.h"
 
 namespace hdimesh::volume
 {
-
-/// The stage that produced a fill (or Failed), in cascade order.
-enum class FillStage : std::uint8_t
-{
-    VertexFan = 0,
-    KernelFan = 1,
-    Exhaustive = 2,
-    AdvancingFront = 3,
-    Failed = 4,
-};
-inline constexpr int kNumFillStages = 5;
-
-const char* to_string(FillStage stage);
-
-struct CavityOptions
-{
-    /// A stage's fill is taken at once when its worst Qe reaches this; otherwise the cascade
-    /// goes on and keeps the best valid fill found.
-    double accept_quality = 0.2;
-    /// Stages 1-2 are tried only on cavities with at most this many faces (a fan of a large
-    /// convex surface is valid and all slivers).
-    int max_fan_faces = 200;
-    /// Stage 3: polyhedra with at most this many points (cavity vertices + candidates).
-    int max_exhaustive_points = 32;
-    /// Stage 3: search nodes at most (a node = one tet tried on one face).
-    long exhaustive_node_budget = 20000;
-    /// Stage 3 when stage 1 or 2 already filled the cavity below accept_quality: the search
-    /// only looks for a better fill, with at most this many nodes.
-    long improve_node_budget = 2000;
-    /// Stage 4 (cavities with more faces than stage 3 takes, or when 1-3 failed).
-    AdvancingFrontOptions front;
-    /// Stage 5 (refill_tets only): layers of interior tets added at most.
-    int max_grow_layers = 3;
-};
-
-/// A computed fill, not yet in the mesh.
-struct CavityFill
-{
-    bool filled = false;
-    FillStage stage = FillStage::Failed;
-    /// Positive tets. Vertex ids index the mesh's points, and id mesh.num_vertices() + k is
-    /// new_points[k].
-    std::vector<TetVertices> tets;
-    std::vector<Vec3> new_points;  ///< Steiner points, strictly inside
-    int first_new_vertex = 0;      ///< the mesh's vertex count when the fill was computed
-    /// The faces filled: the input faces, or the boundary of removed_tets after growing.
-    std::vector<Triangle> faces;
-    /// refill_tets: the live tets the fill replaces (the given ones plus the grown layers).
-    std::vector<int> removed_tets;
-    int ref = 0;  ///< ref of the new tets (refill_tets: the cavity's common tet ref)
-    /// Per new tet, its ref, for a fill put together from cavities on both sides of an
-    /// interface (empty: every tet takes `ref`).
-    std::vector<int> tet_refs;
-    int grown_layers = 0;
-    double worst_quality = 0;  ///< min Qe over tets
-    std::string failure;       ///< why not, when !filled
-};
 
 /// Fills the region bounded by `faces` (closed, each edge in exactly two faces with opposite
 /// directions, outward-oriented; vertex ids into mesh.points). The mesh supplies points only.

@@ -18,28 +18,23 @@ struct CollapseConfiguration
     std::vector<int> shell;           // tets containing both from and to
     std::vector<TetVertices> moved;   // the other tets, with from replaced by to
     std::vector<int> new_neighbours;  // vertices joined to `to` by the collapse
+    int ref = 0;                      // the ball's one tet ref
 };
 
-}  // namespace
-
-CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, int to,
-                             const CollapseOptions& options)
+/// Layer 2 of collapse_edge: from's ball split into config (false: no edge (from, to), more than
+/// one ref, or a tet that may not be removed).
+bool collect_collapse_configuration(const TetMesh& mesh, OperatorContext& context, int from, int to,
+                                    CollapseConfiguration& config)
 {
-    CollapseResult result;
-    // layer 1: classes — only a free interior vertex moves, and only onto another vertex
-    if (from == to || !context.constraints.is_free_vertex(from) || context.vertex_tet[from] < 0)
-        return result;
-
-    // layer 2: topology — the edge exists, one ref, nothing required
-    CollapseConfiguration config;
     config.from = from;
     config.to = to;
     context.ball(mesh, from, config.ball);
     const int ref = mesh.tet_refs[config.ball.front()];
+    config.ref = ref;
     std::vector<int> shell_ring;  // vertices already joined to `to` through the shell
     for (int t : config.ball)
     {
-        if (mesh.tet_refs[t] != ref || !context.constraints.is_removable_tet(t)) return result;
+        if (mesh.tet_refs[t] != ref || !context.constraints.is_removable_tet(t)) return false;
         const auto& tv = mesh.tets[t];
         if (local_index(mesh, t, to) >= 0)
         {
@@ -52,7 +47,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
             if (v == from) v = to;
         config.moved.push_back(moved);
     }
-    if (config.shell.empty() || config.moved.empty()) return result;  // (from, to) no edge
+    if (config.shell.empty() || config.moved.empty()) return false;  // (from, to) no edge
     // new neighbours: the vertices of the moved tets that no shell tet has (sorted sets; the
     // shell tets' own vertices are all in shell_ring)
     std::vector<int> moved_vertices;
@@ -67,6 +62,22 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     shell_ring.erase(std::unique(shell_ring.begin(), shell_ring.end()), shell_ring.end());
     std::set_difference(moved_vertices.begin(), moved_vertices.end(), shell_ring.begin(),
                         shell_ring.end(), std::back_inserter(config.new_neighbours));
+    return true;
+}
+
+}  // namespace
+
+CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, int to,
+                             const CollapseOptions& options)
+{
+    CollapseResult result;
+    // layer 1: classes — only a free interior vertex moves, and only onto another vertex
+    if (from == to || !context.constraints.is_free_vertex(from) || context.vertex_tet[from] < 0)
+        return result;
+
+    // layer 2: topology — the edge exists, one ref, nothing required
+    CollapseConfiguration config;
+    if (!collect_collapse_configuration(mesh, context, from, to, config)) return result;
 
     // layers 3 and 4 for each place the merged vertex may take: `to` itself, then (when `to`
     // is free too) the edge's midpoint, which halves how much the new edges grow
@@ -169,7 +180,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
 
     mesh.points[to] = chosen;
     context.tets_changed(reshaped_by_move);  // their cached qualities are stale now
-    replace_tets(mesh, context, config.ball, config.moved, ref);
+    replace_tets(mesh, context, config.ball, config.moved, config.ref);
     context.vertex_tet[from] = -1;
     result.collapsed = true;
     return result;

@@ -8,6 +8,8 @@
 #include "common/errors.h"
 #include "common/stage_timer.h"
 #include "volume/mesh/tet_tables.h"
+#include "volume/refine/detail/child_build.h"
+#include "volume/refine/detail/edge_table.h"
 #include "volume/refine/refine_patterns.h"
 
 namespace hdimesh::volume
@@ -29,101 +31,12 @@ int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int 
 namespace
 {
 
+using detail::ChildBuild;
+using detail::EdgeTable;
+using detail::pattern_builds;
+using detail::PatternBuilds;
+
 constexpr int kMaxDeferRounds = 16;  // simulations of a pass, each deferring the stuck tets' edges
-
-/// The tets' edges, each once, filed under its lower vertex (compressed rows); a slot number
-/// indexes per-edge data. Only edges whose higher vertex is >= first_vertex are kept (refine()
-/// skips edges that a previous pass already found short enough).
-class EdgeTable
-{
-public:
-    EdgeTable(const TetMesh& mesh, int first_vertex)
-    {
-        const int nv = mesh.num_vertices();
-        const bool adjacency = mesh.has_adjacency();
-        // With adjacency, tet t lists edge e only when neither tet across the two faces at e
-        // (both also hold e) has a smaller index: the smallest tet around every edge lists it,
-        // and far fewer than the 6 per tet are left to deduplicate.
-        auto listed = [&](int t, int e) {
-            if (!adjacency) return true;
-            const auto& nb = mesh.neighbors[t];
-            const int f = tet::kEdgeFaces[e][0], g = tet::kEdgeFaces[e][1];
-            return (nb[f] == kNoTet || nb[f] > t) && (nb[g] == kNoTet || nb[g] > t);
-        };
-        auto has_new_vertex = [first_vertex](const TetVertices& t) {
-            return t[0] != kDeadTet && std::max({t[0], t[1], t[2], t[3]}) >= first_vertex;
-        };
-        first_.assign(nv + 1, 0);
-        const int nt = mesh.num_tet_slots();
-        for (int ti = 0; ti < nt; ++ti)
-        {
-            const auto& t = mesh.tets[ti];
-            if (!has_new_vertex(t)) continue;
-            for (int e = 0; e < 6; ++e)
-            {
-                const auto& ev = tet::kEdgeVertices[e];
-                if (std::max(t[ev[0]], t[ev[1]]) >= first_vertex && listed(ti, e))
-                    ++first_[std::min(t[ev[0]], t[ev[1]]) + 1];
-            }
-        }
-        for (int v = 0; v < nv; ++v) first_[v + 1] += first_[v];
-        upper_.resize(first_[nv]);
-        {
-            std::vector<int> fill(first_.begin(), first_.end() - 1);
-            for (int ti = 0; ti < nt; ++ti)
-            {
-                const auto& t = mesh.tets[ti];
-                if (!has_new_vertex(t)) continue;
-                for (int e = 0; e < 6; ++e)
-                {
-                    const auto& ev = tet::kEdgeVertices[e];
-                    const int a = std::min(t[ev[0]], t[ev[1]]), b = std::max(t[ev[0]], t[ev[1]]);
-                    if (b >= first_vertex && listed(ti, e)) upper_[fill[a]++] = b;
-                }
-            }
-        }
-        // sort and deduplicate each row, compacting in place
-        int write = 0, begin = first_[0];
-        for (int v = 0; v < nv; ++v)
-        {
-            const int end = first_[v + 1];
-            for (int i = begin + 1; i < end; ++i)  // rows are short: insertion sort
-            {
-                const int x = upper_[i];
-                int j = i;
-                for (; j > begin && upper_[j - 1] > x; --j) upper_[j] = upper_[j - 1];
-                upper_[j] = x;
-            }
-            const auto last = std::unique(upper_.begin() + begin, upper_.begin() + end);
-            first_[v] = write;
-            for (auto it = upper_.begin() + begin; it != last; ++it) upper_[write++] = *it;
-            begin = end;
-        }
-        first_[nv] = write;
-        upper_.resize(write);
-        upper_.shrink_to_fit();
-    }
-
-    /// Slot of edge ab, or -1 when it is not in the table.
-    int find(int a, int b) const
-    {
-        if (a > b) std::swap(a, b);
-        for (int s = first_[a], end = first_[a + 1]; s < end; ++s)
-        {
-            if (upper_[s] >= b) return upper_[s] == b ? s : -1;
-        }
-        return -1;
-    }
-
-    int num_edges() const { return static_cast<int>(upper_.size()); }
-    int row_begin(int v) const { return first_[v]; }
-    int row_end(int v) const { return first_[v + 1]; }
-    int upper(int slot) const { return upper_[slot]; }
-
-private:
-    std::vector<int> first_;  // first slot of each vertex's row, size nv + 1
-    std::vector<int> upper_;  // the higher vertex of each slot, sorted in each row
-};
 
 /// Per split mask: the faces with two split edges, their corner and other two local vertices.
 struct MaskFaces
@@ -182,92 +95,6 @@ std::uint16_t encode(int pattern, Build build)
 }
 int pattern_of(std::uint16_t choice) { return choice & 0xff; }
 Build build_of(std::uint16_t choice) { return static_cast<Build>(choice >> 8); }
-
-/// Children of one way of building one pattern, over local points, with how their faces meet:
-/// link[4 * child + face] is the partner child face (4 * child + face) inside the parent, or
-/// -(1 + f) for a face on the parent's face f; on_parent_face[f] lists those child faces.
-struct ChildBuild
-{
-    std::vector<std::array<std::uint8_t, 4>> tets;
-    std::vector<int> link;
-    std::array<std::vector<int>, 4> on_parent_face;
-    bool new_point = false;
-};
-
-bool local_point_on_face(int point, int face)
-{
-    if (point < 4) return point != face;
-    if (point == kPatternSteinerPoint) return false;
-    const auto& ev = tet::kEdgeVertices[point - 4];
-    return ev[0] != face && ev[1] != face;
-}
-
-ChildBuild make_child_build(std::vector<std::array<std::uint8_t, 4>> tets, bool new_point)
-{
-    ChildBuild b;
-    b.tets = std::move(tets);
-    b.new_point = new_point;
-    const int n = static_cast<int>(b.tets.size());
-    b.link.assign(4 * n, 0);
-    std::vector<std::array<int, 4>> keys;  // sorted face points, child face
-    for (int i = 0; i < n; ++i)
-        for (int k = 0; k < 4; ++k)
-        {
-            const auto& fv = tet::kFaceVertices[k];
-            std::array<int, 3> f = {b.tets[i][fv[0]], b.tets[i][fv[1]], b.tets[i][fv[2]]};
-            std::sort(f.begin(), f.end());
-            keys.push_back({f[0], f[1], f[2], 4 * i + k});
-        }
-    std::sort(keys.begin(), keys.end());
-    for (std::size_t j = 0; j < keys.size(); ++j)
-    {
-        const bool with_next =
-            j + 1 < keys.size() &&
-            std::equal(keys[j].begin(), keys[j].begin() + 3, keys[j + 1].begin());
-        if (with_next)
-        {
-            b.link[keys[j][3]] = keys[j + 1][3];
-            b.link[keys[j + 1][3]] = keys[j][3];
-            ++j;
-            continue;
-        }
-        int face = 0;
-        while (!(local_point_on_face(keys[j][0], face) && local_point_on_face(keys[j][1], face) &&
-                 local_point_on_face(keys[j][2], face)))
-            ++face;
-        b.link[keys[j][3]] = -(1 + face);
-        b.on_parent_face[face].push_back(keys[j][3]);
-    }
-    return b;
-}
-
-struct PatternBuilds
-{
-    std::vector<ChildBuild> table, cone;  // indexed by pattern
-
-    PatternBuilds()
-    {
-        for (int i = 0; i < kNumRefinePatterns; ++i)
-        {
-            const RefinePattern& p = refine_pattern(i);
-            std::vector<std::array<std::uint8_t, 4>> tets, cone_tets;
-            for (int k = 0; k < p.num_tets; ++k)
-                tets.push_back({p.tets[k][0], p.tets[k][1], p.tets[k][2], p.tets[k][3]});
-            for (int k = 0; k < p.num_triangles;
-                 ++k)  // outward triangle (u, v, w): tet (u, w, v, apex)
-                cone_tets.push_back({p.triangles[k][0], p.triangles[k][2], p.triangles[k][1],
-                                     static_cast<std::uint8_t>(kPatternSteinerPoint)});
-            table.push_back(make_child_build(std::move(tets), p.steiner));
-            cone.push_back(make_child_build(std::move(cone_tets), true));
-        }
-    }
-};
-
-const PatternBuilds& pattern_builds()
-{
-    static const PatternBuilds builds;
-    return builds;
-}
 
 const ChildBuild& child_build(std::uint16_t choice)
 {

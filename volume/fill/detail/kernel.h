@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "volume/fill/cavity.h"
+#include "volume/fill/fill_common.h"
 
 namespace hdimesh::volume::detail
 {
