@@ -34,11 +34,12 @@ allowed_libraries() {  # third-party include prefixes a module may use
     esac
 }
 
-volume_layer() {  # the layer of a volume/ subfolder (header above), empty when it has none
+volume_layer() {  # layer=the layer of volume/ subfolder $1 (header above), empty when none
     case $1 in
-        mesh) echo 0 ;;
-        io|check|size) echo 1 ;;
-        refine|optimize|fill) echo 2 ;;
+        mesh) layer=0 ;;
+        io|check|size) layer=1 ;;
+        refine|optimize|fill) layer=2 ;;
+        *) layer= ;;
     esac
 }
 
@@ -64,8 +65,10 @@ for module in common hdi volume surface coupling; do
                     from=${from%%/*}
                     to=${target#volume/}
                     to=${to%%/*}
-                    from_layer=$(volume_layer "$from")
-                    to_layer=$(volume_layer "$to")
+                    volume_layer "$from"
+                    from_layer=$layer
+                    volume_layer "$to"
+                    to_layer=$layer
                     label=volume/$from
                     if [[ -n $from_layer && -n $to_layer ]] &&
                         { [[ $from == "$to" ]] || ((to_layer < from_layer)); }; then
