@@ -4,8 +4,8 @@
 
 #include "coupling/adapt_request.h"
 #include "size_flags.h"
-#include "volume/quality_report.h"
-#include "volume/tet_io.h"
+#include "volume/check/quality_report.h"
+#include "volume/io/tet_io.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;

@@ -4,9 +4,9 @@
 #include "cli.h"
 #include "common/errors.h"
 #include "common/sol_io.h"
-#include "volume/boundary_repair.h"
-#include "volume/check.h"
-#include "volume/tet_io.h"
+#include "volume/check/boundary_repair.h"
+#include "volume/check/check.h"
+#include "volume/io/tet_io.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;

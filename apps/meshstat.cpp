@@ -5,9 +5,9 @@
 
 #include "common/errors.h"
 #include "size_flags.h"
-#include "volume/check.h"
-#include "volume/quality_report.h"
-#include "volume/tet_io.h"
+#include "volume/check/check.h"
+#include "volume/check/quality_report.h"
+#include "volume/io/tet_io.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;

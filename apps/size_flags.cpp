@@ -2,7 +2,7 @@
 #include "size_flags.h"
 
 #include "common/sol_io.h"
-#include "volume/size_spec.h"
+#include "volume/size/size_spec.h"
 
 namespace hdimesh::cli
 {

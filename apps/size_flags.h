@@ -6,9 +6,9 @@
 #include <string>
 
 #include "cli.h"
-#include "volume/size_field.h"
-#include "volume/size_spec.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/size_field.h"
+#include "volume/mesh/tet_mesh.h"
+#include "volume/size/size_spec.h"
 
 namespace hdimesh::cli
 {

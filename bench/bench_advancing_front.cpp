@@ -28,12 +28,12 @@
 #include "fixtures.h"
 #include "hdi/obj_reader.h"
 #include "surface/surface_io.h"
-#include "volume/advancing_front.h"
-#include "volume/check.h"
-#include "volume/optimize.h"
-#include "volume/quality_report.h"
-#include "volume/size_fields.h"
-#include "volume/tet_io.h"
+#include "volume/check/check.h"
+#include "volume/check/quality_report.h"
+#include "volume/fill/advancing_front.h"
+#include "volume/io/tet_io.h"
+#include "volume/optimize/optimize.h"
+#include "volume/size/size_fields.h"
 
 // ---- heap accounting for the peak-bytes column (bench only)
 namespace

@@ -18,7 +18,7 @@
 
 #include "cavity_corpus.h"
 #include "cavity_fill_check.h"
-#include "volume/detail/cavity_stages.h"
+#include "volume/fill/detail/cavity_stages.h"
 
 using namespace hdimesh;
 using cavity_corpus::Cavity;

@@ -9,7 +9,7 @@ surfremesh on the same surfaces, refining (1 % of the diagonal) and coarsening (
 For each model X, DIR/X.msh is the tet mesh and DIR/X.obj its input surface. Boundary columns
 come from scripts/surfstat.py against the input surface, volume columns from
 scripts/meshstat.py --hsiz h; CPU is adapt's own "cpu: total" (parse, read and write excluded);
-the checker column is adapt --check's verdict on its output (volume/check.h). With --mmg, Mmg
+the checker column is adapt --check's verdict on its output (volume/check/check.h). With --mmg, Mmg
 runs on the same tet mesh (converted to Medit by meshconvert) with -hsiz h, its defaults
 otherwise; its CPU is the whole process's (user + system, reading and writing included).
 """

@@ -14,9 +14,9 @@
 #include <string>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/tet_io.h"
-#include "volume/tet_mesh.h"
+#include "volume/check/check.h"
+#include "volume/io/tet_io.h"
+#include "volume/mesh/tet_mesh.h"
 
 using namespace hdimesh;
 namespace fs = std::filesystem;

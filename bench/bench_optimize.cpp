@@ -15,12 +15,12 @@
 #include <ctime>
 #include <string>
 
-#include "volume/check.h"
-#include "volume/optimize.h"
-#include "volume/quality_report.h"
-#include "volume/refine.h"
-#include "volume/size_fields.h"
-#include "volume/tet_io.h"
+#include "volume/check/check.h"
+#include "volume/check/quality_report.h"
+#include "volume/io/tet_io.h"
+#include "volume/optimize/optimize.h"
+#include "volume/refine/refine.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

@@ -1,4 +1,4 @@
-// Cost per call of the exact predicates (volume/predicates.h) on a few input families: random
+// Cost per call of the exact predicates (volume/mesh/predicates.h) on a few input families: random
 // points (the filter decides), near-coplanar rounded points (the exact stage decides), and
 // the intersection tests on random, nearby and vertex-sharing simplices. Prints one table row
 // per family: ns per call and the share of answers that are +1 or true.
@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "volume/predicates.h"
+#include "volume/mesh/predicates.h"
 
 using namespace hdimesh;
 using volume::Vec3;

@@ -1,5 +1,5 @@
-// bench_refine: refinement alone (volume/refine.h refine(), no projection, no optimization) on
-// the paper's five benchmark cases A-E from data/sphere480.mesh, single-threaded.
+// bench_refine: refinement alone (volume/refine/refine.h refine(), no projection, no optimization)
+// on the paper's five benchmark cases A-E from data/sphere480.mesh, single-threaded.
 //
 //   bench_refine [--check] [CASES]     e.g. bench_refine ABCDE (default), bench_refine --check E
 //
@@ -18,11 +18,11 @@
 #include <string>
 #include <vector>
 
-#include "volume/check.h"
-#include "volume/refine.h"
-#include "volume/size_fields.h"
-#include "volume/tet_io.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/io/tet_io.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/refine/refine.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

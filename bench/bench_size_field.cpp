@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/quality_report.h"
-#include "volume/size_fields.h"
-#include "volume/tet_mesh.h"
+#include "volume/check/check.h"
+#include "volume/check/quality_report.h"
+#include "volume/mesh/tet_mesh.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

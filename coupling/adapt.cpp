@@ -16,8 +16,8 @@
 #include "surface/hdi_projection.h"
 #include "surface/surface_model.h"
 #include "surface/surface_quality.h"
-#include "volume/reorder.h"
-#include "volume/size_fields.h"
+#include "volume/mesh/reorder.h"
+#include "volume/size/size_fields.h"
 
 namespace hdimesh::coupling
 {

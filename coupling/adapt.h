@@ -24,10 +24,10 @@
 #include "coupling/boundary_projection.h"
 #include "coupling/mirror.h"
 #include "surface/remesh_surface.h"
-#include "volume/optimize.h"
-#include "volume/refine.h"
-#include "volume/size_field.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/size_field.h"
+#include "volume/mesh/tet_mesh.h"
+#include "volume/optimize/optimize.h"
+#include "volume/refine/refine.h"
 
 namespace hdimesh::coupling
 {
@@ -117,9 +117,9 @@ void apply_switches(const AdaptSwitches& switches, AdaptOptions& options);
 /// Adapts mesh in place. \pre mesh passes check_mesh (positive tets, closed boundary).
 /// Throws InputError when the boundary cannot carry a surface model.
 /// Ids are not kept: the output is compact and, before the final optimization, renumbered
-/// along a space-filling curve (volume/reorder.h); refs, boundary triangles, feature edges,
+/// along a space-filling curve (volume/mesh/reorder.h); refs, boundary triangles, feature edges,
 /// corners and vertex classes are carried. A solver that needs to transfer fields maps them
-/// by position (e.g. volume/point_locator.h on the old mesh), not by id.
+/// by position (e.g. volume/mesh/point_locator.h on the old mesh), not by id.
 AdaptReport adapt(volume::TetMesh& mesh, const volume::SizeField& field,
                   const AdaptOptions& options = {});
 

@@ -3,11 +3,11 @@
 #include "common/buffer_io.h"
 #include "common/errors.h"
 #include "common/sol_io.h"
-#include "volume/boundary_repair.h"
-#include "volume/check.h"
-#include "volume/quality_report.h"
-#include "volume/size_fields.h"
-#include "volume/tet_io.h"
+#include "volume/check/boundary_repair.h"
+#include "volume/check/check.h"
+#include "volume/check/quality_report.h"
+#include "volume/io/tet_io.h"
+#include "volume/size/size_fields.h"
 
 namespace hdimesh::coupling
 {

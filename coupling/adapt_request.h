@@ -13,9 +13,9 @@
 #include "coupling/adapt.h"
 #include "coupling/mesh_from_surface.h"
 #include "surface/surface_io.h"
-#include "volume/size_field.h"
-#include "volume/size_spec.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/size_field.h"
+#include "volume/mesh/tet_mesh.h"
+#include "volume/size/size_spec.h"
 
 namespace hdimesh::coupling
 {

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "common/errors.h"
-#include "volume/boundary.h"
-#include "volume/surface_check.h"
+#include "volume/check/surface_check.h"
+#include "volume/mesh/boundary.h"
 
 namespace hdimesh::coupling
 {

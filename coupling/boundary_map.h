@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "surface/surface_mesh.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::coupling
 {

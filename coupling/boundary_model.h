@@ -12,7 +12,7 @@
 #include "hdi/hdi_surface.h"
 #include "surface/hdi_projection.h"
 #include "surface/surface_model.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::coupling
 {

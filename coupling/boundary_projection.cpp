@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "volume/tet_topology.h"
+#include "volume/mesh/tet_topology.h"
 
 namespace hdimesh::coupling
 {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "coupling/boundary_model.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::coupling
 {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <map>
 
-#include "volume/boundary.h"
+#include "volume/mesh/boundary.h"
 
 namespace hdimesh::coupling
 {

@@ -20,9 +20,9 @@
 #include "surface/features.h"
 #include "surface/sizing.h"
 #include "surface/surface_model.h"
-#include "volume/check.h"
-#include "volume/size_fields.h"
-#include "volume/surface_regions.h"
+#include "volume/check/check.h"
+#include "volume/check/surface_regions.h"
+#include "volume/size/size_fields.h"
 
 namespace hdimesh::coupling
 {

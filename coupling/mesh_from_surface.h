@@ -2,14 +2,15 @@
 // A tet mesh from a closed surface alone (the paper's surface-only input: "a tetrahedron mesh
 // is performed and adapted thereafter"):
 //
-//   validate   volume/surface_check.h      refused before anything else, one message naming
+//   validate   volume/check/surface_check.h      refused before anything else, one message naming
 //                                          the faces or loops (InputError)
-//   regions    volume/surface_regions.h    shells, voids, one tet ref per solid
+//   regions    volume/check/surface_regions.h    shells, voids, one tet ref per solid
 //   remesh     surface/remesh_surface.h    the surfremesh pipeline to the size (skipped with
 //                                          keep_surface: the given triangles are the boundary,
 //                                          TetGen's -Y), then validated again
-//   fill       volume/cavity.h             one fill_cavity call per region (outer shell + voids)
-//   adapt      coupling::adapt: too-long edges refined, new boundary points projected onto the
+//   fill       volume/fill/cavity.h             one fill_cavity call per region (outer shell +
+//   voids) adapt      coupling::adapt: too-long edges refined, new boundary points projected onto
+//   the
 //              model, optimized; with keep_surface, interior edges only and no projection (the
 //              boundary never changes)
 //
@@ -25,10 +26,10 @@
 #include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
 #include "surface/surface_mesh.h"
-#include "volume/cavity.h"
-#include "volume/size_field.h"
-#include "volume/surface_check.h"
-#include "volume/tet_mesh.h"
+#include "volume/check/surface_check.h"
+#include "volume/fill/cavity.h"
+#include "volume/mesh/size_field.h"
+#include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::coupling
 {

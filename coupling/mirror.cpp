@@ -6,8 +6,8 @@
 #include <memory>
 #include <unordered_map>
 
-#include "volume/tet_tables.h"
-#include "volume/tet_topology.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/mesh/tet_topology.h"
 
 namespace hdimesh::coupling
 {
@@ -374,6 +374,38 @@ private:
         }
     }
 
+    /// The interior vertices a grown cavity swallows (their balls inside it) into `swallowed`;
+    /// refuses when any other vertex is off the cavity's faces.
+    bool collect_swallowed(const CavityChange& change, const std::vector<int>& cavity,
+                           const std::vector<std::vector<Triangle>>& side_faces, const Pending& out,
+                           std::vector<int>& swallowed) const
+    {
+        auto in_cavity = [&](int t) { return std::binary_search(cavity.begin(), cavity.end(), t); };
+        if (cavity.size() > change.tets.size())
+        {
+            std::vector<int> on_faces;
+            for (const auto& faces : side_faces)
+                for (const auto& f : faces) on_faces.insert(on_faces.end(), f.begin(), f.end());
+            std::sort(on_faces.begin(), on_faces.end());
+            std::vector<int> vertices;
+            for (int t : cavity)
+                vertices.insert(vertices.end(), mesh_.tets[t].begin(), mesh_.tets[t].end());
+            std::sort(vertices.begin(), vertices.end());
+            vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+            for (int v : vertices)
+            {
+                if (std::binary_search(on_faces.begin(), on_faces.end(), v)) continue;
+                if (std::find(out.key.begin(), out.key.end(), v) != out.key.end()) continue;
+                ball(v, scratch_);
+                const bool inside = std::all_of(scratch_.begin(), scratch_.end(), in_cavity);
+                if (!inside || mesh_.vertex_classes[v] != VertexClass::Interior)
+                    return refuse(MirrorStatistics::NoFill);
+                swallowed.push_back(v);
+            }
+        }
+        return true;
+    }
+
     /// One try of simulate() on `cavity` (sorted). On a refusal that more tets may cure, `grow`
     /// gets them. Across an interface the cavity is one per side, refs never mixed: each side's
     /// faces are its tets' outer faces with the changed triangles swapped for the new ones
@@ -447,30 +479,8 @@ private:
         if (!new_edges_are_new(change, cavity, grow)) return refuse(MirrorStatistics::EdgeInside);
 
         // A grown cavity may swallow an interior vertex (its ball inside): the fill drops it.
-        // Any other vertex must stay on the cavity's faces.
         std::vector<int> swallowed;
-        if (cavity.size() > change.tets.size())
-        {
-            std::vector<int> on_faces;
-            for (const auto& faces : side_faces)
-                for (const auto& f : faces) on_faces.insert(on_faces.end(), f.begin(), f.end());
-            std::sort(on_faces.begin(), on_faces.end());
-            std::vector<int> vertices;
-            for (int t : cavity)
-                vertices.insert(vertices.end(), mesh_.tets[t].begin(), mesh_.tets[t].end());
-            std::sort(vertices.begin(), vertices.end());
-            vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-            for (int v : vertices)
-            {
-                if (std::binary_search(on_faces.begin(), on_faces.end(), v)) continue;
-                if (std::find(out.key.begin(), out.key.end(), v) != out.key.end()) continue;
-                ball(v, scratch_);
-                const bool inside = std::all_of(scratch_.begin(), scratch_.end(), in_cavity);
-                if (!inside || mesh_.vertex_classes[v] != VertexClass::Interior)
-                    return refuse(MirrorStatistics::NoFill);
-                swallowed.push_back(v);
-            }
-        }
+        if (!collect_swallowed(change, cavity, side_faces, out, swallowed)) return false;
 
         std::vector<CavityFill> fills(refs.size());
         for (std::size_t side = 0; side < refs.size(); ++side)

@@ -23,8 +23,8 @@
 
 #include "coupling/boundary_map.h"
 #include "surface/local_ops.h"
-#include "volume/cavity.h"
-#include "volume/tet_mesh.h"
+#include "volume/fill/cavity.h"
+#include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::coupling
 {

@@ -21,12 +21,12 @@
 #include "coupling/mesh_from_surface.h"
 #include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
-#include "volume/boundary_repair.h"
-#include "volume/check.h"
-#include "volume/quality_report.h"
-#include "volume/size_fields.h"
-#include "volume/size_spec.h"
-#include "volume/tet_io.h"
+#include "volume/check/boundary_repair.h"
+#include "volume/check/check.h"
+#include "volume/check/quality_report.h"
+#include "volume/io/tet_io.h"
+#include "volume/size/size_fields.h"
+#include "volume/size/size_spec.h"
 
 namespace py = pybind11;
 using namespace hdimesh;

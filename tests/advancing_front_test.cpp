@@ -1,10 +1,10 @@
-// The advancing front (volume/advancing_front.h) on small closed surfaces built in code. Every
+// The advancing front (volume/fill/advancing_front.h) on small closed surfaces built in code. Every
 // fill must hold: positive tets (exact orient3d), the enclosed volume conserved, the tets'
 // boundary equal to the input faces as an oriented set (each interior face in two tets with
 // opposite orientations), new points strictly inside (on no input face), a clean checker on the
 // assembled mesh, and the same bytes on a rerun.
 
-#include "volume/advancing_front.h"
+#include "volume/fill/advancing_front.h"
 
 #include <doctest/doctest.h>
 
@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/predicates.h"
-#include "volume/size_fields.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/mesh/predicates.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

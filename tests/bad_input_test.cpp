@@ -13,8 +13,8 @@
 #include "common/errors.h"
 #include "common/sol_io.h"
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/tet_io.h"
+#include "volume/check/check.h"
+#include "volume/io/tet_io.h"
 
 using namespace hdimesh;
 namespace fs = std::filesystem;

@@ -1,7 +1,7 @@
 // repair_boundary: the triangles TetGen's -g and tets-only files bring, made the tets' boundary
 // and interfaces; the checker is clean after it, and a second repair changes nothing.
 
-#include "volume/boundary_repair.h"
+#include "volume/check/boundary_repair.h"
 
 #include <doctest/doctest.h>
 
@@ -9,9 +9,9 @@
 #include <utility>
 
 #include "fixtures.h"
-#include "volume/boundary.h"
-#include "volume/check.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/mesh/boundary.h"
+#include "volume/mesh/tet_tables.h"
 
 using namespace hdimesh;
 

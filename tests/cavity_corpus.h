@@ -13,9 +13,9 @@
 #include <utility>
 #include <vector>
 
-#include "volume/geometry.h"
-#include "volume/tet_mesh.h"
-#include "volume/tet_tables.h"
+#include "volume/mesh/geometry.h"
+#include "volume/mesh/tet_mesh.h"
+#include "volume/mesh/tet_tables.h"
 
 namespace hdimesh::cavity_corpus
 {

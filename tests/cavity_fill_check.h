@@ -14,11 +14,11 @@
 
 #include "cavity_corpus.h"
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/detail/cavity_stages.h"
-#include "volume/geometry.h"
-#include "volume/predicates.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/fill/detail/cavity_stages.h"
+#include "volume/mesh/geometry.h"
+#include "volume/mesh/predicates.h"
+#include "volume/mesh/tet_tables.h"
 
 namespace hdimesh::cavity_corpus
 {

@@ -1,10 +1,10 @@
-// Stages 2 and 3 of the cavity cascade (volume/detail/cavity_stages.h) on the corpus of
+// Stages 2 and 3 of the cavity cascade (volume/fill/detail/cavity_stages.h) on the corpus of
 // tests/cavity_corpus.h, and the three small stages together (fill_small_cavity). Every fill
 // must be a tetrahedralization of exactly the cavity: positive tets (exact), the enclosed
 // volume, the input faces as the oriented boundary and every other face twice with opposite
 // orientations, Steiner points strictly inside, and the same output on a second run.
 
-#include "volume/detail/cavity_stages.h"
+#include "volume/fill/detail/cavity_stages.h"
 
 #include <doctest/doctest.h>
 
@@ -20,10 +20,10 @@
 #include "cavity_corpus.h"
 #include "cavity_fill_check.h"
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/detail/kernel.h"
-#include "volume/predicates.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/fill/detail/kernel.h"
+#include "volume/mesh/predicates.h"
+#include "volume/mesh/tet_tables.h"
 
 using namespace hdimesh;
 using cavity_corpus::Cavity;

@@ -2,7 +2,7 @@
 // it, and the mesh must be as valid as before, hold the same volume, keep the cavity's outer
 // faces and put Steiner points strictly inside; the same seed gives the same bytes.
 
-#include "volume/cavity.h"
+#include "volume/fill/cavity.h"
 
 #include <doctest/doctest.h>
 
@@ -14,12 +14,12 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/predicates.h"
-#include "volume/refine.h"
-#include "volume/size_fields.h"
-#include "volume/tet_io.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/io/tet_io.h"
+#include "volume/mesh/predicates.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/refine/refine.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;

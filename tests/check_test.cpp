@@ -1,7 +1,7 @@
 // The mesh checker: every violation kind provoked on a tiny mesh built here, and the clean
 // fixtures accepted as they are. Also the boundary helpers the checker stands on.
 
-#include "volume/check.h"
+#include "volume/check/check.h"
 
 #include <doctest/doctest.h>
 
@@ -12,9 +12,9 @@
 #include <utility>
 
 #include "fixtures.h"
-#include "volume/boundary.h"
-#include "volume/boundary_repair.h"
-#include "volume/tet_tables.h"
+#include "volume/check/boundary_repair.h"
+#include "volume/mesh/boundary.h"
+#include "volume/mesh/tet_tables.h"
 
 using namespace hdimesh;
 

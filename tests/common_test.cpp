@@ -14,7 +14,7 @@
 #include "common/errors.h"
 #include "common/size_quality.h"
 #include "surface/surface_mesh.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/tet_mesh.h"
 
 using namespace hdimesh;
 

@@ -16,10 +16,10 @@
 #include "surface/features.h"
 #include "surface/local_ops.h"
 #include "surface/surface_model.h"
-#include "volume/boundary_repair.h"
-#include "volume/check.h"
-#include "volume/geometry.h"
-#include "volume/tet_io.h"
+#include "volume/check/boundary_repair.h"
+#include "volume/check/check.h"
+#include "volume/io/tet_io.h"
+#include "volume/mesh/geometry.h"
 #pragma GCC diagnostic pop
 
 using namespace hdimesh;

@@ -3,7 +3,7 @@
 // valid mesh (check_mesh, which also compares the maintained adjacency with a recomputed one);
 // every refused case must leave the mesh bit for bit as it was.
 
-#include "volume/face_removal.h"
+#include "volume/optimize/face_removal.h"
 
 #include <doctest/doctest.h>
 
@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/size_fields.h"
-#include "volume/tet_tables.h"
-#include "volume/tet_topology.h"
+#include "volume/check/check.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/mesh/tet_topology.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

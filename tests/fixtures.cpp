@@ -9,8 +9,8 @@
 #include <string>
 #include <utility>
 
-#include "volume/geometry.h"
-#include "volume/tet_tables.h"
+#include "volume/mesh/geometry.h"
+#include "volume/mesh/tet_tables.h"
 
 namespace hdimesh::fixtures
 {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hdi/obj_reader.h"
-#include "volume/tet_mesh.h"
+#include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::fixtures
 {

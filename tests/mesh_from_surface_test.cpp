@@ -15,10 +15,10 @@
 
 #include "common/errors.h"
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/quality_report.h"
-#include "volume/size_fields.h"
-#include "volume/tet_io.h"
+#include "volume/check/check.h"
+#include "volume/check/quality_report.h"
+#include "volume/io/tet_io.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;

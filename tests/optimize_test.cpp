@@ -2,7 +2,7 @@
 // and the volume stay, the mesh comes back compact, valid and with its adjacency, too-short
 // edges are collapsed without creating too-long ones, and the output is bitwise reproducible.
 
-#include "volume/optimize.h"
+#include "volume/optimize/optimize.h"
 
 #include <doctest/doctest.h>
 
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/size_fields.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

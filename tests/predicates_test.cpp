@@ -3,7 +3,7 @@
 // symmetries (permutations, translations and scalings by powers of two); then every
 // configuration of the intersection tests, each drawn.
 
-#include "volume/predicates.h"
+#include "volume/mesh/predicates.h"
 
 #include <doctest/doctest.h>
 

@@ -1,7 +1,7 @@
 // The quality report on meshes whose every number is known by hand: the regular tet, the
 // corner tet, the Kuhn-cube box (all tets congruent), and the jittered box for invariants.
 
-#include "volume/quality_report.h"
+#include "volume/check/quality_report.h"
 
 #include <doctest/doctest.h>
 #include <unistd.h>
@@ -16,9 +16,9 @@
 
 #include "common/errors.h"
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/size_fields.h"
-#include "volume/tet_io.h"
+#include "volume/check/check.h"
+#include "volume/io/tet_io.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

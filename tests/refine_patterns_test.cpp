@@ -1,4 +1,4 @@
-// The bisection pattern table (volume/refine_patterns.h), checked independently of the
+// The bisection pattern table (volume/refine/refine_patterns.h), checked independently of the
 // generator: counts, the paper's code, and every entry re-proven in exact integer arithmetic
 // on a reference tet and in floating point on random tets.
 //
@@ -15,7 +15,7 @@
 //               \ | /
 //                 1
 
-#include "volume/refine_patterns.h"
+#include "volume/refine/refine_patterns.h"
 
 #include <doctest/doctest.h>
 
@@ -27,8 +27,8 @@
 #include <set>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/mesh/tet_tables.h"
 
 using namespace hdimesh;
 

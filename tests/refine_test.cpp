@@ -1,8 +1,8 @@
-// refine_pass / refine (volume/refine.h): conformity (the checker after every pass), volume
+// refine_pass / refine (volume/refine/refine.h): conformity (the checker after every pass), volume
 // conservation, no edge too long at the end, vertex classes and refs carried, and the 14
 // Schönhardt configurations reached on a real mesh by forcing the face rule.
 
-#include "volume/refine.h"
+#include "volume/refine/refine.h"
 
 #include <doctest/doctest.h>
 
@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/refine_patterns.h"
-#include "volume/size_fields.h"
-#include "volume/tet_io.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/io/tet_io.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/refine/refine_patterns.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

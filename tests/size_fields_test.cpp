@@ -1,7 +1,7 @@
 // Size fields: constant, the paper's benchmark cylinders against hand values and the reference
 // checker, the background mesh reproducing linear functions, clamping and gradation.
 
-#include "volume/size_fields.h"
+#include "volume/size/size_fields.h"
 
 #include <doctest/doctest.h>
 
@@ -15,9 +15,9 @@
 
 #include "common/errors.h"
 #include "fixtures.h"
-#include "volume/boundary.h"
-#include "volume/check.h"
-#include "volume/size_spec.h"
+#include "volume/check/check.h"
+#include "volume/mesh/boundary.h"
+#include "volume/size/size_spec.h"
 
 using namespace hdimesh;
 

@@ -3,7 +3,7 @@
 // else wrong), with the faces or loops it names; clean inputs, including sheets that nearly
 // touch, pass.
 
-#include "volume/surface_check.h"
+#include "volume/check/surface_check.h"
 
 #include <doctest/doctest.h>
 

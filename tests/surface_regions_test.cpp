@@ -1,14 +1,14 @@
 // Shells, nesting and regions of a closed surface: what is inside what, which shells bound
 // voids, which solids are separate regions, and every region's faces turned outward of it.
 
-#include "volume/surface_regions.h"
+#include "volume/check/surface_regions.h"
 
 #include <doctest/doctest.h>
 
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/surface_check.h"
+#include "volume/check/surface_check.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;

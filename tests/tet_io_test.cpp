@@ -2,7 +2,7 @@
 // refs, feature entities, bitwise coordinates, Gmsh numbering and tags, libMeshb versions,
 // .sol values, .vtu layout, atomic writes.
 
-#include "volume/tet_io.h"
+#include "volume/io/tet_io.h"
 
 #include <doctest/doctest.h>
 
@@ -20,7 +20,7 @@
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "fixtures.h"
-#include "volume/check.h"
+#include "volume/check/check.h"
 
 using namespace hdimesh;
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/reorder.h"
-#include "volume/tet_tables.h"
+#include "volume/check/check.h"
+#include "volume/mesh/reorder.h"
+#include "volume/mesh/tet_tables.h"
 
 using namespace hdimesh;
 

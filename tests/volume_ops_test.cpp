@@ -12,16 +12,16 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "volume/check.h"
-#include "volume/collapse.h"
-#include "volume/edge_removal.h"
-#include "volume/edge_split.h"
-#include "volume/face_removal.h"
-#include "volume/quality_report.h"
-#include "volume/size_fields.h"
-#include "volume/smooth.h"
-#include "volume/tet_tables.h"
-#include "volume/tet_topology.h"
+#include "volume/check/check.h"
+#include "volume/check/quality_report.h"
+#include "volume/mesh/tet_tables.h"
+#include "volume/mesh/tet_topology.h"
+#include "volume/optimize/collapse.h"
+#include "volume/optimize/edge_removal.h"
+#include "volume/optimize/edge_split.h"
+#include "volume/optimize/face_removal.h"
+#include "volume/optimize/smooth.h"
+#include "volume/size/size_fields.h"
 
 using namespace hdimesh;
 

@@ -1,4 +1,4 @@
-# Mesh I/O end to end (volume/tet_io.h): Debian's meshio and the gmsh CLI read what meshconvert
+# Mesh I/O end to end (volume/io/tet_io.h): Debian's meshio and the gmsh CLI read what meshconvert
 # writes (.mesh .meshb .msh 2.2/4.1 ASCII/binary .vtu) with the same counts and refs, our reader
 # reads Gmsh's own meshes, and meshconvert's error contract holds. The test command installs
 # python3-meshio and gmsh beforehand; this test installs nothing.

@@ -5,7 +5,7 @@ if(TARGET generate_refine_patterns)
         COMMAND sh -c "\"$1\" \"$2\" && cmp \"$2\" \"$3\"" refine_patterns_table_regenerates
             $<TARGET_FILE:generate_refine_patterns>
             ${CMAKE_CURRENT_BINARY_DIR}/refine_patterns_table.regenerated.inc
-            ${PROJECT_SOURCE_DIR}/volume/refine_patterns_table.inc)
+            ${PROJECT_SOURCE_DIR}/volume/refine/refine_patterns_table.inc)
 endif()
 
 # Refinement alone end to end (issue 3's "done when", on case A to stay fast; case E is in

@@ -1,5 +1,5 @@
 // Builds one tet with the installed library and checks its volume and quality.
-#include <hdimesh/volume/tet_mesh.h>
+#include <hdimesh/volume/mesh/tet_mesh.h>
 
 #include <cmath>
 #include <cstdio>

@@ -1,0 +1,78 @@
+#pragma once
+// Tet-mesh files, format chosen by extension:
+//
+//   .mesh   Medit ASCII        read + write  Vertices, Edges, Triangles, Tetrahedra, Ridges,
+//   .meshb  Medit binary       read + write  Corners, Required{Vertices,Edges,Triangles,
+//                                            Tetrahedra}, all refs kept
+//   .msh    Gmsh 2.2 / 4.1     read + write  ASCII and binary; physical tag <-> ref
+//   .vtu    VTK XML            write         raw appended binary; cell data "ref", "Qe";
+//                                            point data "size" when given (for ParaView)
+//   .sol / .solb  Medit solution, one scalar per vertex: read_sol/write_sol in common/sol_io.h
+//
+// What each format keeps:
+//  - Medit keeps everything in TetMesh. Normals, Tangents, NormalAtVertices,
+//    TangentAtVertices and TangentAtEdgeVertices are skipped on reading: they are derived
+//    data that the HDI model recomputes. Empty Quadrilaterals/Prisms/Pyramids/Hexahedra
+//    sections are accepted; non-empty ones are errors (dropping them would lose part of the
+//    domain), and so is any other keyword, naming its line.
+//    "End" is required, so a file truncated at a section boundary is still detected.
+//    .meshb versions 1-4 are read (either byte order); version 2 is written (float64
+//    coordinates, int32 indices), version 3 when the file exceeds 2 GiB.
+//  - Gmsh keeps vertices, tets, triangles, edges (line elements) and corners (point elements),
+//    each element's ref as its physical tag (one elementary entity per ref; ref 0 = no
+//    physical group). Vertex refs survive only on corners; ridges and required entities have
+//    no Gmsh equivalent and are not written. Gmsh's tet numbering (reference nodes (0,0,0),
+//    (1,0,0), (0,1,0), (0,0,1)) is ours, so tets are taken as listed. Unknown $Sections are
+//    skipped, as the Gmsh format specifies; unsupported element types are errors.
+//  - Tets must be positive: a tet with zero or negative volume is an InputError naming it.
+//
+// Dead tets (TetMesh::kill_tet) are not written; required tets are renumbered accordingly.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/sol_io.h"
+#include "volume/mesh/tet_mesh.h"
+
+namespace hdimesh::volume
+{
+
+enum class MeshFormat
+{
+    Medit,        ///< .mesh
+    MeditBinary,  ///< .meshb
+    Gmsh,         ///< .msh
+    Vtu,          ///< .vtu (write only)
+};
+
+/// The format of a path by its extension (case-insensitive). InputError for any other.
+MeshFormat mesh_format_from_path(const std::string& path);
+
+/// Reads .mesh/.meshb (Medit ASCII/binary, versions 1-4), .msh (Gmsh 2.2 and 4.1, ASCII and
+/// binary). Returns vertices/tets/triangles/edges/ridges/corners/required* with refs; calls
+/// mesh.build_adjacency() and mesh.classify_vertices().
+/// Throws InputError ("file:line: message" or "file: tetrahedron 12: message") on any bad
+/// content, IoError when the file cannot be opened.
+TetMesh read_mesh(const std::string& path);
+
+/// What every read ends with, for a mesh built in memory (the Python module's arrays): the
+/// same checks (ids in range, finite coordinates, positive tets, no face shared by three
+/// tets), refs sized, adjacency built, vertices classified. Throws InputError naming `source`
+/// and the element (numbered from 1, as in the files).
+void finish_mesh(TetMesh& mesh, const std::string& source);
+
+struct WriteOptions
+{
+    std::vector<double> vertex_sizes;  ///< optional point data "size" for .vtu (and nothing else)
+    std::string gmsh_version = "4.1";  ///< "2.2" or "4.1" for .msh
+    bool gmsh_binary = false;
+};
+
+/// Writes by extension: .mesh, .meshb, .msh, .vtu (raw appended binary, cell data "ref" and
+/// "Qe", point data "size" when given). Atomic (temporary file + rename): a failed write
+/// leaves no partial file. InputError for a bad option (unknown gmsh_version, vertex_sizes of
+/// the wrong length), IoError when the file system refuses.
+void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions& options = {});
+
+}  // namespace hdimesh::volume
