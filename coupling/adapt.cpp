@@ -58,6 +58,7 @@ surface::SurfaceRemeshSettings surface_settings(const surface::SurfaceMesh& boun
 {
     surface::SurfaceRemeshSettings settings = options.surface_settings;
     settings.features = options.features;
+    if (!settings.messages) settings.messages = options.messages;
     auto size = [&field](const surface::Vec3d& p) { return field.size(Vec3(p[0], p[1], p[2])); };
     double lo = std::numeric_limits<double>::max(), hi = 0.0;
     for (auto v : boundary.vertices())

@@ -386,6 +386,7 @@ PYBIND11_MODULE(_hdimesh, mod)
             settings.sizing.hgrad = hgrad;
             settings.iterations = iterations;
             settings.verbosity = verbose > 1 ? verbose - 1 : 0;
+            settings.messages = print_messages(verbose);
             settings.input_sizes = to_vector(sizes);
             surface::SurfaceMesh mesh;
             {
