@@ -31,7 +31,7 @@ volume::SizeSpec SizeFlags::spec() const
     return spec;
 }
 
-std::shared_ptr<const volume::SizeField> SizeFlags::make(const volume::TetMesh& input) const
+std::shared_ptr<const SizeField> SizeFlags::make(const volume::TetMesh& input) const
 {
     volume::SizeSpec sizes = spec();
     if (sol_set) sizes.vertex_sizes = read_sol_sizes(sol, input.num_vertices());

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "cli.h"
-#include "volume/mesh/size_field.h"
+#include "common/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 #include "volume/size/size_spec.h"
 
@@ -32,7 +32,7 @@ struct SizeFlags : SizeOptions
     /// corrected values are the field, for an analytic field the field becomes
     /// min(analytic, graded samples), so it keeps its own resolution and gradation only ever
     /// shrinks sizes. Throws InputError on conflicting or invalid flags.
-    std::shared_ptr<const volume::SizeField> make(const volume::TetMesh& input) const;
+    std::shared_ptr<const SizeField> make(const volume::TetMesh& input) const;
 };
 
 }  // namespace hdimesh::cli

@@ -59,21 +59,20 @@ surface::SurfaceRemeshSettings surface_settings(const surface::SurfaceMesh& boun
     surface::SurfaceRemeshSettings settings = options.surface_settings;
     settings.features = options.features;
     if (!settings.messages) settings.messages = options.messages;
-    auto size = [&field](const surface::Vec3d& p) { return field.size(Vec3(p[0], p[1], p[2])); };
     double lo = std::numeric_limits<double>::max(), hi = 0.0;
     for (auto v : boundary.vertices())
     {
-        const double h = size(boundary.point(v));
+        const double h = field.size(surface::to_point(boundary.point(v)));
         lo = std::min(lo, h);
         hi = std::max(hi, h);
     }
     settings.input_sizes.clear();
     settings.sizing.hsiz = 0.0;
-    settings.size_function = nullptr;
+    settings.size_field = nullptr;
     if (lo == hi)
         settings.sizing.hsiz = lo;
     else
-        settings.size_function = size;  // field outlives the pass
+        settings.size_field = &field;  // field outlives the pass
     if (options.hausd > 0.0) settings.sizing.hausd = options.hausd;
     settings.keep_classification = true;  // classified once, before the model is built
     return settings;

@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "common/messages.h"
+#include "common/size_field.h"
 #include "coupling/boundary_projection.h"
 #include "coupling/mirror.h"
 #include "surface/remesh_surface.h"
-#include "volume/mesh/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 #include "volume/optimize/optimize.h"
 #include "volume/refine/refine.h"
@@ -120,8 +120,7 @@ void apply_switches(const AdaptSwitches& switches, AdaptOptions& options);
 /// along a space-filling curve (volume/mesh/reorder.h); refs, boundary triangles, feature edges,
 /// corners and vertex classes are carried. A solver that needs to transfer fields maps them
 /// by position (e.g. volume/mesh/point_locator.h on the old mesh), not by id.
-AdaptReport adapt(volume::TetMesh& mesh, const volume::SizeField& field,
-                  const AdaptOptions& options = {});
+AdaptReport adapt(volume::TetMesh& mesh, const SizeField& field, const AdaptOptions& options = {});
 
 /// The time split and the size verdict, preceded by the per-pass table when with_passes.
 std::string format_adapt_report(const AdaptReport& report, bool with_passes = true);

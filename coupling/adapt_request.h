@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "common/messages.h"
+#include "common/size_field.h"
 #include "coupling/adapt.h"
 #include "coupling/mesh_from_surface.h"
 #include "surface/surface_io.h"
-#include "volume/mesh/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 #include "volume/size/size_spec.h"
 
@@ -64,7 +64,7 @@ struct AdaptResult
 {
     volume::TetMesh mesh;  ///< valid (check_mesh clean)
     /// The field it was adapted to (the surface's sizes carried into the volume for a surface)
-    std::shared_ptr<const volume::SizeField> field;
+    std::shared_ptr<const SizeField> field;
     std::vector<std::string> repairs;  ///< what mending a tet input changed, one line each
 };
 

@@ -67,8 +67,8 @@ BoundaryFoot BoundaryModel::project(const Vec3& p, VertexClass cls) const
     if (cls == VertexClass::Surface && on_surface_model_)
     {
         const surface::ProjectedPoint q = surface_->project(
-            surface::Vec3d(p[0], p[1], p[2]), surface::VertexClass::Smooth, surface::kNoCurve);
-        foot.target.point = q.ok ? Vec3(q.point[0], q.point[1], q.point[2]) : p;
+            surface::to_vec3d(p), surface::VertexClass::Smooth, surface::kNoCurve);
+        foot.target.point = q.ok ? surface::to_point(q.point) : p;
         foot.target.status = q.ok ? hdi::ProjectionStatus::Ok : hdi::ProjectionStatus::Failed;
         foot.exact = true;
         return foot;

@@ -30,7 +30,6 @@ namespace hdimesh::coupling
 using surface::SurfaceMesh;
 using surface::TriangleSoup;
 using surface::Vec3d;
-using volume::SizeField;
 using volume::TetMesh;
 using volume::Triangle;
 using volume::Vec3;
@@ -49,7 +48,7 @@ public:
     }
     double size(const Vec3& p) const override
     {
-        return model_.interpolate(Vec3d(p[0], p[1], p[2]), sizes_);
+        return model_.interpolate(surface::to_vec3d(p), sizes_);
     }
 
 private:
@@ -84,9 +83,10 @@ public:
                         return 0.0;
                     },
                     a, b);
-                const double length = (b - a).norm();
-                if (is_too_long(length, edge_target_size(*field_, a, b)))
-                    for (int v : {t[k], t[(k + 1) % 3]}) longest[v] = std::max(longest[v], length);
+                const EdgeInField edge = measure_edge(*field_, a, b);
+                if (edge.too_long())
+                    for (int v : {t[k], t[(k + 1) % 3]})
+                        longest[v] = std::max(longest[v], edge.length);
             }
         std::vector<Vec3> ends;
         double reach = 0;  // no end lifts the size farther than its length over the grade

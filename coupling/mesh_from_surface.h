@@ -22,13 +22,13 @@
 #include <string>
 #include <vector>
 
+#include "common/size_field.h"
 #include "coupling/adapt.h"
 #include "surface/remesh_surface.h"
 #include "surface/surface_io.h"
 #include "surface/surface_mesh.h"
 #include "volume/check/surface_check.h"
 #include "volume/fill/cavity.h"
-#include "volume/mesh/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::coupling
@@ -44,7 +44,7 @@ struct SurfaceSizing
     std::vector<double> vertex_sizes;  ///< one per input point (--sol)
     /// A size anywhere (e.g. the paper's benchmark field): sampled at the input points for the
     /// surface, used as is in the volume.
-    std::shared_ptr<const volume::SizeField> field;
+    std::shared_ptr<const SizeField> field;
     double hmin = 0, hmax = 0;  ///< bounds; 0: none
     double hgrad = 0;           ///< surface gradation; 0: the remesher's 1.3, <= 1: none
 };
@@ -91,7 +91,7 @@ struct VolumeFromSurfaceReport
     double cpu_seconds_check = 0, cpu_seconds_remesh = 0, cpu_seconds_fill = 0,
            cpu_seconds_optimize = 0, cpu_seconds_total = 0;
     /// The volume size field the mesh was made to, for the caller's quality report.
-    std::shared_ptr<const volume::SizeField> field;
+    std::shared_ptr<const SizeField> field;
 };
 
 /// The tet mesh of the solids the soup bounds. Throws InputError (naming options.source and

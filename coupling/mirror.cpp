@@ -221,7 +221,7 @@ private:
 
     void commit_move(VertexHandle sv, const surface::Vec3d& p)
     {
-        mesh_.points[tet(sv)] = Vec3(p[0], p[1], p[2]);
+        mesh_.points[tet(sv)] = surface::to_point(p);
         if (pending_.operation == MirrorStatistics::Move)
         {
             assert(pending_.key[0] == tet(sv));
@@ -245,7 +245,7 @@ private:
         next.operation = MirrorStatistics::Split;
         next.key = {a, b, -1};
         next.adds_vertex = true;
-        next.new_point = Vec3(p[0], p[1], p[2]);
+        next.new_point = surface::to_point(p);
         // The new vertex is the mesh's next id while the fill is computed (the filler reads
         // points only), and is taken out again until the commit.
         const int m = mesh_.add_vertex(next.new_point, 0, VertexClass::Surface);

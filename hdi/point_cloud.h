@@ -5,10 +5,12 @@
 #include <array>
 #include <vector>
 
+#include "common/point.h"
+
 namespace hdimesh::hdi
 {
 
-using Vec3 = Eigen::Vector3d;
+using hdimesh::Vec3;
 using Triangle3 = std::array<int, 3>;  ///< vertex indices, counter-clockwise seen from outside
 
 /// How the face normals around a node are averaged into the node's normal.

@@ -65,7 +65,7 @@ void install(SurfaceModel& model, std::shared_ptr<const hdi::HdiSurface> surface
             const ProjectedPoint under = facets->closest_on_input(p);
             if (!under.ok || under.face < 0 || !only[under.face]) return ProjectedPoint{};
         }
-        ProjectedPoint out = to_projected(surface->project(hdi::Vec3(p[0], p[1], p[2])));
+        ProjectedPoint out = to_projected(surface->project(to_point(p)));
         if (!out.ok) return out;
         const ProjectedPoint on_facets = facets->closest_on_input(out.point);
         const double bound =

@@ -151,7 +151,7 @@ SizeMap choose_sizes(const SurfaceMesh& input, const SurfaceModel& model,
         sizes = SizeMap::per_input_vertex(model, std::move(graded));
         result.adaptive = true;
     }
-    else if (!(settings.sizing.hsiz > 0.0) && !settings.size_function)
+    else if (!(settings.sizing.hsiz > 0.0) && !settings.size_field)
     {
         sizes = SizeMap::per_input_vertex(model, curvature_sizes(input, model, settings.sizing));
         result.adaptive = true;
@@ -233,7 +233,7 @@ void set_tolerance_options(const SurfaceMesh& input, const SurfaceModel& model,
     if (coarse) options.tolerance.min_length_ratio = kContractMinLengthRatio;
     options.refinement.final_short_edge_budget =
         std::max(settings.refine_final_short_edge_budget, options.refinement.short_edge_budget);
-    if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty() && !settings.size_function)
+    if (!(settings.sizing.hsiz > 0.0) && settings.input_sizes.empty() && !settings.size_field)
     {
         // Curvature-adaptive: the tolerance is the contract (no size target to keep), with a
         // margin for the samples the refinement does not look at (input edge midpoints, centroids).
@@ -387,12 +387,11 @@ SurfaceRemeshResult remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshSetting
     options.loop.size_near = [&sizes](const Vec3d& p, int face_hint) {
         return sizes.at(p, face_hint);
     };
-    if (settings.size_function)
+    if (settings.size_field)
     {
-        options.loop.size = settings.size_function;
-        options.loop.size_near = [&settings](const Vec3d& p, int) {
-            return settings.size_function(p);
-        };
+        const SizeField& field = *settings.size_field;
+        options.loop.size = [&field](const Vec3d& p) { return field.size(to_point(p)); };
+        options.loop.size_near = [&field](const Vec3d& p, int) { return field.size(to_point(p)); };
         result.adaptive = true;
     }
     set_model_face_hints(mesh, model, settings);

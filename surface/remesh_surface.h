@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "common/size_field.h"
 #include "surface/features.h"
 #include "surface/hdi_projection.h"
 #include "surface/remesh.h"
@@ -124,8 +125,8 @@ struct SurfaceRemeshSettings
     std::vector<double>
         input_sizes;  // non-empty: a size per input vertex (--sol), bounded and graded
     /// Set: the size anywhere (a volume's size field, already bounded and graded); it wins
-    /// over hsiz and input_sizes.
-    std::function<double(const Vec3d&)> size_function;
+    /// over hsiz and input_sizes. It must outlive the call.
+    const SizeField* size_field = nullptr;
     int iterations = 8;  // RemeshOptions::iterations
     /// The kinds of change allowed (OperatorLimits::insert, swap, move; Mmg's -noinsert,
     /// -noswap, -nomove).

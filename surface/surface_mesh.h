@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "common/classification.h"
+#include "common/point.h"
 
 namespace hdimesh::surface
 {
@@ -23,6 +24,10 @@ struct SurfaceTraits : public OpenMesh::DefaultTraits
 
 using SurfaceMesh = OpenMesh::TriMesh_ArrayKernelT<SurfaceTraits>;
 using Vec3d = OpenMesh::Vec3d;
+
+/// The one conversion between OpenMesh's points and the point type of the other modules.
+inline hdimesh::Vec3 to_point(const Vec3d& p) { return hdimesh::Vec3(p[0], p[1], p[2]); }
+inline Vec3d to_vec3d(const hdimesh::Vec3& p) { return Vec3d(p[0], p[1], p[2]); }
 using VertexHandle = OpenMesh::VertexHandle;
 using EdgeHandle = OpenMesh::EdgeHandle;
 using HalfedgeHandle = OpenMesh::HalfedgeHandle;

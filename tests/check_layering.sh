@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Fails when a module includes what the layering forbids (docs/architecture.md):
-#   common/   std only                       hdi/     common/, Eigen, FLANN (in hdi/knn.cpp only)
+#   common/   std, Eigen (the point type)    hdi/     common/, Eigen, FLANN (in hdi/knn.cpp only)
 #   volume/   common/, Eigen                 surface/ common/, hdi/, OpenMesh, Eigen
 #   coupling/ every module                   apps/    every module, through the library API
 # Inside volume/ every file lives in a subfolder, and the subfolders are layered: a subfolder may
 # include its own headers and those of the layers below it, never a sibling's or a higher one's.
-#   0 mesh/      the container, local numbering, topology, predicates, the SizeField interface
+#   0 mesh/      the container, local numbering, topology, predicates, (the SizeField interface is common/size_field.h)
 #   1 io/  check/  size/      file formats; the checker and reports; the concrete size fields
 #   2 refine/  optimize/  fill/   the 239-pattern refinement; the optimization operators; the
 #                                 cavity filler and advancing front
@@ -26,7 +26,7 @@ allowed_modules() {
 }
 allowed_libraries() {  # third-party include prefixes a module may use
     case $1 in
-        common) echo "" ;;
+        common) echo "Eigen" ;;
         hdi) echo "Eigen flann" ;;
         volume) echo "Eigen" ;;
         surface) echo "Eigen OpenMesh" ;;

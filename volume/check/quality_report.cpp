@@ -228,17 +228,17 @@ QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field
         min_length = std::min(min_length, length);
         max_length = std::max(max_length, length);
         if (!field) continue;
-        const double target = edge_target_size(*field, a, b);
-        const double qt = size_quality(length, target);
-        const double ratio = length / target;
+        const EdgeInField edge{length, edge_target_size(*field, a, b)};
+        const double qt = edge.quality();
+        const double ratio = edge.in_field();
         qt_sum += qt;
         ratio_sum += ratio;
         min_qt = std::min(min_qt, qt);
         min_ratio = std::min(min_ratio, ratio);
         max_ratio = std::max(max_ratio, ratio);
         qt_ok += qt >= kSizeQualityThreshold;
-        too_long += is_too_long(length, target);
-        too_short += is_too_short(length, target);
+        too_long += edge.too_long();
+        too_short += edge.too_short();
         ++report.length_ratio_histogram[length_ratio_histogram_bin(ratio)];
     }
     report.min_edge_length = min_length;

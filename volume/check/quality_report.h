@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "volume/mesh/size_field.h"
+#include "common/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::volume

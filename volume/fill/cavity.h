@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "common/size_field.h"
 #include "volume/fill/fill_common.h"
-#include "volume/mesh/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 #include "volume/mesh/tet_topology.h"
 

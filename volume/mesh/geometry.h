@@ -7,12 +7,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/point.h"
 #include "volume/mesh/namespace.h"
 
 namespace hdimesh::volume
 {
 
-using Vec3 = Eigen::Vector3d;
+using hdimesh::Vec3;
 
 /// Six times the signed volume of (a,b,c,d): positive when d sees (a,b,c) counter-clockwise
 /// from below, i.e. det(b-a, c-a, d-a).

@@ -292,19 +292,19 @@ void OperatorContext::tets_changed(const int* begin, const int* end)
 bool OperatorContext::too_long(const Vec3& p, const Vec3& q) const
 {
     if (field == nullptr) return false;
-    return is_too_long((q - p).norm(), edge_target_size(*field, p, q));
+    return measure_edge(*field, p, q).too_long();
 }
 
 bool OperatorContext::too_short(const Vec3& p, const Vec3& q) const
 {
     if (field == nullptr) return false;
-    return is_too_short((q - p).norm(), edge_target_size(*field, p, q));
+    return measure_edge(*field, p, q).too_short();
 }
 
 double OperatorContext::size_quality(const Vec3& p, const Vec3& q) const
 {
     if (field == nullptr) return 1.0;
-    return hdimesh::size_quality((q - p).norm(), edge_target_size(*field, p, q));
+    return measure_edge(*field, p, q).quality();
 }
 
 // ---------------------------------------------------------------------------------------------

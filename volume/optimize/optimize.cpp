@@ -104,8 +104,7 @@ public:
                 if (context_.vertex_tet[u] < 0 || context_.vertex_tet[v] < 0) continue;
                 const Vec3& pu = mesh_.points[u];
                 const Vec3& pv = mesh_.points[v];  // may have moved since the scan
-                if (!is_too_short((pv - pu).norm(), edge_target_size(*context_.field, pu, pv)))
-                    continue;
+                if (!measure_edge(*context_.field, pu, pv).too_short()) continue;
                 bool done = false;
                 if (context_.constraints.is_free_vertex(u))
                     done = attempt_collapse(u, v, collapse_options);
@@ -157,9 +156,8 @@ public:
             if (!is_edge) continue;
             const Vec3& pu = mesh_.points[e.u];
             const Vec3& pv = mesh_.points[e.v];
-            const double length = (pv - pu).norm();
-            const double target = edge_target_size(*context_.field, pu, pv);
-            if (is_too_short(length, target)) kept.push_back({length / target, e.u, e.v});
+            const EdgeInField edge = measure_edge(*context_.field, pu, pv);
+            if (edge.too_short()) kept.push_back({edge.in_field(), e.u, e.v});
         }
         std::sort(kept.begin(), kept.end());
         left_short_ = std::move(kept);
@@ -404,9 +402,8 @@ private:
             {
                 const int v = *it;
                 const Vec3& pv = mesh_.points[v];
-                const double length = (pv - pu).norm();
-                const double target = edge_target_size(*context_.field, pu, pv);
-                if (is_too_short(length, target)) result.push_back({length / target, u, v});
+                const EdgeInField edge = measure_edge(*context_.field, pu, pv);
+                if (edge.too_short()) result.push_back({edge.in_field(), u, v});
             }
         }
         std::sort(result.begin(), result.end());

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/messages.h"
-#include "volume/mesh/size_field.h"
+#include "common/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::volume

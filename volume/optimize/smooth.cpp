@@ -200,16 +200,15 @@ public:
     {
     }
     /// As OperatorContext::too_long(from, neighbour i) and too_short measure them.
-    bool too_long(std::size_t i) const { return is_too_long(length(i), target(i)); }
-    bool too_short(std::size_t i) const { return is_too_short(length(i), target(i)); }
+    bool too_long(std::size_t i) const { return edge(i).too_long(); }
+    bool too_short(std::size_t i) const { return edge(i).too_short(); }
 
 private:
-    double length(std::size_t i) const { return (ball_.neighbours[i] - from_).norm(); }
-    double target(std::size_t i) const
+    EdgeInField edge(std::size_t i) const
     {
         double& t = targets_[i];
         if (std::isnan(t)) t = edge_target_size(*context_.field, from_, ball_.neighbours[i]);
-        return t;
+        return {(ball_.neighbours[i] - from_).norm(), t};
     }
 
     const OperatorContext& context_;
@@ -228,10 +227,9 @@ bool sizes_allow(const OperatorContext& context, const MovingBall& ball, const O
     for (std::size_t i = 0; i < ball.neighbours.size(); ++i)
     {
         const Vec3& q = ball.neighbours[i];
-        const double length = (q - to).norm();
-        const double target = edge_target_size(*context.field, to, q);
-        if (is_too_long(length, target) && !old.too_long(i)) return false;
-        if (is_too_short(length, target) && !old.too_short(i)) return false;
+        const EdgeInField edge = measure_edge(*context.field, to, q);
+        if (edge.too_long() && !old.too_long(i)) return false;
+        if (edge.too_short() && !old.too_short(i)) return false;
     }
     return true;
 }
@@ -252,12 +250,12 @@ bool fit_size_band(const OperatorContext& context, const MovingBall& ball, const
         const Vec3& q = ball.neighbours[i];
         const Vec3 d = p - q;
         const double length = d.norm();
-        const double target = edge_target_size(*context.field, p, q);
+        const EdgeInField edge{length, edge_target_size(*context.field, p, q)};
         double wanted = length;
-        if (is_too_short(length, target) && !old.too_short(i))
-            wanted = kSizeQualityThreshold * target * (1 + kInside);
-        else if (is_too_long(length, target) && !old.too_long(i))
-            wanted = target / kSizeQualityThreshold * (1 - kInside);
+        if (edge.too_short() && !old.too_short(i))
+            wanted = kSizeQualityThreshold * edge.size * (1 + kInside);
+        else if (edge.too_long() && !old.too_long(i))
+            wanted = edge.size / kSizeQualityThreshold * (1 - kInside);
         if (wanted == length) continue;
         if (!(length > 0)) return false;
         refused = true;

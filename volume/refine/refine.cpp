@@ -283,15 +283,15 @@ int RefinePass::mark_edges(const EdgeTable& edges)
         {
             const int b = edges.upper(s);
             const Vec3& pb = mesh_.points[b];
-            double target = edge_target_size(field_, pa, pb);
+            EdgeInField edge = measure_edge(field_, pa, pb);
             if (!locked.empty())
             {
                 if (std::binary_search(locked.begin(), locked.end(),
                                        Edge{std::min(a, b), std::max(a, b)}))
                     continue;
-                target = std::max({target, locked_size[a], locked_size[b]});
+                edge.size = std::max({edge.size, locked_size[a], locked_size[b]});
             }
-            if (is_too_long((pb - pa).norm(), target))
+            if (edge.too_long())
             {
                 midpoint_[s] = 1;
                 touched_[a] = touched_[b] = 1;

@@ -16,7 +16,7 @@
 #include <functional>
 #include <vector>
 
-#include "volume/mesh/size_field.h"
+#include "common/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::volume
@@ -53,7 +53,7 @@ struct RefinePassResult
                                         ///< for the optimizer
 };
 
-/// One pass: marks every too-long edge (is_too_long(L, edge_target_size(field, a, b)), interior
+/// One pass: marks every too-long edge (measure_edge(field, a, b).too_long()), interior
 /// and boundary; never an edge of a required triangle or a required edge, and at their vertices
 /// the size is at least the mean length of those edges), adds one midpoint per
 /// marked edge, rebuilds each tet from the table (children keep the parent's ref), splits

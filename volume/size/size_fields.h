@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
+#include "common/size_field.h"
 #include "volume/mesh/point_locator.h"
-#include "volume/mesh/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
 namespace hdimesh::volume
