@@ -12,6 +12,7 @@
 
 #include "volume/fill/advancing_front.h"
 #include "volume/fill/detail/front.h"
+#include "volume/size/size_fields.h"
 
 namespace hdimesh::volume::detail::front_mesher
 {
@@ -58,57 +59,6 @@ inline bool surely_positive(const Vec3& a, const Vec3& n, double n_scale, const 
     const double bound = 1e-13 * n_scale * (std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]));
     return value > bound;
 }
-
-/// The sizes a cavity's own faces ask for, when no field is given: each input vertex's mean
-/// incident edge length, blended by inverse distance, so that sizes cannot drift down as the
-/// front's faces shrink (the front would then never close).
-class InputSizeField final : public SizeField
-{
-public:
-    void build(const std::vector<Vec3>& points, const std::vector<Triangle>& faces)
-    {
-        const int n = static_cast<int>(points.size());
-        std::vector<double> sum(n, 0.0);
-        std::vector<int> count(n, 0);
-        for (const Triangle& t : faces)
-            for (int k = 0; k < 3; ++k)
-            {
-                const double length = (points[t[k]] - points[t[(k + 1) % 3]]).norm();
-                sum[t[k]] += length;
-                sum[t[(k + 1) % 3]] += length;
-                count[t[k]] += 1;
-                count[t[(k + 1) % 3]] += 1;
-            }
-        // a large input is sampled evenly: the blend is smooth and the query stays cheap
-        const int step = std::max(1, n / kMaxSamples);
-        samples_.clear();
-        sizes_.clear();
-        for (int v = 0; v < n; v += step)
-            if (count[v] > 0)
-            {
-                samples_.push_back(points[v]);
-                sizes_.push_back(sum[v] / count[v]);
-            }
-    }
-
-    double size(const Vec3& p) const override
-    {
-        double weighted = 0, total = 0;
-        for (std::size_t k = 0; k < samples_.size(); ++k)
-        {
-            const double d2 = (samples_[k] - p).squaredNorm();
-            const double w = 1.0 / (d2 * d2 + 1e-300);
-            weighted += w * sizes_[k];
-            total += w;
-        }
-        return weighted / total;
-    }
-
-private:
-    static constexpr int kMaxSamples = 1024;
-    std::vector<Vec3> samples_;
-    std::vector<double> sizes_;
-};
 
 class FrontMesher
 {
