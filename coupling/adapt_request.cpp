@@ -85,8 +85,9 @@ AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptO
              line.c_str());
     if (request.check && request.verbosity >= 1)
         emit(request.messages, MessageKind::Report, "check input: clean\n");
-    const bool own_sizes = !request.size.any() && request.sol.empty() && request.bounds_given;
-    if (!request.size.any() && request.sol.empty() && !own_sizes && !request.switches.optim)
+    // with bounds alone the input keeps its own sizes within them (make_size_field)
+    if (!request.size.any() && request.sol.empty() && !request.bounds_given &&
+        !request.switches.optim)
         throw InputError(
             "no size field: give hsiz, sol (sizes at the vertices) or bench_field "
             "(or optim)");
@@ -108,11 +109,16 @@ AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptO
 
 }  // namespace
 
+bool is_surface_format(const std::string& path)
+{
+    const std::string ext = io::lower_extension(path);
+    return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
+}
+
 AdaptInput read_adapt_input(const std::string& path)
 {
     AdaptInput input;
-    const std::string ext = io::lower_extension(path);
-    if (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply")
+    if (is_surface_format(path))
     {
         input.surface = surface::read_triangle_soup(path);
         input.is_surface = true;
@@ -136,7 +142,7 @@ AdaptInput adapt_input_from_mesh(volume::TetMesh mesh)
 
 AdaptResult run_adapt(AdaptInput input, const AdaptRequest& request)
 {
-    if (!(request.hausd >= 0)) throw InputError("hausd must be positive");
+    if (!(request.hausd >= 0)) throw InputError("hausd must not be negative (0: none)");
     const AdaptOptions options = adapt_options(request);
     AdaptResult result = input.is_surface ? fill_surface(input.surface, request, options)
                                           : adapt_tets(std::move(input.mesh), request, options);

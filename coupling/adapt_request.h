@@ -28,8 +28,11 @@ struct AdaptInput
     bool is_surface = false;
 };
 
-/// A surface format by extension (.obj .off .stl .ply) or a mesh file with triangles and no
-/// tets is a surface; any other mesh file is a tet mesh. Throws InputError/IoError naming path.
+/// A surface-only format by extension: OBJ, OFF, STL or PLY (any case).
+bool is_surface_format(const std::string& path);
+
+/// A surface format (is_surface_format) or a mesh file with triangles and no tets is a
+/// surface; any other mesh file is a tet mesh. Throws InputError/IoError naming path.
 AdaptInput read_adapt_input(const std::string& path);
 
 /// A mesh with tets as a tet input; with triangles only, as a surface.

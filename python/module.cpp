@@ -14,7 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "common/buffer_io.h"
 #include "common/errors.h"
 #include "coupling/adapt.h"
 #include "coupling/adapt_request.h"
@@ -174,14 +173,6 @@ py::dict from_mesh(TetMesh&& mesh)
     return d;
 }
 
-/// OBJ, OFF, STL, PLY: the surface formats (the rest are the tet formats, which also hold a
-/// surface alone).
-bool is_surface_format(const std::string& path)
-{
-    const std::string ext = io::lower_extension(path);
-    return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
-}
-
 /// The surface of a mesh dict (points and triangles) as a soup.
 surface::TriangleSoup to_soup(const py::dict& m)
 {
@@ -334,7 +325,7 @@ PYBIND11_MODULE(_hdimesh, mod)
             TetMesh mesh;
             {
                 py::gil_scoped_release release;
-                if (is_surface_format(path))
+                if (coupling::is_surface_format(path))
                 {
                     const surface::TriangleSoup soup = surface::read_triangle_soup(path);
                     for (const auto& p : soup.points)
@@ -355,7 +346,7 @@ PYBIND11_MODULE(_hdimesh, mod)
         [](const py::dict& m, const std::string& path) {
             TetMesh mesh = to_mesh(m);
             py::gil_scoped_release release;
-            if (is_surface_format(path))
+            if (coupling::is_surface_format(path))
                 surface::write_surface(surface::build_surface(coupling::triangle_soup(mesh), path),
                                        path);
             else
