@@ -171,7 +171,8 @@ void build_projector(AdaptState& s)
 }
 
 /// One refinement pass: split, project the new boundary vertices, repair around them.
-AdaptPassReport refinement_pass(AdaptState& s, const SizeField& target, int pass)
+AdaptPassReport refinement_pass(AdaptState& s, const SizeField& target, int pass,
+                                const RefinePassOptions& refine_options)
 {
     AdaptPassReport row;
     row.pass = pass;
@@ -179,7 +180,7 @@ AdaptPassReport refinement_pass(AdaptState& s, const SizeField& target, int pass
     RefinePassResult refined;
     {
         const StageTimer timer(s.report.seconds_refine, s.report.cpu_seconds_refine);
-        refined = volume::refine_pass(s.mesh, target);
+        refined = volume::refine_pass(s.mesh, target, refine_options);
     }
     row.edges_split = refined.report.edges_split;
     if (row.edges_split == 0) return row;
@@ -226,7 +227,10 @@ void refine_to_field(AdaptState& s, const SizeField& target)
     const int first = static_cast<int>(s.report.passes.size()) + 1;
     for (int pass = first; s.options.refine && pass < first + s.options.max_passes; ++pass)
     {
-        const AdaptPassReport row = refinement_pass(s, target, pass);
+        // the previous pass left the adjacency, and projection and repair keep it
+        RefinePassOptions refine_options;
+        refine_options.adjacency_valid = pass > first;
+        const AdaptPassReport row = refinement_pass(s, target, pass, refine_options);
         if (row.edges_split == 0)
         {
             s.report.converged = true;

@@ -135,9 +135,25 @@ std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Ve
             continue;
         }
         // the interior angle between two faces is pi minus the angle of their outward normals
-        angles[e] = std::acos(std::clamp(-n.dot(m), -1.0, 1.0)) * 180.0 / kPi;
+        angles[e] = dihedral_cosine_to_deg(std::clamp(-n.dot(m), -1.0, 1.0));
     }
     return angles;
+}
+
+double dihedral_cosine_to_deg(double cosine) { return std::acos(cosine) * 180.0 / kPi; }
+
+double smallest_dihedral_cosine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+    const auto normals = face_normals({&a, &b, &c, &d});
+    double largest = -1.0;
+    for (int e = 0; e < 6; ++e)
+    {
+        const auto& faces = tet::kEdgeFaces[e];
+        const Vec3 &n = normals[faces[0]], &m = normals[faces[1]];
+        if (n.isZero() || m.isZero()) return 1.0;
+        largest = std::max(largest, std::clamp(-n.dot(m), -1.0, 1.0));
+    }
+    return largest;
 }
 
 QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field)

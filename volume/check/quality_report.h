@@ -75,4 +75,12 @@ int length_ratio_histogram_bin(double ratio);
 std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c,
                                           const Vec3& d);
 
+/// The cosine of the smallest dihedral angle of a tet (the largest of the six cosines, as
+/// dihedral_angles_deg measures them before acos), or 1 (an angle of 0) for a degenerate face.
+/// acos of it, in degrees, is the least of dihedral_angles_deg: one acos instead of six.
+double smallest_dihedral_cosine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// A dihedral cosine as dihedral_angles_deg turns it into degrees.
+double dihedral_cosine_to_deg(double cosine);
+
 }  // namespace hdimesh::volume

@@ -230,6 +230,13 @@ void OperatorContext::enable_caches()
     forget_balls();
 }
 
+void OperatorContext::enable_change_stamps(const TetMesh& mesh)
+{
+    stamped_mesh_ = &mesh;
+    vertex_stamp_.assign(mesh.num_vertices(), 0);
+    changes_ = 0;
+}
+
 void OperatorContext::ball(const TetMesh& mesh, int v, std::vector<int>& ball) const
 {
     if (!cache_enabled_)
@@ -283,6 +290,18 @@ double OperatorContext::worst_quality(const TetMesh& mesh, const std::vector<int
 void OperatorContext::tets_changed(const int* begin, const int* end)
 {
     touched.insert(touched.end(), begin, end);
+    if (stamped_mesh_)
+    {
+        ++changes_;
+        for (const int* t = begin; t != end; ++t)
+            for (int v : stamped_mesh_->tets[*t])
+            {
+                if (v < 0) break;  // a dead slot
+                if (static_cast<std::size_t>(v) >= vertex_stamp_.size())
+                    vertex_stamp_.resize(v + 1 + v / 4, 0);
+                vertex_stamp_[v] = changes_;
+            }
+    }
     if (!cache_enabled_) return;
     for (const int* t = begin; t != end; ++t)
         if (static_cast<std::size_t>(*t) < quality_cache_.size())

@@ -5,6 +5,7 @@
 // that swaps a set of tets for another filling the same region while keeping the adjacency.
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "common/size_field.h"
@@ -111,6 +112,19 @@ struct OperatorContext
         tets_changed(tets.data(), tets.data() + tets.size());
     }
 
+    /// Turns on change stamps (off by default): each tets_changed() counts one change and
+    /// stamps the vertices of those tets with the count. An operator whose answer depends only
+    /// on the tets through some vertices (their balls) answers the same while none of them is
+    /// stamped after it was asked, so a driver may skip the repeat.
+    void enable_change_stamps(const TetMesh& mesh);
+    /// The changes counted so far.
+    std::uint64_t changes() const { return changes_; }
+    /// changes() when a tet through v last changed; 0 when none did since the stamps began.
+    std::uint64_t vertex_changed(int v) const
+    {
+        return static_cast<std::size_t>(v) < vertex_stamp_.size() ? vertex_stamp_[v] : 0;
+    }
+
     /// Edge (p, q) would be too long for the field (false without a field).
     bool too_long(const Vec3& p, const Vec3& q) const;
     /// Edge (p, q) would be too short for the field (false without a field).
@@ -128,6 +142,9 @@ private:
     mutable std::vector<double> quality_cache_;     // per tet slot; NaN: not known
     mutable std::array<CachedBall, 4> ball_cache_;  // filled round-robin
     mutable std::size_t next_ball_ = 0;
+    const TetMesh* stamped_mesh_ = nullptr;  // the mesh whose tets tets_changed() names
+    std::vector<std::uint64_t> vertex_stamp_;
+    std::uint64_t changes_ = 0;
 };
 
 /// Replaces the live tets `removed` by tets `added` (all of ref `ref`) that fill the same region

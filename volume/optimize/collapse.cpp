@@ -1,7 +1,6 @@
 #include "volume/optimize/collapse.h"
 
 #include <algorithm>
-#include <iterator>
 #include <limits>
 
 namespace hdimesh::volume
@@ -9,6 +8,33 @@ namespace hdimesh::volume
 
 namespace
 {
+
+/// Per-vertex marks that need no clearing: a vertex is marked when it holds the current round.
+/// Deduplicating through them and sorting only what is left is cheaper than sorting the
+/// repeats (a ball lists each vertex about six times).
+class VertexMarks
+{
+public:
+    void next_round(int num_vertices)
+    {
+        if (static_cast<int>(round_of_.size()) < num_vertices) round_of_.resize(num_vertices, 0);
+        ++round_;
+    }
+    bool marked(int v) const { return round_of_[v] == round_; }
+    /// Marks v; false when it already was.
+    bool mark(int v) { return round_of_[v] == round_ ? false : (round_of_[v] = round_, true); }
+
+private:
+    std::vector<unsigned> round_of_;
+    unsigned round_ = 0;
+};
+
+/// One per thread: the operators of one mesh run on one thread.
+VertexMarks& vertex_marks()
+{
+    thread_local VertexMarks marks;
+    return marks;
+}
 
 /// from's ball split by role: the shell of the edge (dies) and the rest (re-attached to `to`).
 struct CollapseConfiguration
@@ -31,7 +57,6 @@ bool collect_collapse_configuration(const TetMesh& mesh, OperatorContext& contex
     context.ball(mesh, from, config.ball);
     const int ref = mesh.tet_refs[config.ball.front()];
     config.ref = ref;
-    std::vector<int> shell_ring;  // vertices already joined to `to` through the shell
     for (int t : config.ball)
     {
         if (mesh.tet_refs[t] != ref || !context.constraints.is_removable_tet(t)) return false;
@@ -39,7 +64,6 @@ bool collect_collapse_configuration(const TetMesh& mesh, OperatorContext& contex
         if (local_index(mesh, t, to) >= 0)
         {
             config.shell.push_back(t);
-            for (int v : tv) shell_ring.push_back(v);
             continue;
         }
         TetVertices moved = tv;
@@ -48,20 +72,15 @@ bool collect_collapse_configuration(const TetMesh& mesh, OperatorContext& contex
         config.moved.push_back(moved);
     }
     if (config.shell.empty() || config.moved.empty()) return false;  // (from, to) no edge
-    // new neighbours: the vertices of the moved tets that no shell tet has (sorted sets; the
-    // shell tets' own vertices are all in shell_ring)
-    std::vector<int> moved_vertices;
-    moved_vertices.reserve(4 * config.moved.size());
+    // new neighbours: the vertices of the moved tets that no shell tet has, in increasing order
+    VertexMarks& marks = vertex_marks();
+    marks.next_round(mesh.num_vertices());
+    for (int t : config.shell)
+        for (int v : mesh.tets[t]) marks.mark(v);
     for (const auto& tv : config.moved)
         for (int v : tv)
-            if (v != to) moved_vertices.push_back(v);
-    std::sort(moved_vertices.begin(), moved_vertices.end());
-    moved_vertices.erase(std::unique(moved_vertices.begin(), moved_vertices.end()),
-                         moved_vertices.end());
-    std::sort(shell_ring.begin(), shell_ring.end());
-    shell_ring.erase(std::unique(shell_ring.begin(), shell_ring.end()), shell_ring.end());
-    std::set_difference(moved_vertices.begin(), moved_vertices.end(), shell_ring.begin(),
-                        shell_ring.end(), std::back_inserter(config.new_neighbours));
+            if (marks.mark(v)) config.new_neighbours.push_back(v);
+    std::sort(config.new_neighbours.begin(), config.new_neighbours.end());
     return true;
 }
 
@@ -95,12 +114,14 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     std::vector<Vec3> places = {to_position};
     auto add_moving_places = [&] {
         context.ball(mesh, to, to_ball);
+        VertexMarks& marks = vertex_marks();
+        marks.next_round(mesh.num_vertices());
+        marks.mark(to);
+        marks.mark(from);
         for (int t : to_ball)
             for (int v : mesh.tets[t])
-                if (v != to && v != from) to_neighbours.push_back(v);
+                if (marks.mark(v)) to_neighbours.push_back(v);
         std::sort(to_neighbours.begin(), to_neighbours.end());
-        to_neighbours.erase(std::unique(to_neighbours.begin(), to_neighbours.end()),
-                            to_neighbours.end());
         places.push_back(0.5 * (mesh.points[from] + to_position));
         // the centre of every vertex the merged one will see: balances the new lengths
         Vec3 centre = Vec3::Zero();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include "common/stage_timer.h"
 #include "volume/mesh/tet_tables.h"
@@ -67,6 +68,7 @@ public:
         if (!mesh_.has_adjacency()) mesh_.build_adjacency();
         context_ = OperatorContext(mesh_, &field);
         context_.enable_caches();
+        context_.enable_change_stamps(mesh_);
         for (int k = 0; k < kNumOperators; ++k) report_.operators.push_back({kOperatorNames[k]});
         report_.min_quality_before = summarize_quality(mesh_, context_).min;
         if (options_.verbosity >= 2)
@@ -82,7 +84,7 @@ public:
         left_short_.clear();
         if (!options_.collapse)
         {
-            left_short_ = short_edges(from ? *from : all_live_tets());
+            left_short_ = (from ? short_edges(*from) : short_edges(all_live_tets(), true));
             return 0;
         }
         CollapseOptions collapse_options;
@@ -90,7 +92,7 @@ public:
         long total = 0;
         // the first pass sees every short edge; later ones only those of tets changed since,
         // as nothing else can have become collapsible
-        std::vector<ShortEdge> candidates = short_edges(from ? *from : all_live_tets());
+        std::vector<ShortEdge> candidates = (from ? short_edges(*from) : short_edges(all_live_tets(), true));
         int pass = 0;
         for (; pass < options_.max_sweeps && !candidates.empty(); ++pass)
         {
@@ -105,23 +107,37 @@ public:
                 const Vec3& pu = mesh_.points[u];
                 const Vec3& pv = mesh_.points[v];  // may have moved since the scan
                 if (!measure_edge(*context_.field, pu, pv).too_short()) continue;
+                // refused before, and no tet through either end changed since: refused again
+                const std::uint64_t key = (static_cast<std::uint64_t>(u) << 32) | v;
+                const auto memo = refused_collapses_.find(key);
+                if (memo != refused_collapses_.end() && context_.vertex_changed(u) < memo->second &&
+                    context_.vertex_changed(v) < memo->second)
+                {
+                    left_short_.push_back(candidate);
+                    continue;
+                }
                 bool done = false;
                 if (context_.constraints.is_free_vertex(u))
                     done = attempt_collapse(u, v, collapse_options);
                 if (!done && context_.constraints.is_free_vertex(v))
                     done = attempt_collapse(v, u, collapse_options);
                 collapsed += done;
-                if (!done) left_short_.push_back(candidate);
+                if (!done)
+                {
+                    left_short_.push_back(candidate);
+                    refused_collapses_[key] = context_.changes() + 1;
+                }
             }
             report_.operators[kCollapse].seconds += stopwatch.seconds();
             print_sweep("collapse", before);
             total += collapsed;
             if (collapsed == 0) break;
+            // each live touched tet once (short_edges sorts what it finds: order is free)
             std::vector<int> changed;
+            tet_mark_.resize(mesh_.num_tet_slots(), 0);
             for (int t : context_.touched)
-                if (!mesh_.is_dead(t)) changed.push_back(t);
-            std::sort(changed.begin(), changed.end());
-            changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+                if (!mesh_.is_dead(t) && !tet_mark_[t]) tet_mark_[t] = 1, changed.push_back(t);
+            for (int t : changed) tet_mark_[t] = 0;
             candidates = short_edges(changed);
         }
         // Every short edge left was a candidate that did not collapse, or is still pending: an
@@ -365,16 +381,28 @@ private:
     /// The too-short edges with a free endpoint among the edges of `tets` (live), sorted by
     /// L/hth then ids, each once. An edge is seen from every tet around it (about five): the
     /// pairs are deduplicated before the size field is evaluated, once per edge.
-    std::vector<ShortEdge> short_edges(const std::vector<int>& tets) const
+    /// The too-short edges of `tets` (every live tet when whole_mesh), sorted.
+    std::vector<ShortEdge> short_edges(const std::vector<int>& tets, bool whole_mesh = false) const
     {
         // bucket the upper ends by the lower end (a counting sort, linear), then sort and
         // deduplicate each small bucket: the edges come out in (u, v) order, each once
         const int nv = mesh_.num_vertices();
         std::vector<int> bucket_start(nv + 1, 0);
+        // Over every live tet, tet t lists edge e only when neither tet across its two faces at
+        // e has a smaller index: the smallest around each edge still lists it, and the buckets
+        // shrink about fourfold (as refinement's EdgeTable does).
+        auto listed = [&](int t, int e) {
+            if (!whole_mesh) return true;
+            const auto& nb = mesh_.neighbors[t];
+            const int f = tet::kEdgeFaces[e][0], g = tet::kEdgeFaces[e][1];
+            return (nb[f] == kNoTet || nb[f] > t) && (nb[g] == kNoTet || nb[g] > t);
+        };
         auto for_each_candidate = [&](auto&& visit) {
             for (int t : tets)
-                for (const auto& ev : tet::kEdgeVertices)
+                for (int e = 0; e < 6; ++e)
                 {
+                    const auto& ev = tet::kEdgeVertices[e];
+                    if (!listed(t, e)) continue;
                     int u = mesh_.tets[t][ev[0]], v = mesh_.tets[t][ev[1]];
                     if (!context_.constraints.is_free_vertex(u) &&
                         !context_.constraints.is_free_vertex(v))
@@ -395,7 +423,13 @@ private:
             const auto begin = upper.begin() + bucket_start[u];
             auto end = upper.begin() + bucket_start[u + 1];
             if (begin == end) continue;
-            std::sort(begin, end);
+            for (auto it = begin + 1; it != end; ++it)  // rows are short: insertion sort
+            {
+                const int x = *it;
+                auto j = it;
+                for (; j != begin && *(j - 1) > x; --j) *j = *(j - 1);
+                *j = x;
+            }
             end = std::unique(begin, end);
             const Vec3& pu = mesh_.points[u];
             for (auto it = begin; it != end; ++it)
@@ -504,6 +538,10 @@ private:
 
     TetMesh& mesh_;
     std::vector<char> changed_vertex_;   // scratch of improve_below, all zero between uses
+    // the collapses refused, by edge (u << 32 | v), with changes() + 1 at the refusal: the
+    // options never change, so the verdict stands while no tet through u or v changes
+    std::unordered_map<std::uint64_t, std::uint64_t> refused_collapses_;
+    std::vector<char> tet_mark_;         // scratch per tet slot, all zero between uses
     std::vector<ShortEdge> left_short_;  // the short edges the last collapse_short_edges left
     std::vector<int> ball_;              // scratch
     OptimizeOptions options_;

@@ -73,11 +73,11 @@ struct MovingBall
     /// The smallest dihedral angle of the ball's tets with the vertex at p, in degrees.
     double smallest_dihedral(const Vec3& p) const
     {
-        double smallest = 180;
+        // acos falls as its argument rises: the smallest angle is the acos of the largest cosine
+        double largest = -1.0;
         for (const BallFace& face : faces)
-            for (double angle : dihedral_angles_deg(face.f[0], face.f[1], face.f[2], p))
-                smallest = std::min(smallest, angle);
-        return smallest;
+            largest = std::max(largest, smallest_dihedral_cosine(face.f[0], face.f[1], face.f[2], p));
+        return std::min(180.0, dihedral_cosine_to_deg(largest));
     }
 
     /// The worst quality with the vertex at p, stopping early once it is <= floor. When it

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstdint>
 #include <string>
 
@@ -672,6 +673,13 @@ RefinePassResult RefinePass::run()
     const WallStopwatch stopwatch;
     if (mesh_.num_live_tets() != mesh_.num_tet_slots()) mesh_.compact();
     if (!trust_adjacency_ || !mesh_.has_adjacency()) mesh_.build_adjacency();
+#ifndef NDEBUG
+    {
+        const std::vector<TetVertices> kept = mesh_.neighbors;
+        mesh_.build_adjacency();
+        assert(kept == mesh_.neighbors && "refine_pass: the adjacency vouched for is stale");
+    }
+#endif
     num_vertices_before_ = mesh_.num_vertices();
     RefinePassReport& report = result_.report;
     report.pass = 1;
@@ -730,6 +738,12 @@ RefinePassResult RefinePass::run()
 RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field)
 {
     return RefinePass(mesh, field, 0, false).run();
+}
+
+RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field,
+                             const RefinePassOptions& options)
+{
+    return RefinePass(mesh, field, 0, options.adjacency_valid).run();
 }
 
 RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field, const QuadDiagonalRule& rule)

@@ -80,6 +80,18 @@ struct RefinePassResult
 /// splits no edge changes nothing but that.
 RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field);
 
+/// What a caller vouches for about the mesh it hands to refine_pass.
+struct RefinePassOptions
+{
+    /// mesh.neighbors is the adjacency of mesh.tets as they are (the previous pass left it and
+    /// every change since kept it, as the optimizer does): not rebuilt.
+    bool adjacency_valid = false;
+};
+
+/// refine_pass, told what holds already.
+RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field,
+                             const RefinePassOptions& options);
+
 /// A face rule: for a face with split edges corner–a and corner–b (global ids), the id (a or b)
 /// its quad diagonal starts from. Any pure function of (corner, {a, b}) keeps the mesh
 /// conforming; tests use this to force Schönhardt configurations.
