@@ -1,6 +1,7 @@
 #include "coupling/adapt.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -170,8 +171,10 @@ void build_projector(AdaptState& s)
     s.projector = std::make_unique<BoundaryProjector>(*s.model, s.options.projection);
 }
 
-/// One refinement pass: split, project the new boundary vertices, repair around them.
-AdaptPassReport refinement_pass(AdaptState& s, const SizeField& target, int pass,
+/// One refinement pass: split the edges too long for `split_field`, project the new boundary
+/// vertices, repair around them for `target`.
+AdaptPassReport refinement_pass(AdaptState& s, const SizeField& split_field,
+                                const SizeField& target, int pass,
                                 const RefinePassOptions& refine_options)
 {
     AdaptPassReport row;
@@ -180,7 +183,7 @@ AdaptPassReport refinement_pass(AdaptState& s, const SizeField& target, int pass
     RefinePassResult refined;
     {
         const StageTimer timer(s.report.seconds_refine, s.report.cpu_seconds_refine);
-        refined = volume::refine_pass(s.mesh, target, refine_options);
+        refined = volume::refine_pass(s.mesh, split_field, refine_options);
     }
     row.edges_split = refined.report.edges_split;
     if (row.edges_split == 0) return row;
@@ -219,23 +222,26 @@ bool refinement_stalled(const AdaptState& s, int first)
            passes.back().edges_split >= passes[n - 1 - kStallPasses].edges_split;
 }
 
-/// Refinement passes until no edge is too long for `target` (or they stall, or reach the cap).
-void refine_to_field(AdaptState& s, const SizeField& target)
+enum class StageEnd
 {
-    s.report.converged = !s.options.refine;
-    s.report.stalled = false;
-    const int first = static_cast<int>(s.report.passes.size()) + 1;
-    for (int pass = first; s.options.refine && pass < first + s.options.max_passes; ++pass)
+    Converged,  ///< no edge too long
+    Stalled,    ///< refinement_stalled
+    Capped      ///< options.max_passes reached
+};
+
+/// Refinement passes, numbered from `pass` on (advanced past the last), until no edge is too
+/// long for `split_field` (or they stall, or reach pass `last`).
+StageEnd refine_stage(AdaptState& s, const SizeField& split_field, const SizeField& target,
+                      int& pass, int last)
+{
+    const int first = pass;
+    for (; pass < last; ++pass)
     {
         // the previous pass left the adjacency, and projection and repair keep it
         RefinePassOptions refine_options;
         refine_options.adjacency_valid = pass > first;
-        const AdaptPassReport row = refinement_pass(s, target, pass, refine_options);
-        if (row.edges_split == 0)
-        {
-            s.report.converged = true;
-            break;
-        }
+        const AdaptPassReport row = refinement_pass(s, split_field, target, pass, refine_options);
+        if (row.edges_split == 0) return StageEnd::Converged;
         s.report.passes.push_back(row);
         if (s.options.verbosity >= 2)
             emit(s.options.messages, MessageKind::Report, "%s", format_pass_row(row).c_str());
@@ -245,10 +251,28 @@ void refine_to_field(AdaptState& s, const SizeField& target)
                  row.tets);
         if (refinement_stalled(s, first))
         {
-            s.report.stalled = true;
-            break;
+            ++pass;
+            return StageEnd::Stalled;
         }
     }
+    return StageEnd::Capped;
+}
+
+/// Refinement passes until no edge is too long for `target` (or they stall, or reach the
+/// cap), in `stages` stages of coarser fields first (AdaptOptions::refine_stages).
+void refine_to_field(AdaptState& s, const SizeField& target, int stages = 1)
+{
+    s.report.converged = !s.options.refine;
+    s.report.stalled = false;
+    if (!s.options.refine) return;
+    int pass = static_cast<int>(s.report.passes.size()) + 1;
+    const int last = pass + s.options.max_passes;
+    for (int k = std::max(stages, 1) - 1; k > 0; --k)
+        refine_stage(s, ScaledSize(target, std::pow(s.options.refine_stage_factor, k)), target,
+                     pass, last);
+    const StageEnd end = refine_stage(s, target, target, pass, last);
+    s.report.converged = end == StageEnd::Converged;
+    s.report.stalled = end == StageEnd::Stalled;
 }
 
 /// One model on both sides: smooth vertices go onto the projection's HDI surface where the
@@ -377,7 +401,7 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     classify_boundary(state);
     build_projector(state);
     if (options.verbosity >= 2) emit(options.messages, MessageKind::Report, "%s", kPassHeader);
-    refine_to_field(state, field);
+    refine_to_field(state, field, options.refine_stages);
     if (options.verbosity >= 1 && !state.report.passes.empty())
         emit(options.messages, MessageKind::Progress, "adapt: surface and final optimization...\n");
     if (state.input) build_surface_model(state);

@@ -38,6 +38,13 @@ struct AdaptOptions
     bool optimize = true;  ///< improve after each pass and at the end (--no-optimize)
     bool project = true;   ///< keep boundary vertices on the HDI model (--no-projection)
     int max_passes = 40;   ///< refinement passes at most
+    /// The first refinement reaches the field in stages: to refine_stage_factor^k times its
+    /// size for k = refine_stages - 1 down to 0 (the field itself). A stage's long edges are
+    /// split together, mostly whole tets at once (the table's 1:8 pattern), which leaves far
+    /// fewer short edges for the optimizer to collapse than splitting each edge as soon as it
+    /// is too long (figures: docs/tuning.md). 1: one stage.
+    int refine_stages = 3;
+    double refine_stage_factor = 1.6;
     /// Remesh the boundary to the field on the input's model, mirrored into the tets (off:
     /// --nosurf, the boundary is only split and projected). Skipped, with the reason in the
     /// report, when coupled_surface_refusal() refuses the mesh.

@@ -73,6 +73,19 @@ private:
     std::uint64_t id_;  // keys this field's answers in the per-thread table of size()
 };
 
+/// Another field times a constant factor (a coarser stage of the same field). Holds a
+/// reference: the field must outlive it.
+class ScaledSize : public SizeField
+{
+public:
+    ScaledSize(const SizeField& field, double factor) : field_(field), factor_(factor) {}
+    double size(const Vec3& p) const override { return factor_ * field_.size(p); }
+
+private:
+    const SizeField& field_;
+    double factor_;
+};
+
 /// Another field clamped into [hmin, hmax] (--hmin, --hmax).
 class ClampedSize : public SizeField
 {
