@@ -94,7 +94,7 @@ BoundaryMap extract_boundary(const TetMesh& mesh)
         }
         return handle[v];
     };
-    for (const Triangle& f : tet_surface_faces(mesh))
+    for (const Triangle& f : tet_surface_faces_by_adjacency(mesh))  // (the precondition)
     {
         const auto face = surf.add_face(vertex(f[0]), vertex(f[1]), vertex(f[2]));
         if (!face.is_valid())

@@ -44,7 +44,7 @@ struct BoundaryMap
 /// their smaller ref), as one surface with the refs of mesh.triangles (0 for
 /// a face not listed) and the vertex classes of the tets (Surface → smooth, Ridge → ridge,
 /// Corner → corner; curve ids from mesh.edges as write_back stores them, else the feature
-/// detector's to run on it). \pre mesh has adjacency and
+/// detector's to run on it). \pre mesh has a valid adjacency (the faces are read off it) and
 /// coupled_surface_refusal(mesh) is empty. Throws TopologyError naming the face when OpenMesh
 /// cannot take it (a non-manifold vertex).
 BoundaryMap extract_boundary(const volume::TetMesh& mesh);

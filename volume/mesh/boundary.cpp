@@ -1,6 +1,7 @@
 #include "volume/mesh/boundary.h"
 
 #include <algorithm>
+#include <cassert>
 #include <limits>
 
 #include "volume/mesh/tet_tables.h"
@@ -120,6 +121,30 @@ std::vector<Triangle> tet_surface_faces(const TetMesh& mesh)
         const int ra = mesh.tet_refs[a.tet], rb = mesh.tet_refs[b.tet];
         if (ra != rb) faces.push_back(face_vertices(mesh, ra < rb ? a : b));
     }
+    return faces;
+}
+
+std::vector<Triangle> tet_surface_faces_by_adjacency(const TetMesh& mesh)
+{
+    // (sorted triple, face): the grouping's order is that of the sorted triples
+    std::vector<std::pair<Triangle, Triangle>> found;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        if (!usable_tet(mesh, t)) continue;
+        for (int f = 0; f < 4; ++f)
+        {
+            const int n = mesh.neighbors[t][f];
+            // a boundary face, or an interface face seen from the smaller ref
+            if (n != kNoTet && mesh.tet_refs[t] >= mesh.tet_refs[n]) continue;
+            const Triangle face = face_vertices(mesh, {t, f});
+            found.push_back({sorted_triple(face), face});
+        }
+    }
+    std::sort(found.begin(), found.end());
+    std::vector<Triangle> faces;
+    faces.reserve(found.size());
+    for (const auto& entry : found) faces.push_back(entry.second);
+    assert(faces == tet_surface_faces(mesh) && "tet_surface_faces_by_adjacency: stale adjacency");
     return faces;
 }
 

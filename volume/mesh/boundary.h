@@ -44,6 +44,11 @@ std::vector<Triangle> tet_boundary_faces(const TetMesh& mesh);
 /// closed shells.
 std::vector<Triangle> tet_surface_faces(const TetMesh& mesh);
 
+/// tet_surface_faces read off mesh.neighbors instead of grouping every face of the mesh: the
+/// same faces in the same order (sorted by their sorted vertex triples), in time linear in the
+/// tets with no sort of all faces. \pre the adjacency is valid (an assertions build compares).
+std::vector<Triangle> tet_surface_faces_by_adjacency(const TetMesh& mesh);
+
 /// One listing of mesh.triangles under its vertex set: ordered by the set, then by index, so
 /// that equal_range over a set gives every listing of that face, the first listed first.
 struct ListedTriangle
