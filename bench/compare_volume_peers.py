@@ -26,7 +26,7 @@ import argparse, os, resource, shutil, subprocess, sys, tempfile
 
 import numpy as np
 
-from compare_peers import read_medit_sections
+import compare_peers
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SPHERES = {'sphere3k': 0.1, 'sphere12k': 0.05, 'sphere48k': 0.025}
@@ -35,7 +35,7 @@ OBJS = ['fandisk', 'spot', 'rocker-arm', 'cheburashka']
 
 def read_medit(path):
     """Vertices (n,3), tets (m,4) 0-based, of a Medit ASCII mesh."""
-    sections = read_medit_sections(path)
+    sections, _ = compare_peers.read_medit(path)
     return sections['Vertices'][:, :3], sections['Tetrahedra'][:, :4].astype(np.int64) - 1
 
 

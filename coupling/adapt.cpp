@@ -186,6 +186,7 @@ AdaptPassReport refinement_pass(AdaptState& s, const SizeField& split_field,
         refined = volume::refine_pass(s.mesh, split_field, refine_options);
     }
     row.edges_split = refined.report.edges_split;
+    row.deferred_edges = refined.report.deferred_edges;
     if (row.edges_split == 0) return row;
     if (s.projector)
     {
@@ -235,13 +236,19 @@ StageEnd refine_stage(AdaptState& s, const SizeField& split_field, const SizeFie
                       int& pass, int last)
 {
     const int first = pass;
+    RefinePassOptions refine_options;  // the first pass of a stage measures every edge
     for (; pass < last; ++pass)
     {
-        // the previous pass left the adjacency, and projection and repair keep it
-        RefinePassOptions refine_options;
-        refine_options.adjacency_valid = pass > first;
+        const int vertices_before = s.mesh.num_vertices();
         const AdaptPassReport row = refinement_pass(s, split_field, target, pass, refine_options);
         if (row.edges_split == 0) return StageEnd::Converged;
+        // the pass left the adjacency, and projection and repair keep it. Repair never makes
+        // an edge too long for the target, so at the target's own stage only the edges of
+        // the new vertices need measuring next (at a coarser one it may lengthen edges
+        // already too long for the target: every edge is measured again)
+        refine_options.adjacency_valid = true;
+        if (&split_field == &target && row.deferred_edges == 0)
+            refine_options.first_candidate_vertex = vertices_before;
         s.report.passes.push_back(row);
         if (s.options.verbosity >= 2)
             emit(s.options.messages, MessageKind::Report, "%s", format_pass_row(row).c_str());

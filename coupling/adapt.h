@@ -78,6 +78,7 @@ struct AdaptPassReport
     int edges_split = 0;
     int tets = 0, vertices = 0;        ///< after the pass
     int projected = 0, shortened = 0;  ///< new boundary vertices (ProjectionReport's counts)
+    int deferred_edges = 0;            ///< RefinePassReport::deferred_edges
     double min_quality = 0;
     double seconds = 0;
 };

@@ -685,6 +685,14 @@ RefinePassResult RefinePass::run()
     report.pass = 1;
     {
         const EdgeTable edges(mesh_, first_candidate_);
+#ifndef NDEBUG
+        if (first_candidate_ > 0)  // the older edges vouched for: a full scan marks no more
+        {
+            const EdgeTable all(mesh_, 0);
+            const int everywhere = mark_edges(all);
+            assert(everywhere == mark_edges(edges) && "refine_pass: an older edge is too long");
+        }
+#endif
         report.edges_split = mark_edges(edges);
         // A tet flat in doubles may have no positive children: its split edges wait for a later
         // pass (the optimizer in between takes it apart); its neighbours are simulated again.
@@ -743,7 +751,7 @@ RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field)
 RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field,
                              const RefinePassOptions& options)
 {
-    return RefinePass(mesh, field, 0, options.adjacency_valid).run();
+    return RefinePass(mesh, field, options.first_candidate_vertex, options.adjacency_valid).run();
 }
 
 RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field, const QuadDiagonalRule& rule)

@@ -86,6 +86,10 @@ struct RefinePassOptions
     /// mesh.neighbors is the adjacency of mesh.tets as they are (the previous pass left it and
     /// every change since kept it, as the optimizer does): not rebuilt.
     bool adjacency_valid = false;
+    /// Edges with both ends below this vertex id were measured by the previous pass against
+    /// the same field, and nothing since made an edge too long (the optimizer's operators and
+    /// the projection never do; that pass deferred no edge): they are not measured again.
+    int first_candidate_vertex = 0;
 };
 
 /// refine_pass, told what holds already.
