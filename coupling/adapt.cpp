@@ -231,12 +231,13 @@ enum class StageEnd
 };
 
 /// Refinement passes, numbered from `pass` on (advanced past the last), until no edge is too
-/// long for `split_field` (or they stall, or reach pass `last`).
+/// long for `split_field` (or they stall, or reach pass `last`). `refine_options` carries
+/// what holds between passes (the adjacency) into the next stage.
 StageEnd refine_stage(AdaptState& s, const SizeField& split_field, const SizeField& target,
-                      int& pass, int last)
+                      int& pass, int last, RefinePassOptions& refine_options)
 {
     const int first = pass;
-    RefinePassOptions refine_options;  // the first pass of a stage measures every edge
+    refine_options.first_candidate_vertex = 0;  // a stage's first pass measures every edge
     for (; pass < last; ++pass)
     {
         const int vertices_before = s.mesh.num_vertices();
@@ -274,10 +275,11 @@ void refine_to_field(AdaptState& s, const SizeField& target, int stages = 1)
     if (!s.options.refine) return;
     int pass = static_cast<int>(s.report.passes.size()) + 1;
     const int last = pass + s.options.max_passes;
+    RefinePassOptions refine_options;  // the first pass builds the adjacency
     for (int k = std::max(stages, 1) - 1; k > 0; --k)
         refine_stage(s, ScaledSize(target, std::pow(s.options.refine_stage_factor, k)), target,
-                     pass, last);
-    const StageEnd end = refine_stage(s, target, target, pass, last);
+                     pass, last, refine_options);
+    const StageEnd end = refine_stage(s, target, target, pass, last, refine_options);
     s.report.converged = end == StageEnd::Converged;
     s.report.stalled = end == StageEnd::Stalled;
 }
