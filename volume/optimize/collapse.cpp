@@ -3,38 +3,14 @@
 #include <algorithm>
 #include <limits>
 
+#include "volume/optimize/vertex_marks.h"
+
 namespace hdimesh::volume
 {
 
 namespace
 {
 
-/// Per-vertex marks that need no clearing: a vertex is marked when it holds the current round.
-/// Deduplicating through them and sorting only what is left is cheaper than sorting the
-/// repeats (a ball lists each vertex about six times).
-class VertexMarks
-{
-public:
-    void next_round(int num_vertices)
-    {
-        if (static_cast<int>(round_of_.size()) < num_vertices) round_of_.resize(num_vertices, 0);
-        ++round_;
-    }
-    bool marked(int v) const { return round_of_[v] == round_; }
-    /// Marks v; false when it already was.
-    bool mark(int v) { return round_of_[v] == round_ ? false : (round_of_[v] = round_, true); }
-
-private:
-    std::vector<unsigned> round_of_;
-    unsigned round_ = 0;
-};
-
-/// One per thread: the operators of one mesh run on one thread.
-VertexMarks& vertex_marks()
-{
-    thread_local VertexMarks marks;
-    return marks;
-}
 
 /// from's ball split by role: the shell of the edge (dies) and the rest (re-attached to `to`).
 struct CollapseConfiguration

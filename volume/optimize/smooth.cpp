@@ -7,6 +7,7 @@
 
 #include "volume/check/quality_report.h"
 #include "volume/mesh/tet_tables.h"
+#include "volume/optimize/vertex_marks.h"
 
 namespace hdimesh::volume
 {
@@ -144,6 +145,8 @@ MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int
     ball.vertex = v;
     context.ball(mesh, v, ball.tets);
     std::vector<int> neighbour_ids;
+    VertexMarks& marks = vertex_marks();
+    marks.next_round(mesh.num_vertices());
     double edge_sum = 0;
     for (int t : ball.tets)
     {
@@ -156,11 +159,10 @@ MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int
         const Vec3& f2 = mesh.points[tv[fv[1]]];
         ball.faces.emplace_back(std::array<Vec3, 3>{f0, f1, f2});
         edge_sum += ball.faces.back().perimeter;
-        for (int k : fv) neighbour_ids.push_back(tv[k]);
+        for (int k : fv)
+            if (marks.mark(tv[k])) neighbour_ids.push_back(tv[k]);
     }
     std::sort(neighbour_ids.begin(), neighbour_ids.end());
-    neighbour_ids.erase(std::unique(neighbour_ids.begin(), neighbour_ids.end()),
-                        neighbour_ids.end());
     for (int n : neighbour_ids) ball.neighbours.push_back(mesh.points[n]);
     ball.mean_edge = edge_sum / (3.0 * static_cast<double>(ball.faces.size()));
     return ball;
