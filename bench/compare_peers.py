@@ -5,7 +5,7 @@
 
 The protocol. For each case of the three-cylinder field (C, D and E by default; A and B on
 request), starting from data/sphere480.mesh:
-  hdimesh  build/apps/adapt --bench-field X -v 2, one run
+  hdimesh  build/apps/adapt --bench-field X -v 1 (the default), one run
   TetGen   `tetgen -rq1.4mQ` iterated (Q only silences it): before each round the size at every
            node of the current mesh is re-evaluated from the field and written as a .mtr (TetGen
            adapts to sizes at nodes only); rounds until the tet count changes by less than 2 %
@@ -20,19 +20,19 @@ own rusage gives its CPU time (user + system) and its peak resident set (ru_maxr
 Linux), whole process for everyone: reading, setting up, meshing and writing. Wall time is
 perf_counter around the child. For the iterated peers CPU and wall are summed over the rounds
 and the peak is the largest round's; the field evaluation and the .mtr/.sol writing between
-rounds (this script's Python) count for no one. Our adapt at -v 2 also computes its quality
-table after meshing, which its CPU includes.
+rounds (this script's Python) count for no one. Our adapt at -v 1 also computes its quality
+tables of the input and the output, which its CPU includes (-v 2 would add a summary of the
+whole mesh after every optimization sweep).
 
 Columns: output tets, CPU s, wall s, tets per CPU-second, microseconds of CPU per output tet,
 peak RSS in bytes per output tet, and the output measured by our meshstat against the same
 field (min Qe, % Qe >= 0.5, % Qt >= 0.66), the largest distance of a boundary vertex to the unit
 sphere, the rounds of the iterated peers (* when the cap came first) and our checker's verdict
 on our output. Under our row, the stage split of adapt's own CPU (its `cpu:` line) and the
-refinement rate: the tets after the last refinement pass (the tets column of the last row of
-the -v 2 pass table) per CPU-second of the refine stage. That tet count is not the refinement's
-alone: each pass's row counts the tets after its splits, the projection of the new boundary
-vertices and the repair of bad tets around them (optimization), and the passes after a surface
-pass count too; the refine stage's CPU is the splitting only.
+refinement rate: the most tets after a refinement pass (adapt's `refinement:` line) per
+CPU-second of the refine stage. That count is not the splitting's alone: a pass's count follows
+its splits, the projection of the new boundary vertices and the repair of bad tets around them
+(optimization), while the refine stage's CPU is the splitting only.
 
 After each case a targets line, each PASS/FAIL with its figure: ours >= 100k tets/CPU-s;
 refinement >= 2M tets/CPU-s; min Qe >= 0.3, >= 99 % Qe >= 0.5, >= 99 % Qt >= 0.66; on C our
@@ -187,26 +187,22 @@ def write_sol(path, sizes):
 
 CPU_LINE = re.compile(r'cpu:\s+total ([\d.]+) s = surface ([\d.]+) \+ refine ([\d.]+) \+ '
                       r'project ([\d.]+) \+ optimize ([\d.]+) \+ other (-?[\d.]+)')
-PASS_ROW = re.compile(r'^\s*(\d+)\s+(\d+)\s+(\d+)\s+(\d+)\s+(\d+)\s+(\d+)\s+(-?[\d.]+)\s+([\d.]+)\s*$')
 
 
 def parse_adapt_log(text):
-    """adapt -v 2's stage split (its cpu: line) and the tets after its last refinement pass."""
+    """adapt -v 1's stage split (its cpu: line) and the refinement's output: the most tets
+    after a refinement pass (its refinement: line), which the final optimization then reduces."""
     cpu = CPU_LINE.search(text)
     stages = dict(zip(('total', 'surface', 'refine', 'project', 'optimize', 'other'),
                       map(float, cpu.groups()))) if cpu else None
-    # the pass rows: after the table's header, before the cpu: line (the quality table follows)
-    start = text.find(' pass     split')
-    table = text[start:cpu.start() if cpu else len(text)] if start >= 0 else ''
-    rows = [PASS_ROW.match(line) for line in re.split(r'[\r\n]', table)]
-    rows = [m for m in rows if m]
-    return {'stages': stages, 'refine_tets': int(rows[-1].group(3)) if rows else None}
+    refined = re.search(r'refinement: (\d+) passes, (\d+) tets at most', text)
+    return {'stages': stages, 'refine_tets': int(refined.group(2)) if refined else None}
 
 
 def run_ours(build, case, work):
     out = os.path.join(work, f'ours_{case}.mesh')
     log = os.path.join(work, f'ours_{case}.log')
-    usage = run_child([f'{build}/apps/adapt', INPUT, '-o', out, '--bench-field', case, '-v', '2'], log)
+    usage = run_child([f'{build}/apps/adapt', INPUT, '-o', out, '--bench-field', case, '-v', '1'], log)
     with open(log) as f:
         extra = parse_adapt_log(f.read())
     return Run(out, usage, '-', extra)
@@ -324,7 +320,7 @@ def stage_line(extra):
     """Our stage split and refinement rate, or why they are missing."""
     st, tets = extra['stages'], extra['refine_tets']
     if not st:
-        return '     hdimesh stages: no cpu: line in adapt -v 2 output'
+        return '     hdimesh stages: no cpu: line in adapt -v 1 output'
     text = (f"     hdimesh CPU in adapt(): surface {st['surface']:.2f} + refine {st['refine']:.2f}"
             f" + project {st['project']:.2f} + optimize {st['optimize']:.2f} + other {st['other']:.2f}"
             f" = {st['total']:.2f} s")

@@ -445,6 +445,14 @@ std::string format_adapt_report(const AdaptReport& report, bool with_passes)
     {
         out << "surface: kept (" << report.surface_refusal << ")\n";
     }
+    if (!report.passes.empty())
+    {
+        int most = 0;
+        for (const auto& p : report.passes) most = std::max(most, p.tets);
+        std::snprintf(line, sizeof line, "refinement: %d passes, %d tets at most\n",
+                      static_cast<int>(report.passes.size()), most);
+        out << line;
+    }
     const double rest = report.seconds_total - report.seconds_surface - report.seconds_refine -
                         report.seconds_project - report.seconds_optimize;
     std::snprintf(line, sizeof line,
