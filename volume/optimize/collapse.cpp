@@ -11,7 +11,6 @@ namespace hdimesh::volume
 namespace
 {
 
-
 /// from's ball split by role: the shell of the edge (dies) and the rest (re-attached to `to`).
 struct CollapseConfiguration
 {

@@ -92,7 +92,8 @@ public:
         long total = 0;
         // the first pass sees every short edge; later ones only those of tets changed since,
         // as nothing else can have become collapsible
-        std::vector<ShortEdge> candidates = (from ? short_edges(*from) : short_edges(all_live_tets(), true));
+        std::vector<ShortEdge> candidates =
+            (from ? short_edges(*from) : short_edges(all_live_tets(), true));
         int pass = 0;
         for (; pass < options_.max_sweeps && !candidates.empty(); ++pass)
         {
@@ -537,7 +538,7 @@ private:
     }
 
     TetMesh& mesh_;
-    std::vector<char> changed_vertex_;   // scratch of improve_below, all zero between uses
+    std::vector<char> changed_vertex_;  // scratch of improve_below, all zero between uses
     // the collapses refused, by edge (u << 32 | v), with changes() + 1 at the refusal: the
     // options never change, so the verdict stands while no tet through u or v changes
     std::unordered_map<std::uint64_t, std::uint64_t> refused_collapses_;

@@ -77,7 +77,8 @@ struct MovingBall
         // acos falls as its argument rises: the smallest angle is the acos of the largest cosine
         double largest = -1.0;
         for (const BallFace& face : faces)
-            largest = std::max(largest, smallest_dihedral_cosine(face.f[0], face.f[1], face.f[2], p));
+            largest =
+                std::max(largest, smallest_dihedral_cosine(face.f[0], face.f[1], face.f[2], p));
         return std::min(180.0, dihedral_cosine_to_deg(largest));
     }
 
