@@ -120,23 +120,32 @@ int length_ratio_histogram_bin(double ratio)
     return std::clamp(bin, 0, 7);
 }
 
-std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c,
-                                          const Vec3& d)
+namespace
+{
+
+/// The cosines of the six dihedral angles, at edges e0..e5; 1 (an angle of 0) at an edge of a
+/// degenerate face.
+std::array<double, 6> dihedral_cosines(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 {
     const auto normals = face_normals({&a, &b, &c, &d});
-    std::array<double, 6> angles;
+    std::array<double, 6> cosines;
     for (int e = 0; e < 6; ++e)
     {
         const auto& faces = tet::kEdgeFaces[e];
         const Vec3 &n = normals[faces[0]], &m = normals[faces[1]];
-        if (n.isZero() || m.isZero())
-        {
-            angles[e] = 0.0;
-            continue;
-        }
         // the interior angle between two faces is pi minus the angle of their outward normals
-        angles[e] = dihedral_cosine_to_deg(std::clamp(-n.dot(m), -1.0, 1.0));
+        cosines[e] = n.isZero() || m.isZero() ? 1.0 : std::clamp(-n.dot(m), -1.0, 1.0);
     }
+    return cosines;
+}
+
+}  // namespace
+
+std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c,
+                                          const Vec3& d)
+{
+    std::array<double, 6> angles = dihedral_cosines(a, b, c, d);
+    for (double& angle : angles) angle = dihedral_cosine_to_deg(angle);
     return angles;
 }
 
@@ -144,16 +153,8 @@ double dihedral_cosine_to_deg(double cosine) { return std::acos(cosine) * 180.0 
 
 double smallest_dihedral_cosine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 {
-    const auto normals = face_normals({&a, &b, &c, &d});
-    double largest = -1.0;
-    for (int e = 0; e < 6; ++e)
-    {
-        const auto& faces = tet::kEdgeFaces[e];
-        const Vec3 &n = normals[faces[0]], &m = normals[faces[1]];
-        if (n.isZero() || m.isZero()) return 1.0;
-        largest = std::max(largest, std::clamp(-n.dot(m), -1.0, 1.0));
-    }
-    return largest;
+    const std::array<double, 6> cosines = dihedral_cosines(a, b, c, d);
+    return *std::max_element(cosines.begin(), cosines.end());
 }
 
 QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field)
@@ -203,8 +204,8 @@ QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field
         report.percent_qe_lt_02 = percent(qe_lt_02, report.tets);
         if (min_cos <= max_cos)
         {
-            report.min_dihedral_deg = std::acos(std::clamp(max_cos, -1.0, 1.0)) * 180.0 / kPi;
-            report.max_dihedral_deg = std::acos(std::clamp(min_cos, -1.0, 1.0)) * 180.0 / kPi;
+            report.min_dihedral_deg = dihedral_cosine_to_deg(std::clamp(max_cos, -1.0, 1.0));
+            report.max_dihedral_deg = dihedral_cosine_to_deg(std::clamp(min_cos, -1.0, 1.0));
         }
     }
 

@@ -18,6 +18,7 @@
 
 #include "common/classification.h"
 #include "volume/mesh/geometry.h"
+#include "volume/mesh/tet_tables.h"
 
 namespace hdimesh::volume
 {
@@ -118,6 +119,15 @@ struct TetMesh
     /// inside the bucket. Returns the number of faces found in more than two tets (those
     /// keep kNoTet links; check_mesh reports them).
     int build_adjacency();
+    /// Whether tet t lists its local edge e in a scan that lists each edge about once: neither
+    /// tet across its two faces at e has a smaller index, so the smallest tet around every edge
+    /// lists it (a few others may too: deduplicate). Needs the adjacency.
+    bool lists_edge(int t, int e) const
+    {
+        const auto& nb = neighbors[t];
+        const int f = tet::kEdgeFaces[e][0], g = tet::kEdgeFaces[e][1];
+        return (nb[f] == kNoTet || nb[f] > t) && (nb[g] == kNoTet || nb[g] > t);
+    }
 
     /// Sets vertex_classes from triangles, ridges and corners: a vertex of a triangle is
     /// Surface, of a ridge edge Ridge, a corner Corner, else Interior.

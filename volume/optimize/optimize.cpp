@@ -389,15 +389,8 @@ private:
         // deduplicate each small bucket: the edges come out in (u, v) order, each once
         const int nv = mesh_.num_vertices();
         std::vector<int> bucket_start(nv + 1, 0);
-        // Over every live tet, tet t lists edge e only when neither tet across its two faces at
-        // e has a smaller index: the smallest around each edge still lists it, and the buckets
-        // shrink about fourfold (as refinement's EdgeTable does).
-        auto listed = [&](int t, int e) {
-            if (!whole_mesh) return true;
-            const auto& nb = mesh_.neighbors[t];
-            const int f = tet::kEdgeFaces[e][0], g = tet::kEdgeFaces[e][1];
-            return (nb[f] == kNoTet || nb[f] > t) && (nb[g] == kNoTet || nb[g] > t);
-        };
+        // over every live tet, the buckets shrink about fourfold (as refinement's EdgeTable)
+        auto listed = [&](int t, int e) { return !whole_mesh || mesh_.lists_edge(t, e); };
         auto for_each_candidate = [&](auto&& visit) {
             for (int t : tets)
                 for (int e = 0; e < 6; ++e)

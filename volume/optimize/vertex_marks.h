@@ -16,7 +16,6 @@ public:
         if (static_cast<int>(round_of_.size()) < num_vertices) round_of_.resize(num_vertices, 0);
         ++round_;
     }
-    bool marked(int v) const { return round_of_[v] == round_; }
     /// Marks v; false when it already was.
     bool mark(int v) { return round_of_[v] == round_ ? false : (round_of_[v] = round_, true); }
 

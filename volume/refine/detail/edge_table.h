@@ -20,15 +20,8 @@ public:
     {
         const int nv = mesh.num_vertices();
         const bool adjacency = mesh.has_adjacency();
-        // With adjacency, tet t lists edge e only when neither tet across the two faces at e
-        // (both also hold e) has a smaller index: the smallest tet around every edge lists it,
-        // and far fewer than the 6 per tet are left to deduplicate.
-        auto listed = [&](int t, int e) {
-            if (!adjacency) return true;
-            const auto& nb = mesh.neighbors[t];
-            const int f = tet::kEdgeFaces[e][0], g = tet::kEdgeFaces[e][1];
-            return (nb[f] == kNoTet || nb[f] > t) && (nb[g] == kNoTet || nb[g] > t);
-        };
+        // with adjacency, far fewer than the 6 edges per tet are left to deduplicate
+        auto listed = [&](int t, int e) { return !adjacency || mesh.lists_edge(t, e); };
         auto has_new_vertex = [first_vertex](const TetVertices& t) {
             return t[0] != kDeadTet && std::max({t[0], t[1], t[2], t[3]}) >= first_vertex;
         };
