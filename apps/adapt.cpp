@@ -70,8 +70,9 @@ int main(int argc, char** argv)
             {"--keep-surface", &keep_surface,
              "surface input: its triangles are the boundary, exactly (no remeshing)"},
             {"--strict", &strict,
-             "tet input: refuse triangles that are not the tets' boundary (TetGen's interior "
-             "and inward ones, missing ones) instead of mending them"},
+             "refuse a defective input instead of repairing it: a tet input's triangles that "
+             "are not the tets' boundary; a surface input's degenerate or duplicated "
+             "triangles, pinched vertices, holes, crossings, tiny shells"},
         });
         for (const char* name : {"noswap", "nomove", "noinsert", "nosurf", "optim"})
             cl.alias(std::string("-") + name, std::string("--") + name);

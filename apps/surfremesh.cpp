@@ -151,7 +151,7 @@ int main(int argc, char** argv)
 
         ReadReport read_report;
         SurfaceMesh mesh = read_surface(input, &read_report);
-        for (const auto& w : read_report.warnings) std::cerr << "surfremesh: " << w << "\n";
+        for (const auto& w : read_report.notes) std::cerr << "surfremesh: " << w << "\n";
         const SurfaceMesh original = mesh;
 
         SurfaceRemeshSettings settings;

@@ -54,6 +54,7 @@ VolumeFromSurfaceOptions fill_options(const AdaptRequest& request, const AdaptOp
     o.optimize = !request.switches.no_optimize;
     o.adapt = options;
     o.remesh.features = options.features;
+    o.repair.strict = request.strict;
     o.source = request.source;
     return o;
 }
@@ -68,6 +69,9 @@ AdaptResult fill_surface(const surface::TriangleSoup& soup, const AdaptRequest& 
     AdaptResult result;
     result.mesh = mesh_volume_from_surface(soup, o, &report);
     result.field = report.field;
+    result.repairs = report.repairs;
+    for (const std::string& line : result.repairs)
+        emit(request.messages, MessageKind::Trace, "adapt: %s\n", line.c_str());
     if (request.verbosity >= 1)
         emit(request.messages, MessageKind::Report, "input %s (a surface)\n%s",
              request.source.c_str(), format_volume_from_surface_report(report).c_str());

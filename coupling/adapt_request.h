@@ -53,9 +53,11 @@ struct AdaptRequest
     double hausd = 0;  ///< > 0: the boundary's distance bound to the input
     AdaptSwitches switches;
     bool keep_surface = false;  ///< a surface input's triangles are the boundary, exactly
-    bool strict = false;        ///< a tet input's triangles refused, not mended
-    int max_passes = 40;        ///< refinement passes at most
-    int verbosity = 1;          ///< 0 silent, 1 a summary, 2 a table per pass
+    /// Input defects refused, not mended: a tet input's triangles, a surface input's merges,
+    /// drops, pinches, holes and shells (surface/soup_repair.h).
+    bool strict = false;
+    int max_passes = 40;  ///< refinement passes at most
+    int verbosity = 1;    ///< 0 silent, 1 a summary, 2 a table per pass
     /// Where the report lines (Report), the input's repairs (Trace) and progress go.
     MessageSink messages;
     std::function<void(const std::string& stage, int tets)> progress;  ///< may throw to stop
@@ -68,7 +70,7 @@ struct AdaptResult
     volume::TetMesh mesh;  ///< valid (check_mesh clean)
     /// The field it was adapted to (the surface's sizes carried into the volume for a surface)
     std::shared_ptr<const SizeField> field;
-    std::vector<std::string> repairs;  ///< what mending a tet input changed, one line each
+    std::vector<std::string> repairs;  ///< what mending the input changed, one line each
 };
 
 /// Adapts a tet input to the request, or fills a surface input's volume. Throws InputError

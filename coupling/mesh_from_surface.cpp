@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <sstream>
 #include <unordered_set>
 
@@ -20,6 +22,7 @@
 #include "hdi/knn.h"
 #include "surface/features.h"
 #include "surface/sizing.h"
+#include "surface/soup_repair.h"
 #include "surface/surface_model.h"
 #include "volume/check/check.h"
 #include "volume/check/surface_regions.h"
@@ -339,6 +342,134 @@ double worst_quality(const TetMesh& mesh)
     return mesh.num_live_tets() ? worst : 0.0;
 }
 
+constexpr double kLocalCrossing = 4.0;  // local sizes a fold of crossing faces may span
+
+std::string format_point(const Vec3& p)
+{
+    char text[96];
+    std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g)", p[0], p[1], p[2]);
+    return text;
+}
+
+std::string format_number(double x)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
+}
+
+/// The local size a hole's loop is measured in: the sizing's, or where it is only known after
+/// the remesh (hausd, the default), its upper bound (hmax, else twice the mean edge).
+std::function<double(const Vec3d&)> hole_size(const SurfaceSizing& s, const TriangleSoup& soup)
+{
+    const double hmin = s.hmin > 0 ? s.hmin : 0.0;
+    const double hmax = s.hmax > 0 ? s.hmax : std::numeric_limits<double>::infinity();
+    auto clamp = [hmin, hmax](double h) { return std::min(std::max(h, hmin), hmax); };
+    if (s.hsiz > 0) return [h = clamp(s.hsiz)](const Vec3d&) { return h; };
+    if (s.field)
+        return [field = s.field, clamp](const Vec3d& p) {
+            return clamp(field->size(surface::to_point(p)));
+        };
+    if (!s.vertex_sizes.empty())
+    {
+        std::vector<Vec3> points;
+        for (const auto& p : soup.points) points.push_back(surface::to_point(p));
+        auto index = std::make_shared<const hdi::KnnIndex>(points);
+        return [index, sizes = s.vertex_sizes, clamp](const Vec3d& p) {
+            int nearest = 0;
+            double squared = 0;
+            index->nearest(surface::to_point(p), 1, &nearest, &squared);
+            return clamp(sizes[nearest]);
+        };
+    }
+    if (s.hmax > 0) return [h = s.hmax](const Vec3d&) { return h; };
+    double sum = 0;
+    long count = 0;
+    for (const auto& t : soup.triangles)
+        for (int k = 0; k < 3; ++k)
+        {
+            const int a = t[k], b = t[(k + 1) % 3];
+            if (a < 0 || b < 0 || a >= static_cast<int>(soup.points.size()) ||
+                b >= static_cast<int>(soup.points.size()))
+                continue;
+            sum += (soup.points[a] - soup.points[b]).norm();
+            ++count;
+        }
+    const double h = clamp(count ? 2.0 * sum / count : 0.0);
+    return [h](const Vec3d&) { return h; };
+}
+
+/// The input's crossing pairs: where each cluster of crossing faces spans at most
+/// kLocalCrossing local sizes, a fold the remesh clears (noted; the remeshed surface is
+/// checked before the fill); a wider crossing (two parts through each other) is refused.
+int note_crossings(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                   const std::string& source, const std::function<double(const Vec3d&)>& size,
+                   std::vector<std::string>& notes)
+{
+    std::vector<volume::SurfaceDefect> crossings;
+    for (auto& defect : volume::check_closed_surface(points, triangles))
+        if (defect.kind == volume::SurfaceDefectKind::SelfIntersection)
+            crossings.push_back(std::move(defect));
+    if (crossings.empty()) return 0;
+    // clusters: faces of one pair, and faces sharing a point, belong together
+    std::vector<int> faces;
+    for (const auto& c : crossings) faces.insert(faces.end(), c.faces.begin(), c.faces.end());
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    auto slot = [&](int f) {
+        return static_cast<int>(std::lower_bound(faces.begin(), faces.end(), f) - faces.begin());
+    };
+    std::vector<int> parent(faces.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](int i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    auto unite = [&](int i, int j) {
+        i = find(i);
+        j = find(j);
+        if (i != j) parent[std::max(i, j)] = std::min(i, j);
+    };
+    for (const auto& c : crossings)
+        for (std::size_t k = 1; k < c.faces.size(); ++k) unite(slot(c.faces[0]), slot(c.faces[k]));
+    std::vector<std::pair<int, int>> at_point;  // (point, slot)
+    for (std::size_t i = 0; i < faces.size(); ++i)
+        for (int v : triangles[faces[i]]) at_point.push_back({v, static_cast<int>(i)});
+    std::sort(at_point.begin(), at_point.end());
+    for (std::size_t k = 1; k < at_point.size(); ++k)
+        if (at_point[k].first == at_point[k - 1].first)
+            unite(at_point[k].second, at_point[k - 1].second);
+    std::vector<Vec3> lo(faces.size(), Vec3::Constant(std::numeric_limits<double>::infinity()));
+    std::vector<Vec3> hi(faces.size(), Vec3::Constant(-std::numeric_limits<double>::infinity()));
+    for (std::size_t i = 0; i < faces.size(); ++i)
+        for (int v : triangles[faces[i]])
+        {
+            const int r = find(static_cast<int>(i));
+            lo[r] = lo[r].cwiseMin(points[v]);
+            hi[r] = hi[r].cwiseMax(points[v]);
+        }
+    int clusters = 0;
+    for (std::size_t i = 0; i < faces.size(); ++i)
+    {
+        if (find(static_cast<int>(i)) != static_cast<int>(i)) continue;
+        ++clusters;
+        const Vec3 centre = 0.5 * (lo[i] + hi[i]);
+        const double h = size(surface::to_vec3d(centre));
+        if ((hi[i] - lo[i]).norm() > kLocalCrossing * h)
+            throw InputError(volume::format_surface_defects(crossings, source) +
+                             "\n(a crossing spanning more than " + format_number(kLocalCrossing) +
+                             " local sizes, near " + format_point(centre) +
+                             ", is two parts through each other, not a fold the remesh clears)");
+    }
+    const Triangle& t = triangles[crossings[0].faces[0]];
+    notes.push_back(source + ": " + std::to_string(crossings.size()) +
+                    " pair(s) of triangles cross in " + std::to_string(clusters) +
+                    " small fold(s) (the first near " +
+                    format_point((points[t[0]] + points[t[1]] + points[t[2]]) / 3.0) +
+                    "); the remeshed surface is checked instead");
+    return static_cast<int>(crossings.size());
+}
+
 }  // namespace
 
 TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfaceOptions& options,
@@ -353,23 +484,66 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
     check_sizing(options.sizing, soup.points.size(), source);
 
     Boundary boundary;
+    VolumeFromSurfaceOptions repaired_options;  // sizes at the vertices follow the repair
+    const VolumeFromSurfaceOptions* used = &options;
     {
         const StageTimer timer(report.seconds_check, report.cpu_seconds_check);
         std::vector<Vec3> points;
-        points.reserve(soup.points.size());
-        for (const auto& p : soup.points) points.emplace_back(p[0], p[1], p[2]);
-        std::vector<Triangle> triangles(soup.triangles.begin(), soup.triangles.end());
-        report.merged_points = volume::merge_coincident_points(points, triangles);
-        volume::require_closed_surface(points, triangles, source, options.check);
+        std::vector<Triangle> triangles;
+        std::vector<int> refs;
+        if (options.repair.strict)
+        {
+            points.reserve(soup.points.size());
+            for (const auto& p : soup.points) points.emplace_back(p[0], p[1], p[2]);
+            triangles.assign(soup.triangles.begin(), soup.triangles.end());
+            report.merged_points = volume::merge_coincident_points(points, triangles);
+            volume::require_closed_surface(points, triangles, source, options.check);
+            refs = soup.refs;
+        }
+        else
+        {
+            TriangleSoup repaired = soup;
+            surface::SoupRepairReport repair;
+            surface::SoupRepairOptions repair_options = options.repair;
+            repair_options.close_holes = true;
+            repair_options.local_size = hole_size(options.sizing, soup);
+            surface::repair_soup(repaired, source, repair_options, &repair);
+            report.merged_points = static_cast<int>(repair.merged_vertices);
+            report.repairs = repair.notes;
+            if (!options.sizing.vertex_sizes.empty())
+            {
+                repaired_options = options;
+                auto& sizes = repaired_options.sizing.vertex_sizes;
+                sizes.clear();
+                for (int old : repair.source_point)
+                    sizes.push_back(options.sizing.vertex_sizes[old]);
+                used = &repaired_options;
+            }
+            for (const auto& p : repaired.points) points.emplace_back(p[0], p[1], p[2]);
+            triangles.assign(repaired.triangles.begin(), repaired.triangles.end());
+            refs = repaired.refs;
+            // crossings are the remeshed surface's to clear (checked after it); with the input
+            // kept they are refused
+            volume::SurfaceCheckOptions topology = options.check;
+            topology.check_self_intersections = options.keep_surface;
+            if (const auto defects = volume::check_closed_surface(points, triangles, topology);
+                !defects.empty())
+                throw InputError(volume::format_surface_defects(defects, source) +
+                                 "\n(holes up to " +
+                                 format_number(repair_options.hole_size_factor) +
+                                 " local sizes across are closed; larger ones are refused)");
+            if (!options.keep_surface && options.check.check_self_intersections)
+                report.input_crossings = note_crossings(points, triangles, source,
+                                                        repair_options.local_size, report.repairs);
+        }
         const volume::SurfaceRegions regions = volume::find_surface_regions(points, triangles);
         report.turned_shells = regions.turned_shells;
-        std::vector<int> refs = soup.refs;
         refs.resize(triangles.size(), 0);
         boundary = compact_boundary(points, regions.triangles, refs);
     }
     {
         const StageTimer timer(report.seconds_remesh, report.cpu_seconds_remesh);
-        boundary = prepare_boundary(boundary, options, report);
+        boundary = prepare_boundary(boundary, *used, report);
     }
 
     volume::SurfaceRegions regions;

@@ -2,8 +2,11 @@
 // A tet mesh from a closed surface alone (the paper's surface-only input: "a tetrahedron mesh
 // is performed and adapted thereafter"):
 //
-//   validate   volume/check/surface_check.h      refused before anything else, one message naming
-//                                          the faces or loops (InputError)
+//   repair     surface/soup_repair.h     merged, dropped, oriented, pinches split, small holes
+//                                          closed, tiny shells dropped; one note per repair
+//   validate   volume/check/surface_check.h      what is left open or non-manifold refused, one
+//                                          message naming the faces or loops (InputError);
+//                                          crossings are a note, the remeshed surface decides
 //   regions    volume/check/surface_regions.h    shells, voids, one tet ref per solid
 //   remesh     surface/remesh_surface.h    the surfremesh pipeline to the size (skipped with
 //                                          keep_surface: the given triangles are the boundary,
@@ -59,6 +62,9 @@ struct VolumeFromSurfaceOptions
     /// `sizing`.
     surface::SurfaceRemeshSettings remesh;
     volume::SurfaceCheckOptions check;
+    /// The input's repairs (surface/soup_repair.h); holes are closed at hole_size_factor
+    /// local sizes of `sizing`. strict: refused as the input is, no repair.
+    surface::SoupRepairOptions repair;
     volume::CavityOptions fill;
     /// After the fill: split too-long edges (interior ones only with keep_surface), project
     /// new boundary points, optimize (coupling::adapt).
@@ -73,7 +79,10 @@ struct VolumeFromSurfaceOptions
 struct VolumeFromSurfaceReport
 {
     int input_points = 0, input_triangles = 0;
-    int merged_points = 0;  ///< points renamed to an earlier one at the same place
+    int merged_points = 0;    ///< points renamed to an earlier one at the same place
+    int input_crossings = 0;  ///< pairs of input triangles that cross (the remesh is checked)
+    /// One line per repair of the input and per defect left to the remesh, naming the input.
+    std::vector<std::string> repairs;
     int shells = 0, regions = 0, voids = 0;
     int turned_shells = 0;  ///< shells reversed to face out of their region (input's)
     int surface_points = 0, surface_triangles = 0;  ///< the boundary filled (after remeshing)
@@ -94,13 +103,15 @@ struct VolumeFromSurfaceReport
     std::shared_ptr<const SizeField> field;
 };
 
-/// The tet mesh of the solids the soup bounds. Throws InputError (naming options.source and
-/// the faces, loops or vertices) when the surface is not closed, manifold, consistently
-/// oriented and free of self-intersections and degenerate or duplicated faces, or the sizing is
-/// invalid; TopologyError when the filler gives up on a region. Nothing is returned partly.
-/// Output: tets with refs 1, 2, ... per region; mesh.triangles the boundary (faces of voids
-/// pointing into them) with the soup's refs; with remeshing, its ridges and corners as
-/// mesh.edges / ridges / corners. Compact, with adjacency, passing check_mesh.
+/// The tet mesh of the solids the soup bounds. The soup is repaired first (unless
+/// options.repair.strict); throws InputError (naming options.source and the faces, loops or
+/// vertices) when the repaired surface is not closed, manifold and consistently oriented, when
+/// the surface filled (the remeshed one, or the input with keep_surface) has crossing or
+/// degenerate faces, or when the sizing is invalid; TopologyError when the filler gives up on a
+/// region. Nothing is returned partly. Output: tets with refs 1, 2, ... per region; mesh.triangles
+/// the boundary (faces of voids pointing into them) with the soup's refs; with remeshing, its
+/// ridges and corners as mesh.edges / ridges / corners. Compact, with adjacency, passing
+/// check_mesh.
 volume::TetMesh mesh_volume_from_surface(const surface::TriangleSoup& soup,
                                          const VolumeFromSurfaceOptions& options,
                                          VolumeFromSurfaceReport* report = nullptr);

@@ -382,7 +382,15 @@ PYBIND11_MODULE(_hdimesh, mod)
             surface::SurfaceMesh mesh;
             {
                 py::gil_scoped_release release;
-                mesh = surface::build_surface(std::move(soup), "surface");
+                surface::ReadReport repaired;
+                mesh = surface::build_surface(std::move(soup), "surface", &repaired);
+                if (!settings.input_sizes.empty())  // the repair renumbers the points
+                {
+                    std::vector<double> sizes_after;
+                    for (int old : repaired.source_point)
+                        sizes_after.push_back(settings.input_sizes.at(old));
+                    settings.input_sizes = std::move(sizes_after);
+                }
                 if (!(hsiz > 0) && !(hausd > 0) && settings.input_sizes.empty() && !(hmax > 0))
                     settings.sizing.hmax = 2.0 * surface::mean_edge_length(mesh);
                 surface::remesh_surface(mesh, settings);

@@ -285,210 +285,14 @@ TriangleSoup read_stl_facets(const std::string& path)
     return soup;
 }
 
-// The triangles at each edge of a soup: every (edge, triangle) use sorted by edge, then by
-// triangle, in runs of one edge (a sorted vector: a map of vectors is slow on a large scan,
-// docs/tuning.md).
-class EdgeFaces
-{
-public:
-    explicit EdgeFaces(const TriangleSoup& soup) : run_of_(soup.triangles.size())
-    {
-        const std::size_t nf = soup.triangles.size();
-        uses_.reserve(3 * nf);
-        for (std::size_t f = 0; f < nf; ++f)
-            for (int k = 0; k < 3; ++k)
-            {
-                const int a = soup.triangles[f][k], b = soup.triangles[f][(k + 1) % 3];
-                uses_.push_back({key(a, b), static_cast<int>(f), k});
-            }
-        std::sort(uses_.begin(), uses_.end());
-        for (std::size_t i = 0; i < uses_.size(); ++i)
-        {
-            if (i == 0 || uses_[i].key != uses_[i - 1].key) first_.push_back(static_cast<int>(i));
-            run_of_[uses_[i].face][uses_[i].side] = static_cast<int>(first_.size()) - 1;
-        }
-        first_.push_back(static_cast<int>(uses_.size()));
-    }
-
-    int runs() const { return static_cast<int>(first_.size()) - 1; }
-    /// Run r's edge (its smaller vertex, its larger) and its triangles.
-    std::pair<int, int> edge(int r) const
-    {
-        const std::uint64_t k = uses_[first_[r]].key;
-        return {static_cast<int>(k >> 32), static_cast<int>(k & 0xffffffffu)};
-    }
-    int size(int r) const { return first_[r + 1] - first_[r]; }
-    int face(int r, int i) const { return uses_[first_[r] + i].face; }
-    /// The run of triangle f's edge k (from its vertex k to k + 1), as the soup was given.
-    int run_of(int f, int k) const { return run_of_[f][k]; }
-
-private:
-    struct Use
-    {
-        std::uint64_t key;
-        int face, side;
-        bool operator<(const Use& o) const
-        {
-            return key != o.key ? key < o.key : face != o.face ? face < o.face : side < o.side;
-        }
-    };
-    static std::uint64_t key(int a, int b)
-    {
-        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
-               static_cast<std::uint32_t>(std::max(a, b));
-    }
-    std::vector<Use> uses_;
-    std::vector<int> first_;
-    std::vector<std::array<int, 3>> run_of_;
-};
-
-// Consistent orientation per component by a breadth-first walk over shared edges; then a
-// closed component with negative signed volume is turned outward.
-std::size_t orient(TriangleSoup& soup, const std::string& source, std::size_t& components)
-{
-    const std::size_t nf = soup.triangles.size();
-    const EdgeFaces edges(soup);  // (a flip keeps each triangle's edges: the runs hold)
-    for (int r = 0; r < edges.runs(); ++r)
-        if (edges.size(r) > 2)
-            throw InputError(source + ": non-manifold edge between vertices " +
-                             std::to_string(edges.edge(r).first + 1) + " and " +
-                             std::to_string(edges.edge(r).second + 1) + " (" +
-                             std::to_string(edges.size(r)) + " triangles share it)");
-    auto has_directed = [&](int f, int a, int b) {
-        const auto& t = soup.triangles[f];
-        for (int k = 0; k < 3; ++k)
-            if (t[k] == a && t[(k + 1) % 3] == b) return true;
-        return false;
-    };
-    // The run of f's edge (a, b) now: a flip swaps two of f's vertices, so its edge k may be
-    // another of the runs it had.
-    auto run_at = [&](int f, int a, int b) {
-        for (int k = 0; k < 3; ++k)
-        {
-            const int r = edges.run_of(f, k);
-            const auto e = edges.edge(r);
-            if (e.first == std::min(a, b) && e.second == std::max(a, b)) return r;
-        }
-        return -1;
-    };
-    std::vector<int> component(nf, -1);
-    std::size_t flipped = 0;
-    components = 0;
-    for (std::size_t seed = 0; seed < nf; ++seed)
-    {
-        if (component[seed] >= 0) continue;
-        const int id = static_cast<int>(components++);
-        std::vector<int> queue{static_cast<int>(seed)}, members;
-        component[seed] = id;
-        while (!queue.empty())
-        {
-            const int f = queue.back();
-            queue.pop_back();
-            members.push_back(f);
-            for (int k = 0; k < 3; ++k)
-            {
-                const int a = soup.triangles[f][k], b = soup.triangles[f][(k + 1) % 3];
-                const int r = run_at(f, a, b);
-                for (int i = 0; i < edges.size(r); ++i)
-                {
-                    const int g = edges.face(r, i);
-                    if (g == f) continue;
-                    const bool same_direction = has_directed(g, a, b);
-                    if (component[g] >= 0)
-                    {
-                        if (same_direction)
-                            throw InputError(source + ": non-orientable surface (at triangle " +
-                                             std::to_string(g + 1) + ")");
-                        continue;
-                    }
-                    if (same_direction)
-                    {
-                        std::swap(soup.triangles[g][1], soup.triangles[g][2]);
-                        ++flipped;
-                    }
-                    component[g] = id;
-                    queue.push_back(g);
-                }
-            }
-        }
-        // Outward: a closed component must enclose a positive volume.
-        bool closed = true;
-        double volume = 0.0;
-        for (int f : members)
-        {
-            const auto& t = soup.triangles[f];
-            for (int k = 0; k < 3 && closed; ++k)
-                if (edges.size(edges.run_of(f, k)) != 2) closed = false;
-            volume += OpenMesh::dot(soup.points[t[0]],
-                                    OpenMesh::cross(soup.points[t[1]], soup.points[t[2]]));
-        }
-        if (closed && volume < 0.0)
-        {
-            for (int f : members) std::swap(soup.triangles[f][1], soup.triangles[f][2]);
-            flipped += members.size();
-        }
-    }
-    return flipped;
-}
-
 }  // namespace
 
-SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadReport* report_out)
+SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadReport* report_out,
+                          const SoupRepairOptions& repair)
 {
     ReadReport report;
-    if (soup.refs.size() != soup.triangles.size()) soup.refs.assign(soup.triangles.size(), 0);
-    // Merge vertices with identical coordinates.
-    std::map<std::array<double, 3>, int> first_at;
-    std::vector<int> old2new_vertex(soup.points.size());
-    for (std::size_t i = 0; i < soup.points.size(); ++i)
-    {
-        const auto& p = soup.points[i];
-        const auto [it, inserted] =
-            first_at.emplace(std::array<double, 3>{p[0], p[1], p[2]}, static_cast<int>(i));
-        old2new_vertex[i] = it->second;
-        if (!inserted) ++report.merged_vertices;
-    }
-    // Drop degenerate and repeated triangles.
-    std::map<std::array<int, 3>, int> seen;
-    TriangleSoup clean;
-    for (std::size_t f = 0; f < soup.triangles.size(); ++f)
-    {
-        std::array<int, 3> t;
-        for (int k = 0; k < 3; ++k) t[k] = old2new_vertex[soup.triangles[f][k]];
-        const double area = OpenMesh::cross(soup.points[t[1]] - soup.points[t[0]],
-                                            soup.points[t[2]] - soup.points[t[0]])
-                                .norm();
-        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(area > 0.0))
-        {
-            ++report.degenerate_faces;
-            continue;
-        }
-        std::array<int, 3> key = t;
-        std::sort(key.begin(), key.end());
-        if (!seen.emplace(key, static_cast<int>(f)).second)
-        {
-            ++report.duplicate_faces;
-            continue;
-        }
-        clean.triangles.push_back(t);
-        clean.refs.push_back(soup.refs[f]);
-    }
-    if (clean.triangles.empty()) throw InputError(source + ": no triangles");
-    // Compact the vertices to those used.
-    std::vector<int> old2new_used(soup.points.size(), -1);
-    for (auto& t : clean.triangles)
-        for (int& v : t)
-        {
-            if (old2new_used[v] < 0)
-            {
-                old2new_used[v] = static_cast<int>(clean.points.size());
-                clean.points.push_back(soup.points[v]);
-            }
-            v = old2new_used[v];
-        }
-    report.unused_vertices = soup.points.size() - report.merged_vertices - clean.points.size();
-    report.reoriented_faces = orient(clean, source, report.components);
-
+    repair_soup(soup, source, repair, &report);
+    const TriangleSoup& clean = soup;
     SurfaceMesh mesh;
     SurfaceProperties props(mesh);
     std::vector<VertexHandle> handles;
@@ -501,7 +305,7 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
         if (!fh.is_valid())
             throw InputError(source + ": triangle " + std::to_string(f + 1) + " (vertices " +
                              std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
-                             std::to_string(t[2] + 1) + ") makes a non-manifold vertex");
+                             std::to_string(t[2] + 1) + ") cannot be added to the surface");
         mesh.property(props.face_ref, fh) = clean.refs[f];
     }
     for (auto v : mesh.vertices())
@@ -512,16 +316,6 @@ SurfaceMesh build_surface(TriangleSoup soup, const std::string& source, ReadRepo
     }
     for (auto e : mesh.edges()) mesh.property(props.edge_curve, e) = kNoCurve;
 
-    auto warn = [&](std::size_t count, const std::string& what) {
-        if (count)
-            report.warnings.push_back(source + ": warning: " + std::to_string(count) + " " + what);
-    };
-    warn(report.merged_vertices, "duplicate vertices merged");
-    warn(report.degenerate_faces, "degenerate triangles dropped");
-    warn(report.duplicate_faces, "repeated triangles dropped");
-    warn(report.unused_vertices, "unused vertices dropped");
-    warn(report.reoriented_faces, "triangles reoriented");
-    if (report.components > 1) warn(report.components, "components (each remeshed on its own)");
     if (report_out) *report_out = report;
     return mesh;
 }
@@ -543,9 +337,10 @@ bool is_surface_path(const std::string& path)
     return ext == "obj" || ext == "off" || ext == "mesh" || ext == "stl" || ext == "ply";
 }
 
-SurfaceMesh read_surface(const std::string& path, ReadReport* report)
+SurfaceMesh read_surface(const std::string& path, ReadReport* report,
+                         const SoupRepairOptions& repair)
 {
-    return build_surface(read_triangle_soup(path), path, report);
+    return build_surface(read_triangle_soup(path), path, report, repair);
 }
 
 namespace

@@ -1,10 +1,9 @@
 #pragma once
 // Reading and writing surface meshes: OBJ, OFF, STL, PLY (OpenMesh::IO; OBJ and OFF through our
 // own triangle-soup reader so they can be repaired) and Medit .mesh (Vertices, Triangles with
-// refs; written with Edges/Ridges/Corners for the features). Reading repairs what a user would
-// expect (merges duplicate vertices, drops degenerate and repeated faces, makes orientation
-// consistent and closed components outward) and reports it; what cannot be repaired (a
-// non-manifold edge or vertex) is a InputError naming the file and the element.
+// refs; written with Edges/Ridges/Corners for the features). Reading runs the one repair pass
+// (surface/soup_repair.h: merges, drops, orients, splits pinches) and reports each repair;
+// what stays ambiguous (a non-manifold edge) is an InputError naming the file and the element.
 // Writing goes to a temporary file in the same folder, then renames.
 
 #include <array>
@@ -12,38 +11,25 @@
 #include <string>
 #include <vector>
 
+#include "surface/soup_repair.h"
 #include "surface/surface_mesh.h"
+#include "surface/triangle_soup.h"
 
 namespace hdimesh::surface
 {
 
-struct ReadReport
-{
-    std::size_t merged_vertices = 0;
-    std::size_t degenerate_faces = 0;  // dropped: a repeated vertex or zero area
-    std::size_t duplicate_faces = 0;   // dropped: same three vertices as an earlier face
-    std::size_t reoriented_faces = 0;
-    std::size_t unused_vertices = 0;  // dropped: referenced by no face
-    std::size_t components = 0;
-    std::vector<std::string> warnings;  // one line per repair, naming the file
-};
+/// What the repair pass (surface/soup_repair.h) changed; `notes` names the file on each line.
+using ReadReport = SoupRepairReport;
 
-/// A triangle soup: what the readers produce before the mesh is built.
-struct TriangleSoup
-{
-    std::vector<Vec3d> points;
-    std::vector<std::array<int, 3>> triangles;
-    std::vector<int> refs;  // per triangle (0 when the format has none)
-};
-
-/// Builds a mesh from a soup, repairing as described above. `source` names the input in
-/// messages.
+/// Builds a mesh from a soup, repaired by repair_soup with `repair` (holes stay open unless
+/// it asks). `source` names the input in messages.
 SurfaceMesh build_surface(TriangleSoup soup, const std::string& source,
-                          ReadReport* report = nullptr);
+                          ReadReport* report = nullptr, const SoupRepairOptions& repair = {});
 
 /// Reads by extension (.obj .off .stl .ply .mesh, case-insensitive). Throws IoError
 /// (cannot open) or InputError (malformed, unrepairable, empty).
-SurfaceMesh read_surface(const std::string& path, ReadReport* report = nullptr);
+SurfaceMesh read_surface(const std::string& path, ReadReport* report = nullptr,
+                         const SoupRepairOptions& repair = {});
 
 /// The file's triangles as listed, nothing repaired (polygons split into fans), for a caller
 /// that validates them itself: same formats and errors as read_surface. STL (ASCII or binary)

@@ -155,7 +155,8 @@ TEST_CASE("keep_surface on an inward shell: turned, filled, the same triangles r
     VolumeFromSurfaceReport report;
     const TetMesh mesh = mesh_volume_from_surface(input.soup, uniform(0.5, true), &report);
     require_valid(mesh);
-    CHECK(report.turned_shells == 1);
+    REQUIRE(report.repairs.size() == 1);
+    CHECK(report.repairs[0] == "test: repaired: turned 1 closed shell(s) outward");
     surface::TriangleSoup reversed = input.soup;
     for (auto& t : reversed.triangles) std::swap(t[1], t[2]);
     CHECK(oriented_triangles(mesh) == oriented_triangles(reversed));
@@ -274,8 +275,23 @@ TEST_CASE("bad surfaces and sizes are refused before anything is made")
     Spheres open = Spheres().add(Vec3::Zero(), 1.0, 1);
     open.soup.triangles.pop_back();
     open.soup.refs.pop_back();
-    CHECK(refusal(open.soup, uniform(0.3, false))
-              .find("test: the surface is open: 1 boundary loop") == 0);
+    VolumeFromSurfaceOptions strict = uniform(0.3, false);
+    strict.repair.strict = true;
+    CHECK(refusal(open.soup, strict).find("test: the surface is open: 1 boundary loop") == 0);
+    // without --strict that hole is closed; half a sphere is no hole (its patch would be half
+    // of what is left)
+    Spheres half = Spheres().add(Vec3::Zero(), 1.0, 2);
+    surface::TriangleSoup bowl = half.soup;
+    bowl.triangles.clear();
+    bowl.refs.clear();
+    for (const auto& t : half.soup.triangles)
+        if (bowl.points[t[0]][2] + bowl.points[t[1]][2] + bowl.points[t[2]][2] < 0)
+        {
+            bowl.triangles.push_back(t);
+            bowl.refs.push_back(7);
+        }
+    CHECK(refusal(bowl, uniform(0.3, false)).find("test: the surface is open: 1 boundary loop") ==
+          0);
 
     Spheres overlapping = Spheres().add(Vec3::Zero(), 1.0, 1).add(Vec3(0.5, 0, 0), 1.0, 1);
     CHECK(refusal(overlapping.soup, uniform(0.3, true)).find("intersects itself") !=

@@ -156,7 +156,7 @@ TEST_CASE(
     CHECK(report.duplicate_faces == 1);
     CHECK(report.degenerate_faces == 1);
     CHECK(report.reoriented_faces >= 1);
-    CHECK(report.warnings.size() >= 4);
+    CHECK(report.notes.size() >= 4);
     CHECK(signed_volume(mesh) == doctest::Approx(1.0 / 6.0));  // outward
     for (auto v : mesh.vertices()) CHECK(mesh.is_manifold(v));
 }

@@ -224,8 +224,9 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
     The switches are the app's: ``nosurf`` (keep the boundary, only split and projected),
     ``noinsert`` (no vertex inserted or removed), ``noswap``, ``nomove``, ``optim`` (optimize only, keep the sizes),
     ``no_optimize``, ``keep_surface`` (a surface input's triangles are the boundary, exactly),
-    ``strict`` (refuse boundary triangles that are not the tets' boundary instead of mending
-    them), ``ridge_angle`` (degrees) and ``no_ridges`` for the boundary's features.
+    ``strict`` (refuse a defective input instead of repairing it: a tet input's triangles
+    that are not the tets' boundary; a surface input's degenerate, duplicated or crossing
+    triangles, pinched vertices, holes and tiny shells), ``ridge_angle`` (degrees) and ``no_ridges`` for the boundary's features.
     ``verbose``: 0 silent, 1 summary, 2 a row per pass (on stdout).
     ``progress(stage, tets)`` is called after each refinement pass and as the surface pass and
     the final optimization start; an exception it raises stops the run.
@@ -302,12 +303,15 @@ def remesh_surface(vertices, faces, hsiz=None, hausd=None, ridge_angle=45.0, ref
 
 
 def mesh_volume(vertices, faces, hsiz=None, hausd=None, sizes=None, hmin=None, hmax=None,
-                hgrad=None, refs=None, keep_surface=False, verbose=0, progress=None):
+                hgrad=None, refs=None, keep_surface=False, strict=False, verbose=0,
+                progress=None):
     """Fills the volume a closed surface bounds with tets; returns a TetMesh.
 
-    The surface is checked first (open, non-manifold, self-intersecting, inconsistently
-    oriented or duplicated faces raise ValueError naming them), remeshed to the size (unless
-    ``keep_surface``), filled and optimized. Nested shells make voids, disjoint ones separate
+    The surface is repaired first (coincident points merged, degenerate and duplicated faces
+    dropped, pinched vertices split, holes up to 10 local sizes around closed, tiny shells
+    dropped; ``strict=True`` refuses instead); what stays open, non-manifold or
+    non-orientable raises ValueError naming it. It is then remeshed to the size (unless
+    ``keep_surface``), checked (crossing faces raise ValueError), filled and optimized. Nested shells make voids, disjoint ones separate
     regions with tet refs 1, 2, ... ``sizes`` is an array (one per input vertex) or a callable
     evaluated on the input vertices.
     """
@@ -320,7 +324,7 @@ def mesh_volume(vertices, faces, hsiz=None, hausd=None, sizes=None, hmin=None, h
         raise ValueError("no size: give hsiz, sizes or hausd (or keep_surface=True)")
     return adapt(surface, hsiz=hsiz, sizes=_vertex_sizes(sizes, vertices), hmin=hmin,
                  hmax=hmax, hgrad=hgrad, hausd=hausd, keep_surface=keep_surface,
-                 verbose=verbose, progress=progress)
+                 strict=strict, verbose=verbose, progress=progress)
 
 
 def quality(mesh, hsiz=None, sizes=None, bench_field=None):

@@ -10,7 +10,7 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
         foreach(_model fandisk spot rocker-arm cheburashka)
             list(APPEND _vfs_whole whole_${_model}_raw whole_${_model}_remeshed)
         endforeach()
-        foreach(_case sphere sphere_keep_surface spot bunny_refused overlap_refused
+        foreach(_case sphere sphere_keep_surface spot bunny overlap_refused
                       surface_flags_on_a_tet_mesh ${_vfs_whole})
             add_test(NAME adapt_surface_${_case}
                      COMMAND ${CMAKE_COMMAND} -DCASE=${_case} -DADAPT=$<TARGET_FILE:adapt>
@@ -131,11 +131,17 @@ elseif(CASE MATCHES "^whole_(.+)_(raw|remeshed)$")
         endif()
     endif()
 
-elseif(CASE STREQUAL "bunny_refused")
-    # the Stanford bunny has five holes in its base: named, and nothing written
+elseif(CASE STREQUAL "bunny")
+    # the Stanford bunny has five holes in its base: with --strict named, nothing written ...
     expect_refusal(${DATA}/stanford-bunny.obj
                    "stanford-bunny.obj: the surface is open: 5 boundary loops \\(loop 1: [0-9]+ edges through vertices [0-9]+, "
-                   --hsiz 0.01)
+                   --hsiz 0.01 --strict)
+    # ... by default closed at 2 % of its diagonal, one note each, and meshed
+    mesh_and_check(table ${DATA}/stanford-bunny.obj --hsiz 0.005)
+    run(out rc ${ADAPT} ${DATA}/stanford-bunny.obj -o ${WORK}/out.mesh --hsiz 0.005 -v 0)
+    string(REGEX MATCHALL "repaired: closed a hole of [0-9]+ edges" holes "${out}")
+    list(LENGTH holes count)
+    expect_equal("${count}" 5 "holes closed, one note each (output:\n${out})")
 
 elseif(CASE STREQUAL "overlap_refused")
     # two unit icospheres, the second moved by half a radius: they cross each other

@@ -1,0 +1,265 @@
+// The repair pass on surfaces as users have them: each defect built in code, repaired with a
+// note (or refused with --strict), and the volume meshed from it passes the checker.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/errors.h"
+#include "coupling/mesh_from_surface.h"
+#include "fixtures.h"
+#include "surface/soup_repair.h"
+#include "volume/check/check.h"
+#include "volume/check/surface_check.h"
+
+using namespace hdimesh;
+using coupling::mesh_volume_from_surface;
+using coupling::VolumeFromSurfaceOptions;
+using coupling::VolumeFromSurfaceReport;
+using surface::TriangleSoup;
+using surface::Vec3d;
+
+namespace
+{
+
+TriangleSoup icosphere_soup(int levels)
+{
+    const hdi::TriangleSurface s = fixtures::icosphere(levels);
+    TriangleSoup soup;
+    for (const auto& p : s.points) soup.points.emplace_back(p[0], p[1], p[2]);
+    for (const auto& t : s.triangles) soup.triangles.push_back({t[0], t[1], t[2]});
+    soup.refs.assign(soup.triangles.size(), 1);
+    return soup;
+}
+
+TriangleSoup cube_soup(int n)
+{
+    const fixtures::GridSurface s = fixtures::grid_cube(n);
+    TriangleSoup soup;
+    for (const auto& p : s.points) soup.points.emplace_back(p[0], p[1], p[2]);
+    for (const auto& t : s.triangles) soup.triangles.push_back({t[0], t[1], t[2]});
+    soup.refs.assign(soup.triangles.size(), 1);
+    return soup;
+}
+
+VolumeFromSurfaceOptions uniform(double h)
+{
+    VolumeFromSurfaceOptions o;
+    o.sizing.hsiz = h;
+    o.adapt.verbosity = 0;
+    o.source = "test";
+    return o;
+}
+
+/// Meshes the soup, requires a valid mesh, returns the report.
+VolumeFromSurfaceReport mesh_checked(const TriangleSoup& soup, const VolumeFromSurfaceOptions& o)
+{
+    VolumeFromSurfaceReport report;
+    const volume::TetMesh mesh = mesh_volume_from_surface(soup, o, &report);
+    const auto violations = volume::check_mesh(mesh);
+    INFO(volume::format_violations(violations));
+    REQUIRE(violations.empty());
+    std::vector<volume::Vec3> points(mesh.points.begin(), mesh.points.end());
+    std::vector<volume::Triangle> triangles(mesh.triangles.begin(), mesh.triangles.end());
+    CHECK(volume::check_closed_surface(points, triangles).empty());
+    return report;
+}
+
+int count_notes(const std::vector<std::string>& notes, const std::string& what)
+{
+    return static_cast<int>(std::count_if(notes.begin(), notes.end(), [&](const std::string& n) {
+        return n.find(what) != std::string::npos;
+    }));
+}
+
+/// Boundary edges of a soup.
+int boundary_edges(const TriangleSoup& soup)
+{
+    std::map<std::pair<int, int>, int> uses;
+    for (const auto& t : soup.triangles)
+        for (int k = 0; k < 3; ++k)
+            ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+    int open = 0;
+    for (const auto& [e, n] : uses) open += n == 1;
+    return open;
+}
+
+/// Removes the triangles using vertex v or any of its neighbours (its two-ring of faces).
+void remove_two_ring(TriangleSoup& soup, int v)
+{
+    std::vector<char> near(soup.points.size(), 0);
+    near[v] = 1;
+    for (const auto& t : soup.triangles)
+        if (std::find(t.begin(), t.end(), v) != t.end())
+            for (int w : t) near[w] = 1;
+    std::vector<std::array<int, 3>> kept;
+    for (const auto& t : soup.triangles)
+        if (!near[t[0]] && !near[t[1]] && !near[t[2]]) kept.push_back(t);
+    soup.triangles = kept;
+    soup.refs.assign(kept.size(), 1);
+}
+
+}  // namespace
+
+TEST_CASE("coincident points, duplicated and degenerate triangles: merged and dropped, noted")
+{
+    TriangleSoup soup = icosphere_soup(2);
+    const int n = static_cast<int>(soup.points.size());
+    // every triangle gets its own copy of its first point (an STL-like soup)
+    for (auto& t : soup.triangles)
+    {
+        soup.points.push_back(soup.points[t[0]]);
+        t[0] = static_cast<int>(soup.points.size()) - 1;
+    }
+    soup.triangles.push_back(soup.triangles[3]);  // a copy, same orientation
+    soup.triangles.push_back({soup.triangles[5][0], soup.triangles[5][0], soup.triangles[5][1]});
+    // a back-to-back pair: a zero-volume wall between two points of the sphere
+    soup.triangles.push_back({0, 1, 2});
+    soup.triangles.push_back({0, 2, 1});
+    soup.refs.assign(soup.triangles.size(), 1);
+
+    TriangleSoup repaired = soup;
+    surface::SoupRepairReport report;
+    surface::repair_soup(repaired, "soup", {}, &report);
+    CHECK(report.merged_vertices == soup.triangles.size() - 4);
+    CHECK(report.degenerate_faces == 1);
+    CHECK(report.duplicate_faces == 3);
+    CHECK(static_cast<int>(repaired.points.size()) == n);
+    CHECK(repaired.triangles.size() == 320);
+    CHECK(boundary_edges(repaired) == 0);
+    CHECK(count_notes(report.notes, "soup: repaired: merged") == 1);
+
+    const auto meshed = mesh_checked(soup, uniform(0.3));
+    CHECK(count_notes(meshed.repairs, "dropped") == 2);
+    VolumeFromSurfaceOptions strict = uniform(0.3);
+    strict.repair.strict = true;
+    CHECK_THROWS_AS(mesh_volume_from_surface(soup, strict), InputError);
+}
+
+TEST_CASE("a 3-edge hole and a 12-edge hole are closed, one note each")
+{
+    TriangleSoup soup = icosphere_soup(3);
+    soup.triangles.erase(soup.triangles.begin() + 7);  // one triangle: 3 edges
+    // a vertex of six neighbours far from that triangle: its two-ring leaves a 12-edge loop
+    int centre = -1;
+    for (int v = static_cast<int>(soup.points.size()) - 1; v >= 0 && centre < 0; --v)
+    {
+        int degree = 0;
+        for (const auto& t : soup.triangles)
+            degree += std::find(t.begin(), t.end(), v) != t.end();
+        if (degree == 6 && (soup.points[v] - soup.points[soup.triangles[7][0]]).norm() > 1.0)
+            centre = v;
+    }
+    REQUIRE(centre >= 0);
+    remove_two_ring(soup, centre);
+    REQUIRE(boundary_edges(soup) == 3 + 12);
+
+    const auto report = mesh_checked(soup, uniform(0.1));
+    CHECK(count_notes(report.repairs, "closed a hole of 3 edges") == 1);
+    CHECK(count_notes(report.repairs, "closed a hole of 12 edges") == 1);
+
+    VolumeFromSurfaceOptions strict = uniform(0.1);
+    strict.repair.strict = true;
+    CHECK_THROWS_WITH_AS(mesh_volume_from_surface(soup, strict),
+                         doctest::Contains("the surface is open: 2 boundary loops"), InputError);
+    // at a size 5 times smaller the 12-edge hole spans more than 10 local sizes: refused,
+    // the loop named
+    VolumeFromSurfaceOptions fine = uniform(0.02);
+    fine.refine = false;
+    CHECK_THROWS_WITH_AS(mesh_volume_from_surface(soup, fine),
+                         doctest::Contains("the surface is open: 1 boundary loop (loop 1: 12 edges"),
+                         InputError);
+}
+
+TEST_CASE("a double cone pinched at its apex: split into two solids, the copies apart")
+{
+    //      \  top  /
+    //       \     /
+    //        \   /
+    //         \ /   the apex, shared by both cones
+    //         / \                                                   .
+    //        / b \                                                  .
+    TriangleSoup soup;
+    soup.points.emplace_back(0, 0, 0);  // the apex
+    const int n = 12;
+    for (int side : {1, -1})
+    {
+        const int centre = static_cast<int>(soup.points.size());
+        soup.points.emplace_back(0, 0, side);
+        const int ring = centre + 1;
+        for (int i = 0; i < n; ++i)
+        {
+            const double a = 2 * M_PI * i / n;
+            soup.points.emplace_back(0.6 * std::cos(a), 0.6 * std::sin(a), side);
+        }
+        for (int i = 0; i < n; ++i)
+        {
+            const int p = ring + i, q = ring + (i + 1) % n;
+            // outward: the cap faces away from the apex, the side away from the axis
+            if (side > 0)
+            {
+                soup.triangles.push_back({centre, p, q});
+                soup.triangles.push_back({0, q, p});
+            }
+            else
+            {
+                soup.triangles.push_back({centre, q, p});
+                soup.triangles.push_back({0, p, q});
+            }
+        }
+    }
+    soup.refs.assign(soup.triangles.size(), 1);
+    const auto report = mesh_checked(soup, uniform(0.15));
+    CHECK(count_notes(report.repairs, "split pinched vertex 1 at (0, 0, 0) into 2 sheets") == 1);
+    CHECK(report.regions == 2);
+
+    VolumeFromSurfaceOptions strict = uniform(0.15);
+    strict.repair.strict = true;
+    CHECK_THROWS_AS(mesh_volume_from_surface(soup, strict), InputError);
+}
+
+TEST_CASE("a sphere with two triangles pushed through each other: noted, remeshed, checked")
+{
+    TriangleSoup soup = icosphere_soup(3);
+    // a vertex pushed past its neighbour: its fan folds over the neighbour's
+    const auto& t = soup.triangles[100];
+    const Vec3d v = soup.points[t[0]], w = soup.points[t[1]];
+    soup.points[t[0]] = w + 0.4 * (w - v);
+    VolumeFromSurfaceReport report;
+    {
+        std::vector<volume::Vec3> points;
+        for (const auto& p : soup.points) points.emplace_back(p[0], p[1], p[2]);
+        std::vector<volume::Triangle> triangles(soup.triangles.begin(), soup.triangles.end());
+        REQUIRE_FALSE(volume::check_closed_surface(points, triangles).empty());
+    }
+    report = mesh_checked(soup, uniform(0.15));
+    CHECK(report.input_crossings > 0);
+    CHECK(count_notes(report.repairs, "the remeshed surface is checked instead") == 1);
+}
+
+TEST_CASE("needle and zero-area triangles: the flat one collapsed, the needle remeshed")
+{
+    TriangleSoup soup = cube_soup(2);
+    // a T-junction: the point halfway along an edge (exact in binary) splits one triangle at
+    // it and makes a flat triangle with the edge's ends
+    const auto t = soup.triangles[0];
+    const int m = static_cast<int>(soup.points.size());
+    soup.points.push_back(0.5 * (soup.points[t[0]] + soup.points[t[1]]));
+    soup.triangles[0] = {t[0], m, t[2]};
+    soup.triangles.push_back({m, t[1], t[2]});
+    soup.triangles.push_back({t[0], t[1], m});  // flat: closes the split edge's other side
+    // a needle: a point a hair off the middle of another triangle's edge
+    const auto u = soup.triangles[10];
+    const int needle = static_cast<int>(soup.points.size());
+    soup.points.push_back(0.5 * (soup.points[u[0]] + soup.points[u[1]]) + Vec3d(1e-7, 1e-7, 1e-7));
+    soup.triangles[10] = {u[0], needle, u[2]};
+    soup.triangles.push_back({needle, u[1], u[2]});
+    soup.triangles.push_back({u[0], u[1], needle});
+    soup.refs.assign(soup.triangles.size(), 1);
+    const auto report = mesh_checked(soup, uniform(0.2));
+    CHECK(count_notes(report.repairs, "collapsed 1 flat triangle") == 1);
+}
