@@ -84,7 +84,7 @@ int main(int argc, char** argv)
         cli::SizeOptions size;
         double hausd = 0, ridge_angle = 45;
         bool use_hdi = false, has_hausd = false, no_ridges = false, optim = false;
-        bool noinsert = false, noswap = false, nomove = false;
+        bool noinsert = false, noswap = false, nomove = false, strict = false;
         bool memory_set = false;
         int verbosity = 1, iterations = 8, memory_mb = 0;
         cli::CommandLine cmd("surfremesh",
@@ -116,6 +116,9 @@ int main(int argc, char** argv)
             {"--noinsert", &noinsert, "no vertex inserted or removed (no split or collapse)"},
             {"--noswap", &noswap, "no edge flip"},
             {"--nomove", &nomove, "no vertex moved"},
+            {"--strict", &strict,
+             "refuse a defective input (degenerate or duplicated triangles, inconsistent "
+             "orientation, pinched vertices or edges) instead of repairing it"},
         });
         for (const char* name : {"noinsert", "noswap", "nomove"})
             cmd.alias(std::string("-") + name, std::string("--") + name);
@@ -150,7 +153,9 @@ int main(int argc, char** argv)
             throw cli::UsageError("--ridge-angle must be between 0 and 180 degrees");
 
         ReadReport read_report;
-        SurfaceMesh mesh = read_surface(input, &read_report);
+        SoupRepairOptions repair;
+        repair.strict = strict;
+        SurfaceMesh mesh = read_surface(input, &read_report, repair);
         for (const auto& w : read_report.notes) std::cerr << "surfremesh: " << w << "\n";
         const SurfaceMesh original = mesh;
 

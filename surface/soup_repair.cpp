@@ -18,16 +18,23 @@ namespace
 {
 
 using Tri = std::array<int, 3>;
-constexpr int kListed = 5;               // notes named one by one per kind, then a count
-constexpr int kMaxHoleEdges = 300;       // the patch search is cubic in the loop's edges
-constexpr double kPinchShift = 0.1;      // a pinch copy moves this fraction of its shortest edge
-constexpr double kInsideWinding = 0.5;   // a point is inside a closed shell past this winding
+constexpr int kListed = 5;              // notes named one by one per kind, then a count
+constexpr int kMaxHoleEdges = 300;      // the patch search is cubic in the loop's edges
+constexpr double kPinchShift = 0.1;     // a pinch copy moves this fraction of its shortest edge
+constexpr double kInsideWinding = 0.5;  // a point is inside a closed shell past this winding
 
 std::string at(const Vec3d& p)
 {
     char text[96];
     std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g)", p[0], p[1], p[2]);
     return text;
+}
+
+bool has_directed(const Tri& t, int a, int b)
+{
+    for (int k = 0; k < 3; ++k)
+        if (t[k] == a && t[(k + 1) % 3] == b) return true;
+    return false;
 }
 
 /// The uses of each undirected edge, sorted: runs of one edge, each with its faces.
@@ -39,8 +46,8 @@ public:
         uses_.reserve(3 * triangles.size());
         for (std::size_t f = 0; f < triangles.size(); ++f)
             for (int k = 0; k < 3; ++k)
-                uses_.push_back({key(triangles[f][k], triangles[f][(k + 1) % 3]),
-                                 static_cast<int>(f), k});
+                uses_.push_back(
+                    {key(triangles[f][k], triangles[f][(k + 1) % 3]), static_cast<int>(f), k});
         std::sort(uses_.begin(), uses_.end());
         for (std::size_t i = 0; i < uses_.size(); ++i)
         {
@@ -48,6 +55,59 @@ public:
             run_of_[uses_[i].face][uses_[i].side] = static_cast<int>(first_.size()) - 1;
         }
         first_.push_back(static_cast<int>(uses_.size()));
+        partner_.assign(uses_.size(), -1);
+        for (int r = 0; r < runs(); ++r)
+            if (size(r) == 2)
+            {
+                partner_[first_[r]] = face(r, 1);
+                partner_[first_[r] + 1] = face(r, 0);
+            }
+    }
+    /// Pairs the 2k faces of run r around their edge, each face running the edge one way
+    /// with the next one round (about the edge from its smaller vertex) running it the other:
+    /// the wedges of solid of outward shells that touch along the edge. False when the
+    /// directions do not alternate round the edge, or two faces lie at the same angle.
+    bool pair_radially(int r, const std::vector<Vec3d>& points, const std::vector<Tri>& tris)
+    {
+        const int n = size(r);
+        if (n < 4 || n % 2) return false;
+        const auto [a, b] = edge(r);
+        const Vec3d u = (points[b] - points[a]).normalized();
+        Vec3d e1 = OpenMesh::cross(u, std::abs(u[0]) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0));
+        e1.normalize();
+        const Vec3d e2 = OpenMesh::cross(u, e1);
+        struct Around
+        {
+            double angle;
+            int use;
+            bool forward;  // runs the edge a -> b
+        };
+        std::vector<Around> around;
+        for (int i = 0; i < n; ++i)
+        {
+            const Tri& t = tris[face(r, i)];
+            int c = t[0];
+            for (int v : t)
+                if (v != a && v != b) c = v;
+            const Vec3d w = points[c] - points[a];
+            around.push_back({std::atan2(OpenMesh::dot(w, e2), OpenMesh::dot(w, e1)), first_[r] + i,
+                              has_directed(t, a, b)});
+        }
+        std::sort(around.begin(), around.end(),
+                  [](const Around& x, const Around& y) { return x.angle < y.angle; });
+        for (int i = 0; i < n; ++i)
+        {
+            const Around& x = around[i];
+            const Around& y = around[(i + 1) % n];
+            if (x.angle == y.angle || x.forward == y.forward) return false;
+            // a face running b -> a has its solid on the side of growing angle
+            if (!x.forward)
+            {
+                partner_[x.use] = uses_[y.use].face;
+                partner_[y.use] = uses_[x.use].face;
+            }
+        }
+        return true;
     }
     int runs() const { return static_cast<int>(first_.size()) - 1; }
     std::pair<int, int> edge(int r) const
@@ -65,8 +125,9 @@ public:
     int other(int f, int k) const
     {
         const int r = run_of_[f][k];
-        if (size(r) != 2) return -1;
-        return face(r, 0) == f ? face(r, 1) : face(r, 0);
+        for (int i = first_[r]; i < first_[r + 1]; ++i)
+            if (uses_[i].face == f && uses_[i].side == k) return partner_[i];
+        return -1;
     }
 
 private:
@@ -87,14 +148,8 @@ private:
     std::vector<Use> uses_;
     std::vector<int> first_;
     std::vector<Tri> run_of_;
+    std::vector<int> partner_;  // per use: the face across the edge (-1: none)
 };
-
-bool has_directed(const Tri& t, int a, int b)
-{
-    for (int k = 0; k < 3; ++k)
-        if (t[k] == a && t[(k + 1) % 3] == b) return true;
-    return false;
-}
 
 double triangle_area(const std::vector<Vec3d>& p, const Tri& t)
 {
@@ -139,7 +194,8 @@ public:
            SoupRepairReport& report)
         : soup_(soup), source_(source), options_(options), report_(report)
     {
-        if (soup_.refs.size() != soup_.triangles.size()) soup_.refs.assign(soup_.triangles.size(), 0);
+        if (soup_.refs.size() != soup_.triangles.size())
+            soup_.refs.assign(soup_.triangles.size(), 0);
         origin_.resize(soup_.points.size());
         std::iota(origin_.begin(), origin_.end(), 0);
     }
@@ -245,10 +301,10 @@ private:
         for (std::size_t f = 0; f < soup_.triangles.size(); ++f)
         {
             const Tri& t = soup_.triangles[f];
-            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(triangle_area(soup_.points, t) > 0))
+            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+                !(triangle_area(soup_.points, t) > 0))
             {
-                if (options_.strict)
-                    refuse("triangle " + std::to_string(f + 1) + " is degenerate");
+                if (options_.strict) refuse("triangle " + std::to_string(f + 1) + " is degenerate");
                 if (report_.degenerate_faces++ == 0) first_degenerate = f;
                 keep[f] = 0;
                 continue;
@@ -303,14 +359,7 @@ private:
     /// Consistent orientation per component by a walk over shared edges.
     void orient_components()
     {
-        const EdgeRuns edges(soup_.triangles);
-        for (int r = 0; r < edges.runs(); ++r)
-            if (edges.size(r) > 2)
-                throw InputError(source_ + ": non-manifold edge between vertices " +
-                                 std::to_string(origin_[edges.edge(r).first] + 1) + " and " +
-                                 std::to_string(origin_[edges.edge(r).second] + 1) + " (" +
-                                 std::to_string(edges.size(r)) + " triangles share it, at " +
-                                 at(soup_.points[edges.edge(r).first]) + ")");
+        const EdgeRuns edges = paired_edges(true);
         auto& tris = soup_.triangles;
         std::vector<char> seen(tris.size(), 0);
         std::size_t flipped = 0;
@@ -358,11 +407,45 @@ private:
                  " triangle(s) to agree with their neighbours");
     }
 
+    /// The edges, those of 2k faces paired round the edge (each pair then gets its own copy
+    /// of the edge when the pinches split); any other non-manifold edge is refused.
+    EdgeRuns paired_edges(bool noted)
+    {
+        EdgeRuns edges(soup_.triangles);
+        int paired = 0;
+        for (int r = 0; r < edges.runs(); ++r)
+        {
+            if (edges.size(r) <= 2) continue;
+            const bool strict = options_.strict;
+            if (!strict && edges.pair_radially(r, soup_.points, soup_.triangles))
+            {
+                if (noted && paired++ < kListed)
+                    note("split the edge between vertices " +
+                         std::to_string(origin_[edges.edge(r).first] + 1) + " and " +
+                         std::to_string(origin_[edges.edge(r).second] + 1) + " at " +
+                         at(soup_.points[edges.edge(r).first]) + " into " +
+                         std::to_string(edges.size(r) / 2) + " sheets");
+                continue;
+            }
+            throw InputError(source_ + ": non-manifold edge between vertices " +
+                             std::to_string(origin_[edges.edge(r).first] + 1) + " and " +
+                             std::to_string(origin_[edges.edge(r).second] + 1) + " (" +
+                             std::to_string(edges.size(r)) + " triangles share it, at " +
+                             at(soup_.points[edges.edge(r).first]) + ")" +
+                             (strict ? std::string()
+                                     : std::string(": not an even number of faces alternating "
+                                                   "in direction round it, so no unambiguous "
+                                                   "solid")));
+        }
+        if (paired > kListed) note("split " + std::to_string(paired - kListed) + " more edges");
+        return edges;
+    }
+
     /// One vertex per fan of triangles; every copy moves a little into its own fan.
     void split_pinched_vertices()
     {
         auto& tris = soup_.triangles;
-        const EdgeRuns edges(tris);
+        const EdgeRuns edges = paired_edges(false);
         const int np = static_cast<int>(soup_.points.size());
         std::vector<int> start(np + 1, 0);
         for (const Tri& t : tris)
@@ -409,8 +492,8 @@ private:
                 if (find(i) == i) roots.push_back(i);
             if (roots.size() < 2) continue;
             if (options_.strict)
-                refuse("vertex " + std::to_string(origin_[v] + 1) + " at " +
-                       at(soup_.points[v]) + " is pinched (" + std::to_string(roots.size()) +
+                refuse("vertex " + std::to_string(origin_[v] + 1) + " at " + at(soup_.points[v]) +
+                       " is pinched (" + std::to_string(roots.size()) +
                        " fans of triangles meet there)");
             const Vec3d p = soup_.points[v];
             for (std::size_t r = 0; r < roots.size(); ++r)
@@ -515,8 +598,9 @@ private:
             }
             ++report_.closed_holes;
             char text[160];
-            std::snprintf(text, sizeof text, "closed a hole of %zu edges at %s, %.2g local sizes across",
-                          loop.size(), at(centre).c_str(), extent / size);
+            std::snprintf(text, sizeof text,
+                          "closed a hole of %zu edges at %s, %.2g local sizes across", loop.size(),
+                          at(centre).c_str(), extent / size);
             note(text);
         }
     }
@@ -644,7 +728,8 @@ private:
                 note("dropped a tiny closed shell at " + at(first_point[c]) + " (volume " +
                      std::to_string(volume_[c]) + ", inside no other shell)");
         }
-        if (dropped > kListed) note("dropped " + std::to_string(dropped - kListed) + " more tiny shells");
+        if (dropped > kListed)
+            note("dropped " + std::to_string(dropped - kListed) + " more tiny shells");
         report_.dropped_shells = dropped;
         if (!dropped) return;
         std::vector<Tri> triangles;

@@ -149,8 +149,7 @@ TEST_CASE("a 3-edge hole and a 12-edge hole are closed, one note each")
     for (int v = static_cast<int>(soup.points.size()) - 1; v >= 0 && centre < 0; --v)
     {
         int degree = 0;
-        for (const auto& t : soup.triangles)
-            degree += std::find(t.begin(), t.end(), v) != t.end();
+        for (const auto& t : soup.triangles) degree += std::find(t.begin(), t.end(), v) != t.end();
         if (degree == 6 && (soup.points[v] - soup.points[soup.triangles[7][0]]).norm() > 1.0)
             centre = v;
     }
@@ -170,9 +169,9 @@ TEST_CASE("a 3-edge hole and a 12-edge hole are closed, one note each")
     // the loop named
     VolumeFromSurfaceOptions fine = uniform(0.02);
     fine.refine = false;
-    CHECK_THROWS_WITH_AS(mesh_volume_from_surface(soup, fine),
-                         doctest::Contains("the surface is open: 1 boundary loop (loop 1: 12 edges"),
-                         InputError);
+    CHECK_THROWS_WITH_AS(
+        mesh_volume_from_surface(soup, fine),
+        doctest::Contains("the surface is open: 1 boundary loop (loop 1: 12 edges"), InputError);
 }
 
 TEST_CASE("a double cone pinched at its apex: split into two solids, the copies apart")
@@ -262,4 +261,53 @@ TEST_CASE("needle and zero-area triangles: the flat one collapsed, the needle re
     soup.refs.assign(soup.triangles.size(), 1);
     const auto report = mesh_checked(soup, uniform(0.2));
     CHECK(count_notes(report.repairs, "collapsed 1 flat triangle") == 1);
+}
+
+TEST_CASE("two cubes sharing an edge: the edge split into one copy per solid")
+{
+    //   +---+
+    //   | 2 |
+    //   +---+---+    the cubes touch along one edge (4 triangles on it)
+    //       | 1 |
+    //       +---+
+    TriangleSoup soup = cube_soup(2);
+    const TriangleSoup one = soup;
+    const int base = static_cast<int>(soup.points.size());
+    for (const auto& p : one.points) soup.points.push_back(p + Vec3d(-1, 1, 0));
+    for (const auto& t : one.triangles)
+        soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+    soup.refs.assign(soup.triangles.size(), 1);
+    const auto report = mesh_checked(soup, uniform(0.2));
+    CHECK(count_notes(report.repairs, "into 2 sheets") >= 2);
+    CHECK(report.regions == 2);
+
+    // three faces on an edge (a fin) stay refused, named
+    TriangleSoup fin = cube_soup(1);
+    fin.points.emplace_back(0.5, -1, 0.5);
+    const auto t = fin.triangles[0];
+    fin.triangles.push_back({t[0], t[1], static_cast<int>(fin.points.size()) - 1});
+    fin.refs.assign(fin.triangles.size(), 1);
+    CHECK_THROWS_WITH_AS(mesh_volume_from_surface(fin, uniform(0.2)),
+                         doctest::Contains("non-manifold edge"), InputError);
+}
+
+TEST_CASE("a tiny closed shell outside the solid is dropped; one inside stays a void")
+{
+    TriangleSoup soup = icosphere_soup(2);
+    const TriangleSoup ball = soup;
+    auto add_ball = [&](const Vec3d& centre, double radius) {
+        const int base = static_cast<int>(soup.points.size());
+        for (const auto& p : ball.points) soup.points.push_back(centre + radius * p);
+        for (const auto& t : ball.triangles)
+            soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+    };
+    add_ball(Vec3d(3, 0, 0), 0.005);  // outside: dropped
+    add_ball(Vec3d(0, 0, 0), 0.3);    // inside: a void, kept
+    soup.refs.assign(soup.triangles.size(), 1);
+    surface::SoupRepairReport report;
+    TriangleSoup repaired = soup;
+    surface::repair_soup(repaired, "balls", {}, &report);
+    CHECK(report.dropped_shells == 1);
+    CHECK(repaired.triangles.size() == 2 * ball.triangles.size());
+    CHECK(count_notes(report.notes, "dropped a tiny closed shell at (") == 1);
 }
