@@ -184,6 +184,7 @@ int main(int argc, char** argv)
         const WallStopwatch stopwatch;
         const SurfaceRemeshResult result = remesh_surface(mesh, settings);
         const double seconds = stopwatch.seconds();
+        for (const auto& note : result.report.notes) std::cerr << "surfremesh: " << note << "\n";
 
         // Everything that could fail runs before the output is written.
         if (verbosity > 0 || !stats.empty())

@@ -294,7 +294,7 @@ public:
                 corner_[slot(v)] = 1;
                 continue;
             }
-            // An open boundary of a scan zig-zags: only its sharpest turns are corners.
+            // An open boundary turns at corners like a ridge, at its own (lower) angle.
             const bool open = open_vertex_[slot(v)];
             const double limit =
                 open ? options_.boundary_corner_turn_angle_deg : options_.corner_turn_angle_deg;

@@ -28,8 +28,9 @@ struct FeatureOptions
     /// ridge_angle_deg: off.
     double crease_angle_deg = 30.0;
     double corner_turn_angle_deg = 50.0;  ///< a curve vertex whose curve turns by more is a corner
-    /// The same on an open boundary, higher: the boundaries of scans zig-zag.
-    double boundary_corner_turn_angle_deg = 75.0;
+    /// The same on an open boundary: the crease angle, as a flat sheet has no dihedral angle
+    /// to tell its outline's turns by (a scan's zig-zag is thinned by min_corner_spacing).
+    double boundary_corner_turn_angle_deg = 30.0;
     /// An inner vertex away from kept curves whose angle defect (360° minus its angle sum)
     /// exceeds this is a spike kept as an isolated corner (at or above 360: off), if its angle
     /// sum is at least cone_min_angle_sum_deg: remeshing would cut its tip off.

@@ -7,6 +7,8 @@
 
 #include <cstddef>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "common/messages.h"
 #include "surface/local_ops.h"
@@ -48,6 +50,8 @@ struct RemeshReport
     std::size_t splits = 0, collapses = 0, flips = 0, removals = 0, shifts = 0,
                 refinement_splits = 0;
     std::size_t refinement_snaps = 0;  // vertices moved onto far model points
+    /// One line per stage that stopped at its work bound or floor (the pipeline went on).
+    std::vector<std::string> notes;
 };
 
 /// Remeshes `mesh` (classified by detect_features, or carrying the properties of

@@ -28,6 +28,9 @@ constexpr double kAdaptiveToleranceMargin = 0.8;
 // Where the tolerance is the contract (no size to keep, or a size the curvature overrules):
 // the refinement's edges down to this fraction of the local size (ToleranceOptions).
 constexpr double kContractMinLengthRatio = 0.15;
+// No refinement split makes an edge shorter than this fraction of the diagonal (or half the
+// input's shortest edge): below it the tolerance is out of the model's reach.
+constexpr double kSplitFloorOfDiagonal = 1e-4;
 
 // Verbose: how many edges miss their size (Qt < 0.66 against the local size) after a stage.
 void report_stage(const detail::RemeshRun& run, const detail::ToleranceKeeper& keeper,
@@ -223,6 +226,10 @@ void set_tolerance_options(const SurfaceMesh& input, const SurfaceModel& model,
                            SurfaceRemeshOptions& options)
 {
     options.tolerance.tolerance = distance_tolerance(settings, diagonal);
+    // The refinement's floor: 1e-4 of the diagonal, lower only for an input with shorter edges.
+    double shortest = diagonal;
+    for (auto e : input.edges()) shortest = std::min(shortest, input.calc_edge_length(e));
+    options.tolerance.min_split_length = std::min(kSplitFloorOfDiagonal * diagonal, 0.5 * shortest);
     if (settings.refine_to_tolerance && options.tolerance.tolerance > 0.0)
         add_model_points(input, model, options.tolerance);
     if (!settings.refine_to_tolerance) options.tolerance.tolerance = 0.0;
@@ -308,6 +315,7 @@ RemeshReport remesh_surface(SurfaceMesh& mesh, const SurfaceRemeshOptions& optio
     cleanup.raise_poor_triangles(options.cleanup.room_quality, detail::Keep::Tolerance);
     cleanup.raise_poor_triangles(options.polish.below_quality, detail::Keep::Tolerance);
     stage_done("quality raise");
+    refinement.note_bounds_reached();
     mesh.garbage_collection();
     return run.report;
 }

@@ -6,6 +6,7 @@
 // tolerance. Each stage's settings are its own struct; SurfaceRemeshSettings fills them all from
 // an input surface.
 
+#include <cstddef>
 #include <vector>
 
 #include "common/size_field.h"
@@ -43,6 +44,9 @@ struct ToleranceOptions
     /// (try_snap_vertex) when no triangle of its star gets an angle under this (the curve fit
     /// and the angle repair too). ≤ 0: no snaps, fits or repair moves.
     double snap_min_angle_deg = 25.0;
+    /// > 0: no refinement split of an edge shorter than twice this (a tolerance the model
+    /// cannot reach, e.g. an HDI model off a coarse input's spikes, would split without end).
+    double min_split_length = 0.0;
 };
 
 /// The refinement to the tolerance (ToleranceOptions).
@@ -56,6 +60,11 @@ struct ToleranceRefinementOptions
     /// keeps the tolerance follows (no cleanup that would undo the splits). < 0: the same as
     /// short_edge_budget.
     double final_short_edge_budget = -1.0;
+    /// The work bound of all the refinement calls of a pipeline together: splits, snaps and
+    /// flips up to min_work plus this many times the faces at the first call (< 0: none). At
+    /// the bound the refinement stops with a note (RemeshReport::notes), the pipeline goes on.
+    double work_per_face = 20.0;
+    std::size_t min_work = 4096;  // a coarse input may need many times its faces
 };
 
 /// The shape polish after the first refinement: quality flips and smart shifts.

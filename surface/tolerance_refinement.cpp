@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstdio>
 #include <limits>
 
 #include "common/messages.h"
@@ -107,8 +108,26 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
     // their faces in point_face_, are then read in memory order); a later round at the points
     // still far after the round before, whose hits it keeps in call.far_known.
     model_points_in_space_order();
+    if (!work_limit_set_)
+    {
+        // Proportional to the mesh the loop made, never a time: outputs stay deterministic.
+        std::size_t faces = 0;
+        for (auto f : mesh_.faces())
+            if (!mesh_.status(f).deleted()) ++faces;
+        work_limit_set_ = true;
+        work_limit_ =
+            options_.work_per_face < 0.0
+                ? std::numeric_limits<std::size_t>::max()
+                : static_cast<std::size_t>(options_.work_per_face * static_cast<double>(faces)) +
+                      options_.min_work;
+    }
     for (int round = 0; round < options_.rounds; ++round)
     {
+        if (work_done_ >= work_limit_)
+        {
+            work_limit_reached_ = true;
+            break;
+        }
         const std::size_t done = refine_round(round, call);
         total += done;
         if (done == 0) break;
@@ -148,6 +167,7 @@ std::size_t ToleranceRefinement::refine_round(int round, RefineCall& call)
     const std::vector<EdgeCandidate> candidates = split_candidates();
     if (call.snap) snaps += snap_chord_ends(candidates, call);
     report_.refinement_snaps += snaps;
+    work_done_ += snaps;
     RoundCounts counts;
     counts.short_edges = short_edges_now(round == 0);
     counts.edges = count_live_edges();
@@ -441,6 +461,18 @@ std::size_t ToleranceRefinement::split_farthest(const std::vector<EdgeCandidate>
             break;
         if (mesh_.status(e).deleted()) continue;
         if (snapped_end(e)) continue;
+        if (work_done_ >= work_limit_)
+        {
+            work_limit_reached_ = true;
+            break;
+        }
+        // Halves below the floor: the tolerance is out of reach there (the model is off its
+        // own input, or the point is one of a spike's), not a reason to split without end.
+        if (mesh_.calc_edge_length(e) < 2.0 * tolerance_.min_split_length)
+        {
+            ++floor_refusals_;
+            continue;
+        }
         const bool boundary = mesh_.is_boundary(e);
         const bool was_short = size_quality(mesh_.calc_edge_length(e), keeper_.reference_size(e)) <
                                kSizeQualityThreshold;
@@ -453,6 +485,7 @@ std::size_t ToleranceRefinement::split_farthest(const std::vector<EdgeCandidate>
         {
             if (counts.done == 0) worst = error;
             ++counts.done;
+            ++work_done_;
             continue;
         }
         const OpResult r = split_candidate(e, error, call.snap);
@@ -462,6 +495,7 @@ std::size_t ToleranceRefinement::split_farthest(const std::vector<EdgeCandidate>
         if (counts.done == 0) worst = error;
         ++counts.done;
         ++counts.splits;
+        ++work_done_;
         // The two halves and the new edges across: the budget's count follows the split.
         counts.edges += boundary ? 2 : 3;
         if (was_short) --counts.short_edges;  // replaced by its halves, counted below
@@ -471,6 +505,27 @@ std::size_t ToleranceRefinement::split_farthest(const std::vector<EdgeCandidate>
                 ++counts.short_edges;
     }
     return next;
+}
+
+void ToleranceRefinement::note_bounds_reached()
+{
+    char text[200];
+    if (work_limit_reached_)
+    {
+        std::snprintf(text, sizeof text,
+                      "tolerance refinement: stopped at its work bound (%zu changes); the "
+                      "surface may stray farther than the tolerance",
+                      work_limit_);
+        report_.notes.emplace_back(text);
+    }
+    if (floor_refusals_ > 0)
+    {
+        std::snprintf(text, sizeof text,
+                      "tolerance refinement: %zu splits refused below the shortest edge it "
+                      "makes (%.3g); the tolerance is out of reach there",
+                      floor_refusals_, tolerance_.min_split_length);
+        report_.notes.emplace_back(text);
+    }
 }
 
 // A distance flip of interior edge e (its opposite vertices then noted changed); whether done.
@@ -495,7 +550,13 @@ OpResult ToleranceRefinement::split_candidate(EdgeHandle e, double error, bool s
     OpResult r;
     if (edge_target[e.idx()] > 0)
         r = split_toward(e, tolerance_.model_points[edge_target[e.idx()] - 1], snap);
-    if (!r.done()) r = try_split(ctx_, e);
+    if (!r.done())
+    {
+        const auto h = mesh_.halfedge_handle(e, 0);
+        const Vec3d mid = 0.5 * (mesh_.point(mesh_.from_vertex_handle(h)) +
+                                 mesh_.point(mesh_.to_vertex_handle(h)));
+        r = clear_of_floor(e, mid) ? try_split(ctx_, e) : refused(OpStatus::Geometry);
+    }
     // A chord whose split the triangles refuse (its midpoint far off them, across a
     // bend): the longest other edge of a face beside it, so that the next round finds
     // the chord's neighbourhood finer.

@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -201,6 +202,84 @@ TEST_CASE("low-poly models stay on their facets and keep every crease")
             const auto d = hausdorff_distance(mesh, input);
             CHECK(std::max(d[0], d[1]) <= 1e-6 * diagonal);
             CHECK(worst_crease_distance(input, mesh) <= 1e-9 * diagonal);
+            CHECK(mesh.n_faces() > input.n_faces());
+        }
+    }
+}
+
+namespace
+{
+
+/// A flat sheet bounded by a closed polygon in z = 0 (star-shaped from `centre`), fanned from
+/// one inner point: a CAD-like open outline, its boundary turning at every polygon vertex.
+TriangleSoup flat_outline(const std::vector<Vec3d>& polygon, const Vec3d& centre)
+{
+    TriangleSoup soup;
+    soup.points = polygon;
+    soup.points.push_back(centre);
+    const int n = static_cast<int>(polygon.size());
+    for (int i = 0; i < n; ++i) soup.triangles.push_back({n, i, (i + 1) % n});
+    soup.refs.assign(soup.triangles.size(), 0);
+    return soup;
+}
+
+}  // namespace
+
+TEST_CASE("a flat open outline keeps the turns of its boundary as corners, on its input")
+{
+    //   star: 7 tips (turns 117°) and 7 notches (66°);   L: an L cut 0.15 at every corner
+    //   (turns of 45°, above the crease angle but below the old boundary rule's 75°)
+    std::vector<Vec3d> star, ell;
+    for (int i = 0; i < 14; ++i)
+    {
+        const double r = i % 2 == 0 ? 1.0 : 0.62, a = 3.14159265358979323846 * i / 7;
+        star.emplace_back(r * std::cos(a), r * std::sin(a), 0);
+    }
+    const double c = 0.15;
+    for (const auto& [x, y] : std::vector<std::array<double, 2>>{{c, 0},
+                                                                 {2 - c, 0},
+                                                                 {2, c},
+                                                                 {2, 1 - c},
+                                                                 {2 - c, 1},
+                                                                 {1 + c, 1},
+                                                                 {1, 1 + c},
+                                                                 {1, 2 - c},
+                                                                 {1 - c, 2},
+                                                                 {c, 2},
+                                                                 {0, 2 - c},
+                                                                 {0, c}})
+        ell.emplace_back(x, y, 0);
+    struct Outline
+    {
+        const char* name;
+        TriangleSoup soup;
+        std::size_t turns;
+    };
+    for (const Outline& outline :
+         {Outline{"star", flat_outline(star, Vec3d(0, 0, 0)), star.size()},
+          Outline{"chamfered L", flat_outline(ell, Vec3d(0.5, 0.5, 0)), ell.size()}})
+    {
+        const SurfaceMesh input = build_surface(outline.soup, outline.name);
+        const double diagonal = bounding_box_diagonal(input);
+        for (const double fraction : {0.0, 0.02, 0.06})
+        {
+            CAPTURE(outline.name);
+            CAPTURE(fraction);
+            SurfaceMesh mesh = input;
+            SurfaceRemeshSettings settings;
+            settings.sizing.hsiz = fraction * diagonal;  // 0: the curvature-adaptive default
+            const SurfaceRemeshResult result = remesh_surface(mesh, settings);
+            CHECK(result.features.corners == outline.turns);
+            // every turn of the outline is still a vertex of the output
+            for (std::size_t i = 0; i < outline.turns; ++i)
+            {
+                double nearest = 1e300;
+                for (auto v : mesh.vertices())
+                    nearest = std::min(nearest, (mesh.point(v) - outline.soup.points[i]).norm());
+                CHECK(nearest <= 1e-12 * diagonal);
+            }
+            const auto d = hausdorff_distance(mesh, input);
+            CHECK(std::max(d[0], d[1]) <= 1e-6 * diagonal);
             CHECK(mesh.n_faces() > input.n_faces());
         }
     }

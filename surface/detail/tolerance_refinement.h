@@ -81,6 +81,9 @@ public:
     /// out); after_polish: the final budget, and snaps before splits. The number of changes.
     std::size_t refine(bool after_polish);
 
+    /// The notes of the bounds reached (work, floor), one line each, into the report.
+    void note_bounds_reached();
+
 private:
     // One call of refine: its settings, and what a round hands on to the next.
     struct RefineCall
@@ -126,6 +129,7 @@ private:
 
     OpResult split_toward(EdgeHandle e, const Vec3d& target, bool part_of_the_way);
     OpResult split_beside(EdgeHandle e);
+    bool clear_of_floor(EdgeHandle e, const Vec3d& p) const;
     EdgeHandle nearest_curve_edge(FaceHandle f, std::size_t point) const;
     VertexHandle snap_toward(std::size_t point, FaceHandle face, bool smooth_point);
     VertexHandle snap_vertex_of_edge(EdgeHandle e, const Vec3d& target);
@@ -145,6 +149,11 @@ private:
     std::size_t short_edges_now(bool first_round);
 
     const ToleranceRefinementOptions& options_;
+    // The work bound shared by the calls (set at the first: work_per_face times its faces),
+    // the work done (splits, snaps, flips), and the splits refused below the floor.
+    bool work_limit_set_ = false;
+    std::size_t work_limit_ = 0, work_done_ = 0, floor_refusals_ = 0;
+    bool work_limit_reached_ = false;
     // Per model point, by rank in space order: the output face that last proved it within the
     // tolerance, or was its closest (invalid: none yet). Faces are garbage-collected at the end
     // of the pipeline only: handles hold across the whole call.

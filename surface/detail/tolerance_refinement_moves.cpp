@@ -29,7 +29,13 @@ constexpr double kSplitTowardSteps[] = {0.75, 0.5, 0.35};
 // anyway (docs/tuning.md).
 OpResult ToleranceRefinement::split_toward(EdgeHandle e, const Vec3d& target, bool part_of_the_way)
 {
-    OpResult r = try_split(ctx_, e, &target);
+    // (The floor judged where the vertex lands: the target projected onto the model.)
+    const ProjectedPoint landing = ctx_.model.project_near(
+        target, VertexClass::Smooth, kNoCurve,
+        ctx_.model_face(mesh_.from_vertex_handle(mesh_.halfedge_handle(e, 0))));
+    OpResult r = clear_of_floor(e, landing.ok ? landing.point : target)
+                     ? try_split(ctx_, e, &target)
+                     : refused(OpStatus::Geometry);
     // (A curve edge's split stays on its curve: the target is not its to reach.)
     if (r.done() || !part_of_the_way || ctx_.is_feature(e)) return r;
     const auto h = mesh_.halfedge_handle(e, 0);
@@ -59,10 +65,28 @@ OpResult ToleranceRefinement::split_toward(EdgeHandle e, const Vec3d& target, bo
                        triangle_min_angle_deg(p, pb, c) < min_angle;
             }))
             continue;
+        if (!clear_of_floor(e, p)) continue;
         const OpResult partial = try_split(ctx_, e, &p);
         if (partial.done()) return partial;
     }
     return r;
+}
+
+// Whether a vertex at p splitting e makes no edge shorter than the refinement's floor (to e's
+// ends and the vertices opposite it).
+bool ToleranceRefinement::clear_of_floor(EdgeHandle e, const Vec3d& p) const
+{
+    const double floor = tolerance_.min_split_length;
+    if (!(floor > 0.0)) return true;
+    for (int side = 0; side < 2; ++side)
+    {
+        const auto h = mesh_.halfedge_handle(e, side);
+        if ((mesh_.point(mesh_.to_vertex_handle(h)) - p).norm() < floor) return false;
+        if (!mesh_.is_boundary(h) &&
+            (mesh_.point(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h))) - p).norm() < floor)
+            return false;
+    }
+    return true;
 }
 
 // The curve edge (boundary or ridge) of f nearest to model point `point` (invalid: none).
@@ -147,7 +171,8 @@ OpResult ToleranceRefinement::split_beside(EdgeHandle e)
             if (other != e && mesh_.calc_edge_length(other) > best)
                 best = mesh_.calc_edge_length(other), longest = other;
         if (longest.is_valid() &&
-            best >= 2.0 * tolerance_.min_length_ratio * run_.edge_size(longest))
+            best >= 2.0 * tolerance_.min_length_ratio * run_.edge_size(longest) &&
+            best >= 2.0 * tolerance_.min_split_length)
             result = try_split(ctx_, longest);
     }
     return result;
