@@ -308,10 +308,14 @@ Boundary prepare_boundary(const Boundary& input, const VolumeFromSurfaceOptions&
     Boundary remeshed = from_surface_mesh(mesh);
     // A part thinner than the size (a finger, a tip) can fold the remeshed surface onto itself:
     // remesh again from the input with the sizes halved around each crossing, a few rounds.
+    std::size_t last_folds = std::numeric_limits<std::size_t>::max();
     for (int round = 0; round < kFoldRounds; ++round)
     {
         const std::vector<Vec3> folds = fold_centres(remeshed, options.check);
         if (folds.empty()) break;
+        // a round that did not reduce the crossings will not: stop (the check then refuses)
+        if (folds.size() >= last_folds) break;
+        last_folds = folds.size();
         settings.input_sizes = sizes_halved_near(input_mesh, mesh, folds);
         mesh = input_mesh;
         report.remesh = surface::remesh_surface(mesh, settings);

@@ -174,49 +174,34 @@ TEST_CASE("a 3-edge hole and a 12-edge hole are closed, one note each")
         doctest::Contains("the surface is open: 1 boundary loop (loop 1: 12 edges"), InputError);
 }
 
-TEST_CASE("a double cone pinched at its apex: split into two solids, the copies apart")
+TEST_CASE("two balls pinched at one point: split into two solids, the copies apart")
 {
-    //      \  top  /
-    //       \     /
-    //        \   /
-    //         \ /   the apex, shared by both cones
-    //         / \                                                   .
-    //        / b \                                                  .
-    TriangleSoup soup;
-    soup.points.emplace_back(0, 0, 0);  // the apex
-    const int n = 12;
-    for (int side : {1, -1})
+    //    (  A  )(  B  )   B is A mirrored at the plane through A's rightmost point: the two
+    //                     balls share that point, a pinched vertex of two closed fans
+    TriangleSoup soup = icosphere_soup(2);
+    const int n = static_cast<int>(soup.points.size());
+    int right = 0;
+    for (int v = 1; v < n; ++v)
+        if (soup.points[v][0] > soup.points[right][0]) right = v;
+    const double x = soup.points[right][0];
+    for (int v = 0; v < n; ++v)
     {
-        const int centre = static_cast<int>(soup.points.size());
-        soup.points.emplace_back(0, 0, side);
-        const int ring = centre + 1;
-        for (int i = 0; i < n; ++i)
-        {
-            const double a = 2 * M_PI * i / n;
-            soup.points.emplace_back(0.6 * std::cos(a), 0.6 * std::sin(a), side);
-        }
-        for (int i = 0; i < n; ++i)
-        {
-            const int p = ring + i, q = ring + (i + 1) % n;
-            // outward: the cap faces away from the apex, the side away from the axis
-            if (side > 0)
-            {
-                soup.triangles.push_back({centre, p, q});
-                soup.triangles.push_back({0, q, p});
-            }
-            else
-            {
-                soup.triangles.push_back({centre, q, p});
-                soup.triangles.push_back({0, p, q});
-            }
-        }
+        const Vec3d p = soup.points[v];
+        soup.points.emplace_back(2 * x - p[0], p[1], p[2]);  // exact at the shared point
+    }
+    const std::size_t faces = soup.triangles.size();
+    for (std::size_t f = 0; f < faces; ++f)
+    {
+        const auto t = soup.triangles[f];
+        soup.triangles.push_back({n + t[0], n + t[2], n + t[1]});  // mirrored: turned back out
     }
     soup.refs.assign(soup.triangles.size(), 1);
-    const auto report = mesh_checked(soup, uniform(0.15));
-    CHECK(count_notes(report.repairs, "split pinched vertex 1 at (0, 0, 0) into 2 sheets") == 1);
+    const auto report = mesh_checked(soup, uniform(0.2));
+    CHECK(count_notes(report.repairs, "merged 1 coincident vertices") == 1);
+    CHECK(count_notes(report.repairs, "split pinched vertex") == 1);
     CHECK(report.regions == 2);
 
-    VolumeFromSurfaceOptions strict = uniform(0.15);
+    VolumeFromSurfaceOptions strict = uniform(0.2);
     strict.repair.strict = true;
     CHECK_THROWS_AS(mesh_volume_from_surface(soup, strict), InputError);
 }

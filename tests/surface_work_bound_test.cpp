@@ -55,7 +55,8 @@ surface::TriangleSoup spiky_sphere(int spikes, double low, double high, std::uin
     for (int i = 0; i + 1 < rings; ++i)
         for (int j = 0; j < around; ++j)
         {
-            const int a = ring(i, j), a1 = ring(i, j + 1), b = ring(i + 1, j), b1 = ring(i + 1, j + 1);
+            const int a = ring(i, j), a1 = ring(i, j + 1), b = ring(i + 1, j),
+                      b1 = ring(i + 1, j + 1);
             if (i % 2 == 0)
             {
                 soup.triangles.push_back({a, b, a1});
@@ -106,8 +107,8 @@ TEST_CASE("spiky coarse shapes go through the surface pass and the fill, the che
         double low, high;
         std::uint32_t seed;
     };
-    for (const Variant& variant : {Variant{12, 2.0, 3.0, 1}, Variant{12, 2.5, 3.0, 7},
-                                   Variant{16, 2.0, 2.5, 23}})
+    for (const Variant& variant :
+         {Variant{12, 2.0, 3.0, 1}, Variant{12, 2.5, 3.0, 7}, Variant{16, 2.0, 2.5, 23}})
     {
         CAPTURE(variant.seed);
         const surface::TriangleSoup soup =
