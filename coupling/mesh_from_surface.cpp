@@ -474,6 +474,81 @@ int note_crossings(const std::vector<Vec3>& points, const std::vector<Triangle>&
     return static_cast<int>(crossings.size());
 }
 
+constexpr int kCutRounds = 3;  // rounds of cutting crossing folds out
+
+/// The soup as the checker's arrays.
+void soup_arrays(const TriangleSoup& soup, std::vector<Vec3>& points,
+                 std::vector<Triangle>& triangles)
+{
+    points.clear();
+    for (const auto& p : soup.points) points.emplace_back(p[0], p[1], p[2]);
+    triangles.assign(soup.triangles.begin(), soup.triangles.end());
+}
+
+/// Crossing folds of the repaired input cut out with the ring of triangles around them, and the
+/// holes closed again (a local repair in bounded rounds, as MeshFix's): a round is kept only
+/// when its holes close and the surface stays closed and manifold. What still crosses is left
+/// to note_crossings.
+void cut_out_crossings(TriangleSoup& soup, std::vector<int>& source_point,
+                       const surface::SoupRepairOptions& repair, const std::string& source,
+                       std::vector<std::string>& notes)
+{
+    std::vector<Vec3> points;
+    std::vector<Triangle> triangles;
+    volume::SurfaceCheckOptions topology;
+    topology.check_self_intersections = false;
+    for (int round = 0; round < kCutRounds; ++round)
+    {
+        soup_arrays(soup, points, triangles);
+        std::vector<char> crossing(triangles.size(), 0);
+        int pairs = 0;
+        for (const auto& defect : volume::check_closed_surface(points, triangles))
+            if (defect.kind == volume::SurfaceDefectKind::SelfIntersection)
+            {
+                ++pairs;
+                for (int f : defect.faces) crossing[f] = 1;
+            }
+        if (!pairs) return;
+        std::vector<char> near(points.size(), 0);
+        for (std::size_t f = 0; f < triangles.size(); ++f)
+            if (crossing[f])
+                for (int v : triangles[f]) near[v] = 1;
+        TriangleSoup trial;
+        trial.points = soup.points;
+        Vec3 first = Vec3::Zero();
+        int cut = 0;
+        for (std::size_t f = 0; f < triangles.size(); ++f)
+        {
+            const Triangle& t = triangles[f];
+            if (near[t[0]] || near[t[1]] || near[t[2]])
+            {
+                if (cut++ == 0) first = (points[t[0]] + points[t[1]] + points[t[2]]) / 3.0;
+                continue;
+            }
+            trial.triangles.push_back(soup.triangles[f]);
+            trial.refs.push_back(soup.refs[f]);
+        }
+        surface::SoupRepairReport closed;
+        try
+        {
+            surface::repair_soup(trial, source, repair, &closed);
+        }
+        catch (const InputError&)
+        {
+            return;
+        }
+        soup_arrays(trial, points, triangles);
+        if (!volume::check_closed_surface(points, triangles, topology).empty()) return;
+        for (int& p : closed.source_point) p = source_point[p];
+        source_point = std::move(closed.source_point);
+        soup = std::move(trial);
+        notes.push_back(source + ": repaired: cut out " + std::to_string(cut) +
+                        " triangles around " + std::to_string(pairs) +
+                        " crossing pair(s) (the first near " + format_point(first) +
+                        ") and closed " + std::to_string(closed.closed_holes) + " hole(s)");
+    }
+}
+
 }  // namespace
 
 TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfaceOptions& options,
@@ -514,18 +589,7 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
             surface::repair_soup(repaired, source, repair_options, &repair);
             report.merged_points = static_cast<int>(repair.merged_vertices);
             report.repairs = repair.notes;
-            if (!options.sizing.vertex_sizes.empty())
-            {
-                repaired_options = options;
-                auto& sizes = repaired_options.sizing.vertex_sizes;
-                sizes.clear();
-                for (int old : repair.source_point)
-                    sizes.push_back(options.sizing.vertex_sizes[old]);
-                used = &repaired_options;
-            }
-            for (const auto& p : repaired.points) points.emplace_back(p[0], p[1], p[2]);
-            triangles.assign(repaired.triangles.begin(), repaired.triangles.end());
-            refs = repaired.refs;
+            soup_arrays(repaired, points, triangles);
             // crossings are the remeshed surface's to clear (checked after it); with the input
             // kept they are refused
             volume::SurfaceCheckOptions topology = options.check;
@@ -536,6 +600,22 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
                                  "\n(holes up to " +
                                  format_number(repair_options.hole_size_factor) +
                                  " local sizes across are closed; larger ones are refused)");
+            if (!options.keep_surface && options.check.check_self_intersections)
+            {
+                cut_out_crossings(repaired, repair.source_point, repair_options, source,
+                                  report.repairs);
+                soup_arrays(repaired, points, triangles);
+            }
+            if (!options.sizing.vertex_sizes.empty())
+            {
+                repaired_options = options;
+                auto& sizes = repaired_options.sizing.vertex_sizes;
+                sizes.clear();
+                for (int old : repair.source_point)
+                    sizes.push_back(options.sizing.vertex_sizes[old]);
+                used = &repaired_options;
+            }
+            refs = repaired.refs;
             if (!options.keep_surface && options.check.check_self_intersections)
                 report.input_crossings = note_crossings(points, triangles, source,
                                                         repair_options.local_size, report.repairs);
