@@ -628,6 +628,8 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
     {
         const StageTimer timer(report.seconds_remesh, report.cpu_seconds_remesh);
         boundary = prepare_boundary(boundary, *used, report);
+        for (const std::string& line : report.remesh.report.notes)
+            report.repairs.push_back(source + ": " + line);  // a stage stopped at its bound
     }
 
     volume::SurfaceRegions regions;

@@ -158,6 +158,15 @@ def test_remesh_surface_and_mesh_volume():
     assert q["min_qe"] > 0.2 and q["tets"] == len(solid.tets)
 
 
+def test_mesh_volume_repairs_a_hole_unless_strict():
+    surface = hdimesh.read(ICOSPHERE)
+    open_faces = surface.triangles[1:]  # a 3-edge hole
+    solid = hdimesh.mesh_volume(surface.points, open_faces, hsiz=0.2)
+    assert len(solid.tets) > 0 and hdimesh.check(solid) == []
+    with pytest.raises(ValueError, match="the surface is open: 1 boundary loop"):
+        hdimesh.mesh_volume(surface.points, open_faces, hsiz=0.2, strict=True)
+
+
 def test_check_names_violations():
     points, tets, triangles = one_tet()
     inverted = hdimesh.TetMesh(points, tets[:, [1, 0, 2, 3]], triangles)
