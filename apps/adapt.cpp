@@ -129,7 +129,10 @@ int main(int argc, char** argv)
 
         if (verbosity >= 1 || !stats_path.empty())  // (a report of a large mesh takes a while)
         {
-            const QualityReport quality = compute_quality_report(result.mesh, result.field.get());
+            volume::QualityReportOptions quality_options;
+            quality_options.kept_surface = keep_surface;
+            const QualityReport quality =
+                compute_quality_report(result.mesh, result.field.get(), quality_options);
             if (verbosity >= 1)
                 std::cout << "output " << output << "\n" << format_quality_table(quality);
             if (!stats_path.empty()) write_quality_json(quality, stats_path);

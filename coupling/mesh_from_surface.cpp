@@ -19,6 +19,7 @@
 #include "common/size_quality.h"
 #include "common/stage_timer.h"
 #include "coupling/detail/surface_sizes.h"
+#include "coupling/detail/thin_parts.h"
 #include "hdi/knn.h"
 #include "surface/features.h"
 #include "surface/sizing.h"
@@ -244,6 +245,17 @@ std::shared_ptr<const SizeField> clamped(std::shared_ptr<const SizeField> field,
         std::move(field), s.hmin, s.hmax > 0 ? s.hmax : std::numeric_limits<double>::infinity());
 }
 
+/// The thin parts of the input against the size wanted at its vertices (uniform or given per
+/// vertex; none when the remesher chooses, from the curvature).
+detail::ThinParts thin_parts(const SurfaceMesh& input, const surface::SurfaceRemeshSettings& s,
+                             double grade)
+{
+    std::vector<double> wanted = s.input_sizes;
+    if (wanted.empty() && s.sizing.hsiz > 0) wanted.assign(input.n_vertices(), s.sizing.hsiz);
+    if (wanted.empty()) return {};
+    return detail::find_thin_parts(input, wanted, grade);
+}
+
 /// The surface to fill and its sizes: the input kept, or remeshed to the sizing.
 Boundary prepare_boundary(const Boundary& input, const VolumeFromSurfaceOptions& options,
                           VolumeFromSurfaceReport& report)
@@ -303,6 +315,10 @@ Boundary prepare_boundary(const Boundary& input, const VolumeFromSurfaceOptions&
     if (!(settings.sizing.hsiz > 0) && settings.input_sizes.empty() && !(sizing.hausd > 0) &&
         !(sizing.hmax > 0))
         settings.sizing.hmax = 2.0 * surface::mean_edge_length(mesh);
+    // Thin parts (ears, fins) get sizes their thickness allows, on the surface and in the volume.
+    const double grade = settings.sizing.hgrad > 1 ? settings.sizing.hgrad - 1 : 0.3;
+    const detail::ThinParts thin = thin_parts(mesh, settings, grade);
+    settings.input_size_bounds = thin.bounds;
     const SurfaceMesh input_mesh = mesh;  // remesh_surface works in place
     report.remesh = surface::remesh_surface(mesh, settings);
     Boundary remeshed = from_surface_mesh(mesh);
@@ -333,6 +349,19 @@ Boundary prepare_boundary(const Boundary& input, const VolumeFromSurfaceOptions&
         std::vector<double> sizes(mesh.n_vertices(), 0.0);
         for (auto v : mesh.vertices()) sizes[v.idx()] = mesh.property(props.vertex_size, v);
         report.field = std::make_shared<ClosestSurfaceSize>(mesh, std::move(sizes));
+    }
+    if (!thin.points.empty() && (sizing.hsiz > 0 || sizing.field))
+    {
+        // the volume's bounds from the remeshed surface: dense where the input's triangles
+        // may not be
+        std::vector<double> wanted(mesh.n_vertices(), sizing.hsiz);
+        if (!(sizing.hsiz > 0))
+            for (auto v : mesh.vertices())
+                wanted[v.idx()] = sizing.field->size(surface::to_point(mesh.point(v)));
+        const detail::ThinParts remeshed_thin = detail::find_thin_parts(mesh, wanted, grade);
+        if (!remeshed_thin.points.empty())
+            report.field =
+                std::make_shared<detail::ThinPartSize>(report.field, remeshed_thin, grade);
     }
     report.field = clamped(report.field, sizing);
     return remeshed;

@@ -159,6 +159,28 @@ SizeMap choose_sizes(const SurfaceMesh& input, const SurfaceModel& model,
         sizes = SizeMap::per_input_vertex(model, curvature_sizes(input, model, settings.sizing));
         result.adaptive = true;
     }
+    if (!settings.input_size_bounds.empty())
+    {
+        if (settings.input_size_bounds.size() != input.n_vertices())
+            throw InputError(
+                "remesh_surface: " + std::to_string(settings.input_size_bounds.size()) +
+                " size bounds for " + std::to_string(input.n_vertices()) + " vertices");
+        std::vector<double> bounded(input.n_vertices());
+        bool binds = false;
+        for (auto v : input.vertices())
+        {
+            const double s =
+                sizes.is_uniform() ? sizes.uniform_size() : sizes.vertex_sizes()[v.idx()];
+            binds = binds || settings.input_size_bounds[v.idx()] < s;
+            bounded[v.idx()] = std::min(s, settings.input_size_bounds[v.idx()]);
+        }
+        // untouched when no bound binds: the uniform path stays uniform
+        if (binds)
+        {
+            bound_and_grade(input, bounded, settings.sizing);
+            sizes = SizeMap::per_input_vertex(model, std::move(bounded));
+        }
+    }
     return sizes;
 }
 

@@ -133,6 +133,9 @@ struct SurfaceRemeshSettings
     SizingOptions sizing;  // hsiz > 0: uniform; else curvature from hausd (default 0.002·diag)
     std::vector<double>
         input_sizes;  // non-empty: a size per input vertex (--sol), bounded and graded
+    /// Non-empty: per input vertex, an upper bound on whatever size is chosen there (a thin
+    /// part's, surface/thickness.h), graded with it; infinity where none.
+    std::vector<double> input_size_bounds;
     /// Set: the size anywhere (a volume's size field, already bounded and graded); it wins
     /// over hsiz and input_sizes. It must outlive the call.
     const SizeField* size_field = nullptr;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -106,6 +107,56 @@ VolumeFromSurfaceOptions uniform(double h, bool keep_surface)
     options.adapt.verbosity = 0;
     options.source = "test";
     return options;
+}
+
+/// The boundary of a union of cells of the grid xs x ys x zs (two outward triangles per
+/// exposed cell face): boxes glued face to face, e.g. a block with a thin fin.
+surface::TriangleSoup cell_union(const std::vector<double>& xs, const std::vector<double>& ys,
+                                 const std::vector<double>& zs,
+                                 const std::function<bool(int, int, int)>& full)
+{
+    const std::array<const std::vector<double>*, 3> axes = {&xs, &ys, &zs};
+    const int nx = static_cast<int>(xs.size()), ny = static_cast<int>(ys.size());
+    surface::TriangleSoup soup;
+    for (double z : zs)
+        for (double y : ys)
+            for (double x : xs) soup.points.emplace_back(x, y, z);
+    auto node = [&](std::array<int, 3> n) { return n[0] + nx * (n[1] + ny * n[2]); };
+    auto is_full = [&](std::array<int, 3> c) {
+        for (int a = 0; a < 3; ++a)
+            if (c[a] < 0 || c[a] + 1 >= static_cast<int>(axes[a]->size())) return false;
+        return full(c[0], c[1], c[2]);
+    };
+    for (int k = 0; k + 1 < static_cast<int>(zs.size()); ++k)
+        for (int j = 0; j + 1 < ny; ++j)
+            for (int i = 0; i + 1 < nx; ++i)
+            {
+                if (!full(i, j, k)) continue;
+                for (int a = 0; a < 3; ++a)
+                    for (int side : {0, 1})
+                    {
+                        std::array<int, 3> next = {i, j, k};
+                        next[a] += side ? 1 : -1;
+                        if (is_full(next)) continue;
+                        const int b = (a + 1) % 3, c = (a + 2) % 3;
+                        std::array<int, 4> quad;
+                        const int corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+                        for (int q = 0; q < 4; ++q)
+                        {
+                            std::array<int, 3> n = {i, j, k};
+                            n[a] += side;
+                            n[b] += corners[q][0];
+                            n[c] += corners[q][1];
+                            quad[q] = node(n);
+                        }
+                        if (!side) std::swap(quad[1], quad[3]);  // e_b x e_c is +a
+                        soup.triangles.push_back({quad[0], quad[1], quad[2]});
+                        soup.triangles.push_back({quad[0], quad[2], quad[3]});
+                        soup.refs.push_back(1);
+                        soup.refs.push_back(1);
+                    }
+            }
+    return soup;
 }
 
 }  // namespace
@@ -385,4 +436,44 @@ TEST_CASE("keep_surface with triangles far longer than the size: the interior gr
     CHECK(report.adapt.converged);
     CHECK(mesh.num_live_tets() < 200);
     CHECK(report.min_quality > 0.05);
+}
+
+TEST_CASE("thin parts get sizes their thickness allows: a fin and a finger at half the size")
+{
+    // a unit block with a fin (0.05 thick) on +x and a square finger (0.05 across) on -x, at
+    // h = 0.1: the sizes there are bounded, the block keeps h (flat sides: 0.477 unbounded)
+    const std::vector<double> xs = {-0.6, -0.3, 0, 0.5, 1, 1.3, 1.6};
+    const std::vector<double> ys = {0, 0.3, 0.475, 0.525, 0.7, 1};
+    const std::vector<double> zs = {0, 0.475, 0.525, 1};
+    const surface::TriangleSoup soup = cell_union(xs, ys, zs, [](int i, int j, int k) {
+        if (i == 2 || i == 3) return true;              // the block
+        if (i >= 4) return k == 1 && j >= 1 && j <= 3;  // the fin
+        return k == 1 && j == 2;                        // the finger
+    });
+    VolumeFromSurfaceReport report;
+    const TetMesh mesh = mesh_volume_from_surface(soup, uniform(0.1, false), &report);
+    require_valid(mesh);
+    const QualityReport quality = compute_quality_report(mesh, report.field.get());
+    MESSAGE("fin and finger: min Qe " << quality.min_qe << ", " << quality.below_floor
+                                      << " below 0.3, " << quality.tets << " tets");
+    CHECK(quality.min_qe > 0.3);
+    // the field is h away from the thin parts, finer on them
+    CHECK(report.field->size(Vec3(0.5, 0.5, 0.5)) == doctest::Approx(0.1));
+    CHECK(report.field->size(Vec3(1.45, 0.5, 0.5)) < 0.05);
+    CHECK(report.field->size(Vec3(-0.45, 0.5, 0.5)) < 0.05);
+}
+
+TEST_CASE("thin parts: a flat ellipsoid 0.16 thick at h = 0.1 keeps its tets above Qe 0.33")
+{
+    // Without the thickness bound the rim's tets reach 0.313 (0.366 with it).
+    Spheres input = Spheres().add(Vec3::Zero(), 1.0, 4);
+    for (auto& p : input.soup.points) p[2] *= 0.08;
+    VolumeFromSurfaceReport report;
+    const TetMesh mesh = mesh_volume_from_surface(input.soup, uniform(0.1, false), &report);
+    require_valid(mesh);
+    const QualityReport quality = compute_quality_report(mesh, report.field.get());
+    MESSAGE("flat ellipsoid: min Qe " << quality.min_qe << ", " << quality.tets << " tets");
+    CHECK(quality.min_qe > 0.33);
+    CHECK(report.field->size(Vec3(0.0, 0.0, 0.0)) == doctest::Approx(0.1));
+    CHECK(report.field->size(Vec3(0.9, 0.0, 0.0)) < 0.06);  // the rim, 0.07 thick
 }

@@ -265,3 +265,30 @@ TEST_CASE("data/sphere480.mesh against the independent checker's numbers (case A
     CHECK(r.max_length_ratio == doctest::Approx(18.79628792250783).epsilon(1e-12));
     CHECK(r.length_ratio_histogram == std::array<long, 8>{0, 0, 0, 2, 14, 78, 141, 531});
 }
+
+TEST_CASE("tets below Qe 0.3: a sliver on a sharp ridge is forced, a flat tet inside a box is not")
+{
+    // a sliver alone: its boundary edges are its own small dihedral angles
+    TetMesh sliver;
+    for (const Vec3& p : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0.3, 0.3, 0.02)})
+        sliver.add_vertex(p, 0, VertexClass::Interior);
+    sliver.add_tet({0, 1, 2, 3}, 1);
+    const QualityReport s = compute_quality_report(sliver, nullptr);
+    CHECK(s.below_floor == 1);
+    CHECK(s.forced_below_floor == 1);
+    // the 2x2x2 Kuhn box, its centre pushed near the bottom face: flat tets between it and
+    // that face, on no sharp ridge or corner (the box's are 90 degrees, pi/2 sr)
+    TetMesh box = fixtures::box_mesh(2);
+    for (auto& p : box.points)
+        if ((p - Vec3(0.5, 0.5, 0.5)).norm() < 1e-12) p = Vec3(0.5, 0.5, 0.03);
+    REQUIRE(check_mesh(box).empty());
+    const QualityReport b = compute_quality_report(box, nullptr);
+    CHECK(b.below_floor > 0);
+    CHECK(b.forced_below_floor == 0);
+    const std::string table = format_quality_table(b);
+    CHECK(table.find("Qe < 0.3") != std::string::npos);
+    CHECK(table.find(std::to_string(b.below_floor) +
+                     " tets (0 forced by sharp input ridges or corners, or kept triangles)") !=
+          std::string::npos);
+    CHECK(quality_report_json(b).find("\"forced_below_floor\": 0") != std::string::npos);
+}

@@ -157,9 +157,114 @@ double smallest_dihedral_cosine(const Vec3& a, const Vec3& b, const Vec3& c, con
     return *std::max_element(cosines.begin(), cosines.end());
 }
 
-QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field)
+namespace
+{
+
+/// The solid angle of tet abcd at a (Van Oosterom and Strackee).
+double solid_angle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+    const Vec3 x = b - a, y = c - a, z = d - a;
+    const double lx = x.norm(), ly = y.norm(), lz = z.norm();
+    const double numerator = std::abs(x.dot(y.cross(z)));
+    const double denominator = lx * ly * lz + x.dot(y) * lz + x.dot(z) * ly + y.dot(z) * lx;
+    return 2.0 * std::atan2(numerator, denominator);
+}
+
+/// How many of `below` (tets under the floor) are forced: an edge whose tets' dihedral angles
+/// sum below the sharp ridge angle (a boundary edge of a sharp ridge), a vertex whose tets'
+/// solid angles sum below the sharp corner's, or a face on a poor kept boundary triangle.
+int count_forced(const TetMesh& mesh, const std::vector<int>& below,
+                 const std::vector<Triangle>& boundary, const QualityReportOptions& options)
+{
+    const int nv = mesh.num_vertices();
+    std::vector<char> on_boundary(nv, 0);
+    for (const auto& tri : boundary)
+        for (int v : tri) on_boundary[v] = 1;
+    // candidates: the boundary vertices and boundary-to-boundary edges of the tets below
+    std::vector<int> vertex_slot(nv, -1);
+    std::vector<double> vertex_angle;
+    std::vector<std::vector<std::pair<int, double>>> edge_angle;  // per first vertex slot
+    for (int t : below)
+        for (int v : mesh.tets[t])
+            if (on_boundary[v] && vertex_slot[v] < 0)
+            {
+                vertex_slot[v] = static_cast<int>(vertex_angle.size());
+                vertex_angle.push_back(0.0);
+                edge_angle.emplace_back();
+            }
+    auto edge_entry = [&](int a, int b, bool add) -> double* {
+        if (vertex_slot[a] < 0 || vertex_slot[b] < 0) return nullptr;
+        auto& list = edge_angle[vertex_slot[std::min(a, b)]];
+        for (auto& [other, angle] : list)
+            if (other == std::max(a, b)) return &angle;
+        if (!add) return nullptr;
+        list.push_back({std::max(a, b), 0.0});
+        return &list.back().second;
+    };
+    for (int t : below)
+        for (const auto& e : tet::kEdgeVertices)
+            edge_entry(mesh.tets[t][e[0]], mesh.tets[t][e[1]], true);
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        if (mesh.is_dead(t)) continue;
+        const auto& tv = mesh.tets[t];
+        if (!(vertex_slot[tv[0]] >= 0 || vertex_slot[tv[1]] >= 0 || vertex_slot[tv[2]] >= 0 ||
+              vertex_slot[tv[3]] >= 0))
+            continue;
+        const Vec3 &a = mesh.points[tv[0]], &b = mesh.points[tv[1]], &c = mesh.points[tv[2]],
+                   &d = mesh.points[tv[3]];
+        if (vertex_slot[tv[0]] >= 0) vertex_angle[vertex_slot[tv[0]]] += solid_angle(a, b, c, d);
+        if (vertex_slot[tv[1]] >= 0) vertex_angle[vertex_slot[tv[1]]] += solid_angle(b, a, c, d);
+        if (vertex_slot[tv[2]] >= 0) vertex_angle[vertex_slot[tv[2]]] += solid_angle(c, a, b, d);
+        if (vertex_slot[tv[3]] >= 0) vertex_angle[vertex_slot[tv[3]]] += solid_angle(d, a, b, c);
+        const auto angles = dihedral_angles_deg(a, b, c, d);
+        for (int e = 0; e < 6; ++e)
+            if (double* sum =
+                    edge_entry(tv[tet::kEdgeVertices[e][0]], tv[tet::kEdgeVertices[e][1]], false))
+                *sum += angles[e];
+    }
+    std::vector<Triangle> poor;
+    if (options.kept_surface)
+        for (const auto& tri : boundary)
+            if (triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]) <
+                options.floor)
+            {
+                Triangle key = tri;
+                std::sort(key.begin(), key.end());
+                poor.push_back(key);
+            }
+    std::sort(poor.begin(), poor.end());
+    int forced = 0;
+    for (int t : below)
+    {
+        const auto& tv = mesh.tets[t];
+        bool is_forced = false;
+        for (int v : tv)
+            is_forced = is_forced || (vertex_slot[v] >= 0 && vertex_angle[vertex_slot[v]] <
+                                                                 options.sharp_corner_steradians);
+        for (const auto& e : tet::kEdgeVertices)
+            if (const double* sum = edge_entry(tv[e[0]], tv[e[1]], false))
+                is_forced = is_forced || *sum < options.sharp_ridge_deg;
+        for (int f = 0; f < 4 && !poor.empty(); ++f)
+        {
+            Triangle key;
+            for (int k = 0; k < 3; ++k) key[k] = tv[tet::kFaceVertices[f][k]];
+            std::sort(key.begin(), key.end());
+            is_forced = is_forced || std::binary_search(poor.begin(), poor.end(), key);
+        }
+        forced += is_forced;
+    }
+    return forced;
+}
+
+}  // namespace
+
+QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field,
+                                     const QualityReportOptions& options)
 {
     QualityReport report;
+    report.qe_floor = options.floor;
+    std::vector<int> below;
     const int nv = mesh.num_vertices();
     auto in_range = [nv](const TetVertices& tv) {
         return std::all_of(tv.begin(), tv.end(), [nv](int v) { return v >= 0 && v < nv; });
@@ -184,6 +289,7 @@ QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field
         min_qe = std::min(min_qe, qe);
         qe_ge_05 += qe >= 0.5;
         qe_lt_02 += qe < 0.2;
+        if (qe < options.floor) below.push_back(t);
         ++report.qe_histogram[qe_histogram_bin(qe)];
         const auto normals = face_normals({&a, &b, &c, &d});
         for (const auto& faces : tet::kEdgeFaces)
@@ -214,6 +320,8 @@ QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field
     report.boundary_triangles = static_cast<int>(boundary.size());
     report.declared_triangles = static_cast<int>(mesh.triangles.size());
     report.enclosed_volume = enclosed_volume(mesh.points, boundary);
+    report.below_floor = static_cast<int>(below.size());
+    if (!below.empty()) report.forced_below_floor = count_forced(mesh, below, boundary, options);
     if (!boundary.empty())
     {
         double sum = 0.0, lowest = std::numeric_limits<double>::infinity();
@@ -288,6 +396,10 @@ std::string format_quality_table(const QualityReport& r)
     rows.push_back({"Qe min / mean", fixed(r.min_qe, 6) + " / " + fixed(r.mean_qe, 6)});
     rows.push_back({"Qe >= 0.5", fixed(r.percent_qe_ge_05, 2) + " %"});
     rows.push_back({"Qe < 0.2", fixed(r.percent_qe_lt_02, 2) + " %"});
+    rows.push_back({"Qe < " + fixed(r.qe_floor, 1),
+                    std::to_string(r.below_floor) + " tets (" +
+                        std::to_string(r.forced_below_floor) +
+                        " forced by sharp input ridges or corners, or kept triangles)"});
     {
         std::string bins;
         for (int k = 0; k < 10; ++k) bins += (k ? " " : "") + std::to_string(r.qe_histogram[k]);
@@ -349,6 +461,9 @@ std::string quality_report_json(const QualityReport& r)
     out << "  \"qe_histogram\": " << array(r.qe_histogram) << ",\n";
     out << "  \"percent_qe_ge_05\": " << json_number(r.percent_qe_ge_05) << ",\n";
     out << "  \"percent_qe_lt_02\": " << json_number(r.percent_qe_lt_02) << ",\n";
+    out << "  \"qe_floor\": " << json_number(r.qe_floor) << ",\n";
+    out << "  \"below_floor\": " << r.below_floor << ",\n";
+    out << "  \"forced_below_floor\": " << r.forced_below_floor << ",\n";
     out << "  \"min_dihedral_deg\": " << json_number(r.min_dihedral_deg) << ",\n";
     out << "  \"max_dihedral_deg\": " << json_number(r.max_dihedral_deg) << ",\n";
     out << "  \"min_boundary_triangle_qe\": " << json_number(r.min_boundary_triangle_qe) << ",\n";

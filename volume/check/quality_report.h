@@ -35,6 +35,11 @@ struct QualityReport
     /// numpy.histogram; Qe = 1 goes to bin 9, a negative Qe (inverted tet) to bin 0.
     std::array<int, 10> qe_histogram{};
     double percent_qe_ge_05 = 0.0, percent_qe_lt_02 = 0.0;
+    /// Tets below QualityReportOptions::floor, and among them those forced: with an edge on a
+    /// sharp boundary ridge, a vertex at a sharp boundary corner, or a face on a poor kept
+    /// triangle (no tet there can be good).
+    double qe_floor = 0.3;
+    int below_floor = 0, forced_below_floor = 0;
     double min_dihedral_deg = 0.0, max_dihedral_deg = 0.0;
     double min_boundary_triangle_qe = 0.0, mean_boundary_triangle_qe = 0.0;
     double min_edge_length = 0.0, max_edge_length = 0.0;
@@ -47,9 +52,24 @@ struct QualityReport
     std::array<long, 8> length_ratio_histogram{};  ///< bins of kLengthRatioBinEdges
 };
 
+struct QualityReportOptions
+{
+    double floor = 0.3;  ///< Qe below which tets are counted, and told forced or not
+    /// A boundary edge where the solid's interior dihedral angle is below this is a sharp
+    /// ridge: a tet on it has that dihedral angle or less.
+    double sharp_ridge_deg = 60.0;
+    /// A boundary vertex where the solid's solid angle is below this is a sharp corner: a
+    /// regular tet's vertex (3 acos(1/3) - pi), so no tet there is near regular.
+    double sharp_corner_steradians = 0.5513;
+    /// The boundary triangles were kept from the input (--keep-surface): a tet on one with
+    /// triangle Qe below the floor is forced.
+    bool kept_surface = false;
+};
+
 /// Computes the report in O(n) (unique edges by per-vertex buckets); field may be nullptr
 /// (no size statistics). Dead tets are ignored.
-QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field);
+QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field,
+                                     const QualityReportOptions& options = {});
 
 /// Aligned two-column table for terminals, one measure per line.
 std::string format_quality_table(const QualityReport& report);

@@ -1,0 +1,56 @@
+#pragma once
+// Sizes on thin parts of a solid (ears, fins, fingers): bounded by the thickness there
+// (surface/thickness.h), so that a few layers of tets fit across and none is flattened between
+// the two sides. The bounds go to the surface remesher; the volume field is the given one,
+// lowered near the bounded vertices.
+
+#include <memory>
+#include <vector>
+
+#include "common/size_field.h"
+#include "hdi/knn.h"
+#include "surface/surface_mesh.h"
+
+namespace hdimesh::coupling::detail
+{
+
+struct ThinPartOptions
+{
+    /// A size at most thickness / this. Two: the tets across a part are at least two
+    /// layers deep, so none has all four vertices on the boundary there (bunny's ear, measured).
+    double thickness_per_size = 2.0;
+    /// ... but never below this fraction of the size it bounds (a needle would ask for millions).
+    double min_fraction = 0.125;
+};
+
+struct ThinParts
+{
+    std::vector<double> bounds;  ///< per input vertex; infinity where none; empty: no thin part
+    std::vector<Vec3> points;    ///< the bounded vertices
+    std::vector<double> sizes;   ///< ... their bounds
+    double reach = 0.0;          ///< farthest a bound lowers the field, graded
+};
+
+/// The bounds at the vertices of `input` (closed, outward) where the part is thinner than
+/// thickness_per_size times `sizes` (the size wanted at each vertex); `grade` = hgrad - 1.
+ThinParts find_thin_parts(const surface::SurfaceMesh& input, const std::vector<double>& sizes,
+                          double grade, const ThinPartOptions& options = {});
+
+/// A field lowered near thin parts: the least of the base field and, over the bounded vertices
+/// nearest p, their bound grown by `grade` per unit distance.
+class ThinPartSize : public SizeField
+{
+public:
+    ThinPartSize(std::shared_ptr<const SizeField> base, const ThinParts& thin, double grade);
+    double size(const Vec3& p) const override;
+
+private:
+    static constexpr int kNearest = 8;  // bounded vertices asked per point
+    std::shared_ptr<const SizeField> base_;
+    hdi::KnnIndex index_;
+    std::vector<double> sizes_;
+    double grade_;
+    Vec3 lo_, hi_;  // the bounded vertices' box, widened by the reach
+};
+
+}  // namespace hdimesh::coupling::detail
