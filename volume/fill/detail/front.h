@@ -256,13 +256,17 @@ public:
         double c = std::max(cell, 1e-300);
         for (;;)
         {
-            long total = 1;
+            // in double, each side capped: a tiny cell must not overflow the count
+            double total = 1;
             for (int k = 0; k < 3; ++k)
             {
-                dims_[k] = std::max(1, static_cast<int>(std::ceil(extent[k] / c)));
+                const double cells = std::ceil(extent[k] / c);
+                dims_[k] = cells >= 1 && cells < 1e6 ? static_cast<int>(cells)
+                           : cells >= 1e6            ? 1000000
+                                                     : 1;
                 total *= dims_[k];
             }
-            if (total <= std::max(1L, max_cells)) break;
+            if (total <= static_cast<double>(std::max(1L, max_cells))) break;
             c *= 1.25;
         }
         inverse_cell_ = 1.0 / c;
