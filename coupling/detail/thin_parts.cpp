@@ -44,14 +44,20 @@ ThinPartSize::ThinPartSize(std::shared_ptr<const SizeField> base, const ThinPart
     }
     lo_ -= Vec3::Constant(thin.reach);
     hi_ += Vec3::Constant(thin.reach);
+    smallest_ = sizes_.empty() ? 0.0 : *std::min_element(sizes_.begin(), sizes_.end());
 }
 
 double ThinPartSize::size(const Vec3& p) const
 {
     const double base = base_->size(p);
     if ((p.array() < lo_.array()).any() || (p.array() > hi_.array()).any()) return base;
+    // no bound reaches below base when even the smallest, grown from the nearest, does not:
+    // the same answer as the full search, for one neighbour instead of kNearest
     int nearest[kNearest];
     double squared[kNearest];
+    if (index_.nearest(p, 1, nearest, squared) == 0 ||
+        smallest_ + grade_ * std::sqrt(squared[0]) >= base)
+        return base;
     const int n = index_.nearest(p, kNearest, nearest, squared);
     double size = base;
     for (int k = 0; k < n; ++k)

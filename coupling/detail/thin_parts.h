@@ -50,7 +50,8 @@ private:
     hdi::KnnIndex index_;
     std::vector<double> sizes_;
     double grade_;
-    Vec3 lo_, hi_;  // the bounded vertices' box, widened by the reach
+    double smallest_ = 0;  // the least bound
+    Vec3 lo_, hi_;         // the bounded vertices' box, widened by the reach
 };
 
 }  // namespace hdimesh::coupling::detail
