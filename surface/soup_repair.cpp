@@ -156,14 +156,17 @@ double triangle_area(const std::vector<Vec3d>& p, const Tri& t)
     return 0.5 * OpenMesh::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]).norm();
 }
 
-/// Components over edges with exactly two faces, numbered by their smallest face.
-std::vector<int> face_components(const std::vector<Tri>& triangles, const EdgeRuns& edges,
-                                 int& count)
+/// Walks each component over paired edges from its smallest face, calling reach(f, k, g) for
+/// every pairing met (g across f's edge k) before g joins; a face no walk reached seeds the
+/// next component. Returns the number of components.
+template <class Reach>
+int walk_components(std::size_t faces, const EdgeRuns& edges, std::vector<int>& component,
+                    Reach reach)
 {
-    std::vector<int> component(triangles.size(), -1);
-    count = 0;
+    component.assign(faces, -1);
+    int count = 0;
     std::vector<int> stack;
-    for (std::size_t seed = 0; seed < triangles.size(); ++seed)
+    for (std::size_t seed = 0; seed < faces; ++seed)
     {
         if (component[seed] >= 0) continue;
         component[seed] = count;
@@ -175,15 +178,24 @@ std::vector<int> face_components(const std::vector<Tri>& triangles, const EdgeRu
             for (int k = 0; k < 3; ++k)
             {
                 const int g = edges.other(f, k);
-                if (g >= 0 && component[g] < 0)
-                {
-                    component[g] = count;
-                    stack.push_back(g);
-                }
+                if (g < 0) continue;
+                reach(f, k, g);
+                if (component[g] >= 0) continue;
+                component[g] = count;
+                stack.push_back(g);
             }
         }
         ++count;
     }
+    return count;
+}
+
+/// Components over paired edges, numbered by their smallest face.
+std::vector<int> face_components(const std::vector<Tri>& triangles, const EdgeRuns& edges,
+                                 int& count)
+{
+    std::vector<int> component;
+    count = walk_components(triangles.size(), edges, component, [](int, int, int) {});
     return component;
 }
 
@@ -361,46 +373,22 @@ private:
     {
         const EdgeRuns edges = paired_edges(true);
         auto& tris = soup_.triangles;
-        std::vector<char> seen(tris.size(), 0);
         std::size_t flipped = 0;
-        std::vector<int> stack;
-        for (std::size_t seed = 0; seed < tris.size(); ++seed)
-        {
-            if (seen[seed]) continue;
-            seen[seed] = 1;
-            stack.assign(1, static_cast<int>(seed));
-            while (!stack.empty())
-            {
-                const int f = stack.back();
-                stack.pop_back();
-                for (int k = 0; k < 3; ++k)
-                {
-                    const int g = edges.other(f, k);
-                    if (g < 0) continue;
-                    const auto [lo, hi] = edges.edge(edges.run_of(f, k));
-                    const int a = has_directed(tris[f], lo, hi) ? lo : hi;
-                    const int b = a == lo ? hi : lo;
-                    const bool same_direction = has_directed(tris[g], a, b);
-                    if (seen[g])
-                    {
-                        if (same_direction)
-                            throw InputError(source_ + ": non-orientable surface (at triangle " +
-                                             std::to_string(g + 1) + ")");
-                        continue;
-                    }
-                    if (same_direction)
-                    {
-                        if (options_.strict)
-                            refuse("triangles " + std::to_string(f + 1) + " and " +
-                                   std::to_string(g + 1) + " are oriented inconsistently");
-                        std::swap(tris[g][1], tris[g][2]);
-                        ++flipped;
-                    }
-                    seen[g] = 1;
-                    stack.push_back(g);
-                }
-            }
-        }
+        std::vector<int> component;
+        walk_components(tris.size(), edges, component, [&](int f, int k, int g) {
+            const auto [lo, hi] = edges.edge(edges.run_of(f, k));
+            const int a = has_directed(tris[f], lo, hi) ? lo : hi;
+            const int b = a == lo ? hi : lo;
+            if (!has_directed(tris[g], a, b)) return;  // they agree
+            if (component[g] >= 0)
+                throw InputError(source_ + ": non-orientable surface (at triangle " +
+                                 std::to_string(g + 1) + ")");
+            if (options_.strict)
+                refuse("triangles " + std::to_string(f + 1) + " and " + std::to_string(g + 1) +
+                       " are oriented inconsistently");
+            std::swap(tris[g][1], tris[g][2]);
+            ++flipped;
+        });
         report_.reoriented_faces += flipped;
         if (flipped)
             note("turned " + std::to_string(flipped) +

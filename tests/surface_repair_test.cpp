@@ -26,24 +26,27 @@ using surface::Vec3d;
 namespace
 {
 
+/// A soup of a fixture's points and triangles, every ref 1.
+template <class Points, class Triangles>
+TriangleSoup soup_of(const Points& points, const Triangles& triangles)
+{
+    TriangleSoup soup;
+    for (const auto& p : points) soup.points.emplace_back(p[0], p[1], p[2]);
+    for (const auto& t : triangles) soup.triangles.push_back({t[0], t[1], t[2]});
+    soup.refs.assign(soup.triangles.size(), 1);
+    return soup;
+}
+
 TriangleSoup icosphere_soup(int levels)
 {
     const hdi::TriangleSurface s = fixtures::icosphere(levels);
-    TriangleSoup soup;
-    for (const auto& p : s.points) soup.points.emplace_back(p[0], p[1], p[2]);
-    for (const auto& t : s.triangles) soup.triangles.push_back({t[0], t[1], t[2]});
-    soup.refs.assign(soup.triangles.size(), 1);
-    return soup;
+    return soup_of(s.points, s.triangles);
 }
 
 TriangleSoup cube_soup(int n)
 {
     const fixtures::GridSurface s = fixtures::grid_cube(n);
-    TriangleSoup soup;
-    for (const auto& p : s.points) soup.points.emplace_back(p[0], p[1], p[2]);
-    for (const auto& t : s.triangles) soup.triangles.push_back({t[0], t[1], t[2]});
-    soup.refs.assign(soup.triangles.size(), 1);
-    return soup;
+    return soup_of(s.points, s.triangles);
 }
 
 VolumeFromSurfaceOptions uniform(double h)

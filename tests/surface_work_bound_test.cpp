@@ -99,6 +99,41 @@ double diagonal_of(const surface::TriangleSoup& soup)
 
 }  // namespace
 
+/// Tolerance options no vertex on the unit sphere can meet: the model points at radius 1.3,
+/// nothing but the bounds to stop the splits.
+surface::ToleranceOptions unreachable(int model_points)
+{
+    surface::ToleranceOptions tolerance;
+    tolerance.tolerance = 0.01;
+    for (const Vec3d& p : surface::fixtures::sphere_points(model_points))
+        tolerance.model_points.push_back(1.3 * p);
+    tolerance.min_length_ratio = 1e-9;
+    tolerance.snap_min_angle_deg = 0.0;
+    return tolerance;
+}
+
+/// The tolerance refinement on `mesh`, projected onto the unit sphere: one call, or a second
+/// (the final one) after it; then the bounds reached are noted. The run's report.
+surface::RemeshReport refine_on_sphere(surface::SurfaceMesh& mesh,
+                                       const surface::ToleranceOptions& tolerance,
+                                       const surface::ToleranceRefinementOptions& options,
+                                       bool twice)
+{
+    const surface::SphereProjector sphere(Vec3d(0, 0, 0), 1.0);
+    surface::RemeshOptions loop;
+    loop.size = [](const Vec3d&) { return 1.0; };
+    surface::detail::ChangeLog log;
+    surface::detail::RemeshRun run(mesh, loop, sphere, log.wrap({}));
+    surface::detail::ToleranceKeeper keeper(run, tolerance);
+    surface::detail::ToleranceRefinement refinement(run, keeper, log, tolerance, options);
+    run.update_sizes();
+    refinement.refine(false);
+    if (twice) refinement.refine(true);
+    refinement.note_bounds_reached();
+    mesh.garbage_collection();
+    return run.report;
+}
+
 TEST_CASE("spiky coarse shapes go through the surface pass and the fill, the checker clean")
 {
     struct Variant
@@ -137,32 +172,17 @@ TEST_CASE("a tolerance out of the model's reach stops the refinement at its boun
     //   projected onto the sphere comes near: without a bound the splits would go on
     surface::SurfaceMesh mesh = surface::fixtures::icosahedron();
     const std::size_t faces = mesh.n_faces();
-    const surface::SphereProjector sphere(Vec3d(0, 0, 0), 1.0);
-    surface::RemeshOptions loop;
-    loop.size = [](const Vec3d&) { return 1.0; };
-    surface::ToleranceOptions tolerance;
-    tolerance.tolerance = 0.01;
-    for (const Vec3d& p : surface::fixtures::sphere_points(200))
-        tolerance.model_points.push_back(1.3 * p);
-    tolerance.min_length_ratio = 1e-9;  // nothing else stops the splits
-    tolerance.snap_min_angle_deg = 0.0;
+    const surface::ToleranceOptions tolerance = unreachable(200);
     surface::ToleranceRefinementOptions options;
     options.rounds = 1000;
     options.short_edge_budget = 1.0;
     options.work_per_face = 3.0;
     options.min_work = 100;
-    surface::detail::ChangeLog log;
-    surface::detail::RemeshRun run(mesh, loop, sphere, log.wrap({}));
-    surface::detail::ToleranceKeeper keeper(run, tolerance);
-    surface::detail::ToleranceRefinement refinement(run, keeper, log, tolerance, options);
-    run.update_sizes();
-    refinement.refine(false);
-    refinement.refine(true);  // the bound is shared by the calls: this one does nothing
-    refinement.note_bounds_reached();
-    mesh.garbage_collection();
-    CHECK(run.report.refinement_splits <= 3 * faces + 100);
-    REQUIRE(run.report.notes.size() == 1);
-    CHECK(run.report.notes[0].find("work bound") != std::string::npos);
+    // the bound is shared by the calls: the second does nothing
+    const surface::RemeshReport report = refine_on_sphere(mesh, tolerance, options, true);
+    CHECK(report.refinement_splits <= 3 * faces + 100);
+    REQUIRE(report.notes.size() == 1);
+    CHECK(report.notes[0].find("work bound") != std::string::npos);
     CHECK(surface::fixtures::euler(mesh) == 2);
     CHECK(surface::fixtures::manifold_and_nondegenerate(mesh));
 }
@@ -171,33 +191,18 @@ TEST_CASE("the refinement splits no edge below its floor")
 {
     // The same unreachable points, no work bound, 1000 rounds: the floor alone ends the splits.
     surface::SurfaceMesh mesh = surface::fixtures::icosahedron();
-    const surface::SphereProjector sphere(Vec3d(0, 0, 0), 1.0);
-    surface::RemeshOptions loop;
-    loop.size = [](const Vec3d&) { return 1.0; };
-    surface::ToleranceOptions tolerance;
-    tolerance.tolerance = 0.01;
-    for (const Vec3d& p : surface::fixtures::sphere_points(50))
-        tolerance.model_points.push_back(1.3 * p);
-    tolerance.min_length_ratio = 1e-9;
-    tolerance.snap_min_angle_deg = 0.0;
+    surface::ToleranceOptions tolerance = unreachable(50);
     tolerance.min_split_length = 0.1;  // the splits end where edges are under 0.2
     surface::ToleranceRefinementOptions options;
     options.rounds = 1000;
     options.short_edge_budget = 1.0;
     options.work_per_face = -1.0;
-    surface::detail::ChangeLog log;
-    surface::detail::RemeshRun run(mesh, loop, sphere, log.wrap({}));
-    surface::detail::ToleranceKeeper keeper(run, tolerance);
-    surface::detail::ToleranceRefinement refinement(run, keeper, log, tolerance, options);
-    run.update_sizes();
-    refinement.refine(false);
-    refinement.note_bounds_reached();
-    mesh.garbage_collection();
+    const surface::RemeshReport report = refine_on_sphere(mesh, tolerance, options, false);
     // Ended by the floor, not the rounds: no more triangles than equilateral ones of the floor's
     // side cover the sphere.
     const double floor_triangle = 0.25 * std::sqrt(3.0) * 0.1 * 0.1;
     CHECK(static_cast<double>(mesh.n_faces()) <= 4.0 * 3.14159265358979323846 / floor_triangle);
-    CHECK(run.report.refinement_splits > 0);
-    REQUIRE(run.report.notes.size() == 1);
-    CHECK(run.report.notes[0].find("refused") != std::string::npos);
+    CHECK(report.refinement_splits > 0);
+    REQUIRE(report.notes.size() == 1);
+    CHECK(report.notes[0].find("refused") != std::string::npos);
 }
