@@ -17,7 +17,7 @@ namespace hdimesh::coupling::detail
 struct ThinPartOptions
 {
     /// A size at most thickness / this. Two: the tets across a part are at least two
-    /// layers deep, so none has all four vertices on the boundary there (bunny's ear, measured).
+    /// layers deep, so none has all four vertices on the boundary there.
     double thickness_per_size = 2.0;
     /// ... but never below this fraction of the size it bounds (a needle would ask for millions).
     double min_fraction = 0.125;
