@@ -693,6 +693,18 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
             const std::vector<Triangle> faces = regions.region_faces(static_cast<int>(r));
             volume::CavityFill fill =
                 volume::fill_cavity(mesh, faces, report.field.get(), options.fill);
+            // a front stalled in a part thinner than its sizes closes with fewer points; the
+            // refinement then brings the sizes back
+            for (double scale = 2.0; !fill.filled && scale <= 8.0; scale *= 2.0)
+            {
+                const volume::ScaledSize coarser(*report.field, scale);
+                fill = volume::fill_cavity(mesh, faces, &coarser, options.fill);
+                if (fill.filled)
+                    report.repairs.push_back(source + ": region " + std::to_string(ref) +
+                                             ": the fill closed at " +
+                                             std::to_string(static_cast<int>(scale)) +
+                                             " x the sizes (it stalled at them); refined after");
+            }
             if (!fill.filled)
                 throw TopologyError(source + ": region " + std::to_string(ref) + " (" +
                                     std::to_string(faces.size()) +

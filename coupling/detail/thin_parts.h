@@ -4,11 +4,11 @@
 // the two sides. The bounds go to the surface remesher; the volume field is the given one,
 // lowered near the bounded vertices.
 
+#include <array>
 #include <memory>
 #include <vector>
 
 #include "common/size_field.h"
-#include "hdi/knn.h"
 #include "surface/surface_mesh.h"
 
 namespace hdimesh::coupling::detail
@@ -36,8 +36,9 @@ struct ThinParts
 ThinParts find_thin_parts(const surface::SurfaceMesh& input, const std::vector<double>& sizes,
                           double grade, const ThinPartOptions& options = {});
 
-/// A field lowered near thin parts: the least of the base field and, over the bounded vertices
-/// nearest p, their bound grown by `grade` per unit distance.
+/// A field lowered near thin parts: the least of the base field and, over the bounded vertices,
+/// their bound grown by `grade` per unit distance. A grid of cells over the bounded vertices'
+/// reach lists, per cell, the vertices that can give the least in it, so a lookup scans a few.
 class ThinPartSize : public SizeField
 {
 public:
@@ -45,13 +46,16 @@ public:
     double size(const Vec3& p) const override;
 
 private:
-    static constexpr int kNearest = 8;  // bounded vertices asked per point
     std::shared_ptr<const SizeField> base_;
-    hdi::KnnIndex index_;
+    std::vector<Vec3> points_;
     std::vector<double> sizes_;
     double grade_;
-    double smallest_ = 0;  // the least bound
-    Vec3 lo_, hi_;         // the bounded vertices' box, widened by the reach
+    Vec3 lo_ = Vec3::Zero();  // the grid's corner: the bounded vertices' box less the reach
+    double cell_ = 1.0;       // the cells' side
+    std::array<int, 3> n_{};  // cells per axis (all 0: no bounded vertex)
+    std::vector<int> start_;  // cell c's candidates: candidates_[start_[c] .. start_[c + 1])
+    std::vector<int> candidates_;
+    std::vector<double> lower_;  // per candidate, the least it can give in its cell (ascending)
 };
 
 }  // namespace hdimesh::coupling::detail
