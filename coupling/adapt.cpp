@@ -13,6 +13,7 @@
 #include "common/size_quality.h"
 #include "common/stage_timer.h"
 #include "coupling/boundary_map.h"
+#include "coupling/detail/boundary_floor.h"
 #include "surface/features.h"
 #include "surface/hdi_projection.h"
 #include "surface/surface_model.h"
@@ -31,6 +32,8 @@ namespace
 // Surface passes at most, another while the volume's splits changed more than this fraction of
 // the triangles the last one left (a few too long edges are no reason to remesh it all again).
 constexpr int kSurfaceRounds = 3;
+constexpr double kQualityFloor = 0.3;  // the issue 41 floor: no tet under it unless forced
+constexpr int kFloorRounds = 3;        // boundary slides, each followed by a repair
 constexpr double kSurfaceRepeatFraction = 0.01;
 constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
 constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
@@ -92,6 +95,7 @@ void apply_switches(const AdaptSwitches& switches, AdaptOptions& options)
     options.project = !switches.no_projection;
     // the surface pass splits and collapses
     options.surface = !switches.nosurf && insert;
+    options.slide_boundary = !switches.nosurf && !switches.nomove;
     options.optimizer.swap = !switches.noswap;
     options.optimizer.move = !switches.nomove;
     options.surface_settings.swap = !switches.noswap;  // Mmg's switches hold on both meshes
@@ -399,6 +403,23 @@ void finish(AdaptState& s)
     if (!s.mesh.has_adjacency()) s.mesh.build_adjacency();
 }
 
+/// Tets still under the floor whose boundary vertices can slide along the model to better
+/// shapes (the optimizer keeps the boundary fixed), then the tets around them repaired.
+void raise_floor(AdaptState& s)
+{
+    if (!s.model || !s.options.optimize || !s.options.slide_boundary) return;
+    const StageTimer timer(s.report.seconds_optimize, s.report.cpu_seconds_optimize);
+    OptimizeOptions repair = s.optimizer;
+    repair.bad_quality = kQualityFloor;
+    for (int round = 0; round < kFloorRounds; ++round)
+    {
+        detail::BoundaryFloorOptions floor;
+        floor.floor = kQualityFloor;
+        if (detail::raise_boundary_floor(s.mesh, *s.model, floor).moves == 0) break;
+        improve_bad_elements(s.mesh, *s.volume_field, repair);
+    }
+}
+
 }  // namespace
 
 AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& options)
@@ -418,6 +439,7 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
         if (!surface_round(state)) break;
     optimize(state);
     finish(state);
+    raise_floor(state);
     state.report.seconds_total = clock.wall_seconds();
     state.report.cpu_seconds_total = clock.cpu_seconds();
     return std::move(state.report);

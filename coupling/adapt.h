@@ -49,6 +49,9 @@ struct AdaptOptions
     /// --nosurf, the boundary is only split and projected). Skipped, with the reason in the
     /// report, when coupled_surface_refusal() refuses the mesh.
     bool surface = true;
+    /// Last, boundary vertices of tets under the quality floor slide along the model
+    /// (coupling/detail/boundary_floor.h; off with --nosurf or --nomove).
+    bool slide_boundary = true;
     /// > 0: the boundary's distance bound to the input (--hausd); else the surface remesher's
     /// default (0.0016 of the diagonal for a uniform size, 0.002 otherwise).
     double hausd = 0.0;
