@@ -12,9 +12,9 @@ namespace hdimesh::coupling::detail
 
 struct BoundaryFloorOptions
 {
-    double floor = 0.3;         ///< tets under this Qe have their boundary vertices moved
-    int steps_per_vertex = 6;   ///< ascent steps per vertex and sweep
-    double min_gain = 1e-3;     ///< a move must raise the ball's worst Qe by this
+    double floor = 0.3;          ///< tets under this Qe have their boundary vertices moved
+    int steps_per_vertex = 6;    ///< ascent steps per vertex and sweep
+    double min_gain = 1e-3;      ///< a move must raise the ball's worst Qe by this
     double max_turn_deg = 20.0;  ///< no boundary face of the ball turns more (the shape kept)
 };
 
