@@ -168,7 +168,9 @@ void build_projector(AdaptState& s)
     const StageTimer timer(s.report.seconds_project, s.report.cpu_seconds_project);
     s.model =
         std::make_unique<BoundaryModel>(s.mesh, s.options.features, s.options.projection.model);
-    s.projector = std::make_unique<BoundaryProjector>(*s.model, s.options.projection);
+    ProjectionOptions projection = s.options.projection;
+    projection.workers = s.options.workers;
+    s.projector = std::make_unique<BoundaryProjector>(*s.model, projection);
 }
 
 /// One refinement pass: split the edges too long for `split_field`, project the new boundary
@@ -276,6 +278,7 @@ void refine_to_field(AdaptState& s, const SizeField& target, int stages = 1)
     int pass = static_cast<int>(s.report.passes.size()) + 1;
     const int last = pass + s.options.max_passes;
     RefinePassOptions refine_options;  // the first pass builds the adjacency
+    refine_options.workers = s.options.workers;
     for (int k = std::max(stages, 1) - 1; k > 0; --k)
         refine_stage(s, ScaledSize(target, std::pow(s.options.refine_stage_factor, k)), target,
                      pass, last, refine_options);
