@@ -6,10 +6,7 @@
 namespace hdimesh
 {
 
-int default_thread_count()
-{
-    return std::max(1u, std::thread::hardware_concurrency());
-}
+int default_thread_count() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 Workers::Workers(int threads) : threads_(std::max(1, threads))
 {

@@ -35,12 +35,19 @@ constexpr double kSurfaceRepeatFraction = 0.01;
 constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
 constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
 
-double min_quality(const TetMesh& mesh)
+double min_quality(const TetMesh& mesh, Workers* workers)
 {
-    double worst = 1.0;
-    for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        if (!mesh.is_dead(t)) worst = std::min(worst, mesh.quality(t));
-    return worst;
+    // (a minimum is the same in any order; the chunks fold in order all the same)
+    return parallel_reduce(
+        workers, mesh.tets.size(), 1.0,
+        [&](std::size_t first, std::size_t last) {
+            double worst = 1.0;
+            for (std::size_t t = first; t < last; ++t)
+                if (!mesh.is_dead(static_cast<int>(t)))
+                    worst = std::min(worst, mesh.quality(static_cast<int>(t)));
+            return worst;
+        },
+        [](double a, double b) { return std::min(a, b); });
 }
 
 std::string format_pass_row(const AdaptPassReport& p)
@@ -114,6 +121,7 @@ struct AdaptState
     {
         optimizer = options.optimizer;
         if (!optimizer.messages) optimizer.messages = options.messages;
+        if (!optimizer.workers) optimizer.workers = options.workers;
     }
 
     TetMesh& mesh;
@@ -204,7 +212,7 @@ AdaptPassReport refinement_pass(AdaptState& s, const SizeField& split_field,
     }
     else
     {
-        row.min_quality = min_quality(s.mesh);
+        row.min_quality = min_quality(s.mesh, s.options.workers);
     }
     row.tets = s.mesh.num_live_tets();
     row.vertices = s.mesh.num_vertices();

@@ -1,14 +1,14 @@
 // The deterministic parallel for (common/parallel.h): chunk bounds set by the item count, results
 // combined in chunk order, so 1, 2, 3 and 8 threads give the same bits.
 
+#include "common/parallel.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
-
-#include "common/parallel.h"
 
 using namespace hdimesh;
 
@@ -88,9 +88,12 @@ TEST_CASE("parallel_for: the lowest chunk's exception reaches the caller, for an
         CHECK(message == "chunk 300");
         // the pool still works after a failure
         std::vector<int> out(10, 0);
-        parallel_for(&workers, 10, [&](std::size_t b, std::size_t e) {
-            for (auto i = b; i < e; ++i) out[i] = 1;
-        }, 3);
+        parallel_for(
+            &workers, 10,
+            [&](std::size_t b, std::size_t e) {
+                for (auto i = b; i < e; ++i) out[i] = 1;
+            },
+            3);
         CHECK(out == std::vector<int>(10, 1));
     }
 }
