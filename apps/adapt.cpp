@@ -2,6 +2,7 @@
 // surface bounds (parse -> read -> coupling::run_adapt -> write).
 #include <iostream>
 
+#include "common/parallel.h"
 #include "coupling/adapt_request.h"
 #include "size_flags.h"
 #include "volume/check/quality_report.h"
@@ -19,7 +20,7 @@ int main(int argc, char** argv)
         bool check = false, keep_surface = false, has_hausd = false, strict = false;
         bool memory_set = false;
         double hausd = 0;
-        int verbosity = 1, memory_mb = 0, max_passes = 40;
+        int verbosity = 1, memory_mb = 0, max_passes = 40, threads = default_thread_count();
 
         cli::CommandLine cl("adapt",
                             "Adapts a tetrahedral mesh and its boundary to a size field; the\n"
@@ -82,9 +83,15 @@ int main(int argc, char** argv)
                      "to these (N optional, as Mmg)");
         cli::add_memory_limit(cl, &memory_mb, &memory_set);
         cl.option("--max-passes", &max_passes, "refinement passes at most (default 40)");
+        cl.option("--threads", &threads,
+                  "threads to use (default: the cores present, here " +
+                      std::to_string(default_thread_count()) +
+                      "); the output is the same bytes for any count");
         cli::refuse_mmg_options(cl, cli::MmgTool::mmg3d);
         cl.parse(argc, argv);
         if (memory_set) cli::limit_memory_mb(memory_mb);
+        if (threads < 1)
+            throw cli::UsageError("--threads must be at least 1, got " + std::to_string(threads));
         if (!(switches.ridge_angle > 0 && switches.ridge_angle < 180))
             throw cli::UsageError("--ridge-angle must be between 0 and 180 degrees");
         input = cli::mmg_input_name(input);
@@ -115,6 +122,7 @@ int main(int argc, char** argv)
         request.keep_surface = keep_surface;
         request.strict = strict;
         request.max_passes = max_passes;
+        request.threads = threads;
         request.verbosity = verbosity;
         request.messages = cli::print_messages();
         request.check = check;

@@ -38,12 +38,19 @@ constexpr double kSurfaceRepeatFraction = 0.01;
 constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
 constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
 
-double min_quality(const TetMesh& mesh)
+double min_quality(const TetMesh& mesh, Workers* workers)
 {
-    double worst = 1.0;
-    for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        if (!mesh.is_dead(t)) worst = std::min(worst, mesh.quality(t));
-    return worst;
+    // (a minimum is the same in any order; the chunks fold in order all the same)
+    return parallel_reduce(
+        workers, mesh.tets.size(), 1.0,
+        [&](std::size_t first, std::size_t last) {
+            double worst = 1.0;
+            for (std::size_t t = first; t < last; ++t)
+                if (!mesh.is_dead(static_cast<int>(t)))
+                    worst = std::min(worst, mesh.quality(static_cast<int>(t)));
+            return worst;
+        },
+        [](double a, double b) { return std::min(a, b); });
 }
 
 std::string format_pass_row(const AdaptPassReport& p)
@@ -118,6 +125,7 @@ struct AdaptState
     {
         optimizer = options.optimizer;
         if (!optimizer.messages) optimizer.messages = options.messages;
+        if (!optimizer.workers) optimizer.workers = options.workers;
     }
 
     TetMesh& mesh;
@@ -172,7 +180,9 @@ void build_projector(AdaptState& s)
     const StageTimer timer(s.report.seconds_project, s.report.cpu_seconds_project);
     s.model =
         std::make_unique<BoundaryModel>(s.mesh, s.options.features, s.options.projection.model);
-    s.projector = std::make_unique<BoundaryProjector>(*s.model, s.options.projection);
+    ProjectionOptions projection = s.options.projection;
+    projection.workers = s.options.workers;
+    s.projector = std::make_unique<BoundaryProjector>(*s.model, projection);
 }
 
 /// One refinement pass: split the edges too long for `split_field`, project the new boundary
@@ -206,7 +216,7 @@ AdaptPassReport refinement_pass(AdaptState& s, const SizeField& split_field,
     }
     else
     {
-        row.min_quality = min_quality(s.mesh);
+        row.min_quality = min_quality(s.mesh, s.options.workers);
     }
     row.tets = s.mesh.num_live_tets();
     row.vertices = s.mesh.num_vertices();
@@ -280,6 +290,7 @@ void refine_to_field(AdaptState& s, const SizeField& target, int stages = 1)
     int pass = static_cast<int>(s.report.passes.size()) + 1;
     const int last = pass + s.options.max_passes;
     RefinePassOptions refine_options;  // the first pass builds the adjacency
+    refine_options.workers = s.options.workers;
     for (int k = std::max(stages, 1) - 1; k > 0; --k)
         refine_stage(s, ScaledSize(target, std::pow(s.options.refine_stage_factor, k)), target,
                      pass, last, refine_options);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/messages.h"
+#include "common/parallel.h"
 #include "common/size_field.h"
 #include "coupling/boundary_projection.h"
 #include "coupling/mirror.h"
@@ -72,6 +73,9 @@ struct AdaptOptions
     /// Told after each refinement pass ("pass 3") and as the surface pass and the final
     /// optimization start, with the live tet count; it may throw to stop the run.
     std::function<void(const std::string& stage, int tets)> progress;
+    /// The run's thread pool (common/parallel.h), owned by the caller; null: one thread. The
+    /// output does not depend on its thread count.
+    Workers* workers = nullptr;
 };
 
 /// One refinement pass: what it split, the mesh after it, what the projection did.

@@ -147,7 +147,13 @@ AdaptInput adapt_input_from_mesh(volume::TetMesh mesh)
 AdaptResult run_adapt(AdaptInput input, const AdaptRequest& request)
 {
     if (!(request.hausd >= 0)) throw InputError("hausd must not be negative (0: none)");
-    const AdaptOptions options = adapt_options(request);
+    if (request.threads < 0)
+        throw InputError("threads must be at least 1 (0: the cores present), got " +
+                         std::to_string(request.threads));
+    // one pool for the whole run: its threads start once, not per loop
+    Workers workers(request.threads > 0 ? request.threads : default_thread_count());
+    AdaptOptions options = adapt_options(request);
+    options.workers = &workers;
     AdaptResult result = input.is_surface ? fill_surface(input.surface, request, options)
                                           : adapt_tets(std::move(input.mesh), request, options);
     const auto violations = volume::check_mesh(result.mesh);

@@ -57,7 +57,9 @@ struct AdaptRequest
     /// drops, pinches, holes and shells (surface/soup_repair.h).
     bool strict = false;
     int max_passes = 40;  ///< refinement passes at most
-    int verbosity = 1;    ///< 0 silent, 1 a summary, 2 a table per pass
+    /// Threads the run uses (0: the cores present); the output is the same for any count.
+    int threads = 0;
+    int verbosity = 1;  ///< 0 silent, 1 a summary, 2 a table per pass
     /// Where the report lines (Report), the input's repairs (Trace) and progress go.
     MessageSink messages;
     std::function<void(const std::string& stage, int tets)> progress;  ///< may throw to stop

@@ -44,15 +44,34 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
     ProjectionReport report;
     if (!mesh.has_adjacency()) mesh.build_adjacency();
     const std::vector<int> seeds = vertex_to_tet(mesh);
-    std::vector<int> ball;
-    for (int v : vertices)
-    {
+    const auto wanted = [&](int v) {
         const VertexClass cls = mesh.vertex_classes[v];
-        if (cls != VertexClass::Surface && cls != VertexClass::Ridge) continue;
-        if (seeds[v] < 0) continue;  // a vertex no tet uses has nothing to keep valid
+        // (a vertex no tet uses has nothing to keep valid)
+        return (cls == VertexClass::Surface || cls == VertexClass::Ridge) && seeds[v] >= 0;
+    };
+    // the model's queries (read-only) in parallel at the positions before any move; the moves
+    // below stay serial, in the list's order
+    std::vector<BoundaryFoot> feet(vertices.size());
+    std::vector<Vec3> asked(vertices.size());
+    parallel_for(options_.workers, vertices.size(), [&](std::size_t first, std::size_t last) {
+        for (std::size_t i = first; i < last; ++i)
+        {
+            const int v = vertices[i];
+            if (!wanted(v)) continue;
+            asked[i] = mesh.points[v];
+            feet[i] = model_.project(asked[i], mesh.vertex_classes[v]);
+        }
+    });
+    std::vector<int> ball;
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+    {
+        const int v = vertices[i];
+        if (!wanted(v)) continue;
+        const VertexClass cls = mesh.vertex_classes[v];
         vertex_ball(mesh, seeds[v], v, ball);
         const Vec3 from = mesh.points[v];
-        const BoundaryFoot foot = model_.project(from, cls);
+        // a vertex listed twice moved since: asked again, as the serial loop did
+        const BoundaryFoot foot = from == asked[i] ? feet[i] : model_.project(from, cls);
         const hdi::Projection& target = foot.target;
         const bool exact = foot.exact;
         // (the far-move test guards against a fit gone wrong, not the target's exact foot)

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "common/parallel.h"
 #include "coupling/boundary_model.h"
 #include "volume/mesh/tet_mesh.h"
 
@@ -22,6 +23,9 @@ struct ProjectionOptions
     /// the midpoint of an edge 2s long is s/(2R) s from a surface of radius R it samples: this
     /// allows radii down to twice the edge.
     double max_move_fraction = 0.25;
+    /// The model's queries run on these threads (null: one); the moves are made in the list's
+    /// order on the calling thread, so the result does not depend on them.
+    Workers* workers = nullptr;
 };
 
 struct ProjectionReport

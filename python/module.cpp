@@ -260,7 +260,7 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
                const std::string& bench_field, double hmin, double hmax, double hgrad, double hausd,
                int verbose, const py::object& progress, bool nosurf, bool noinsert, bool noswap,
                bool nomove, bool optim, bool no_optimize, bool keep_surface, bool strict,
-               int max_passes, double ridge_angle, bool no_ridges)
+               int max_passes, double ridge_angle, bool no_ridges, int threads)
 {
     coupling::AdaptInput input = coupling::adapt_input_from_mesh(to_mesh(m));
     coupling::AdaptRequest request;
@@ -280,6 +280,7 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
     request.keep_surface = keep_surface;
     request.strict = strict;
     request.max_passes = max_passes;
+    request.threads = threads;
     request.verbosity = verbose;
     request.messages = print_messages(verbose);
     request.progress = progress_callback(progress);
@@ -359,7 +360,8 @@ PYBIND11_MODULE(_hdimesh, mod)
             py::arg("hausd"), py::arg("verbose"), py::arg("progress"), py::arg("nosurf"),
             py::arg("noinsert"), py::arg("noswap"), py::arg("nomove"), py::arg("optim"),
             py::arg("no_optimize"), py::arg("keep_surface"), py::arg("strict"),
-            py::arg("max_passes"), py::arg("ridge_angle"), py::arg("no_ridges"));
+            py::arg("max_passes"), py::arg("ridge_angle"), py::arg("no_ridges"),
+            py::arg("threads") = 0);
 
     mod.def(
         "remesh_surface",

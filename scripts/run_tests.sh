@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # All tests: installs what is missing, checks the formatting, builds Release and runs CTest, then
 # runs CTest again on a Release build with assertions compiled in (the incremental caches'
-# cross-checks) and on an AddressSanitizer + UndefinedBehaviorSanitizer build.
+# cross-checks), on an AddressSanitizer + UndefinedBehaviorSanitizer build, and the threads tests
+# on a ThreadSanitizer build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -43,4 +44,14 @@ cmake --build build-asan -j"$jobs"
 stage "ASan+UBSan tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --no-tests=error --test-dir build-asan --output-on-failure -j"$jobs" -LE no-sanitizer
+stage "ThreadSanitizer build and the threads tests"
+# only the targets those tests run (the pool's unit test, adapt at 1, 2, 3 and 8 threads): a
+# few minutes, not a third full build and test run
+cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHDIMESH_TSAN=ON "$unity" \
+    -DHDIMESH_BUILD_TESTS=ON -DHDIMESH_BUILD_APPS=ON \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF > /dev/null
+cmake --build build-tsan -j"$jobs" --target parallel_test adapt
+TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+    ctest --no-tests=error --test-dir build-tsan --output-on-failure -j"$jobs" -R '^(parallel_test|threads_)'
 stage "done"

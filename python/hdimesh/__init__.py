@@ -231,8 +231,8 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
     ``progress(stage, tets)`` is called after each refinement pass and as the surface pass and
     the final optimization start; an exception it raises stops the run.
 
-    ``threads``: accepted for the API to come; the engine runs on one thread today, and its
-    output does not depend on the thread count.
+    ``threads``: threads the run uses (None: the cores present); the output is the same bytes
+    for any count (the work is cut into pieces set by the mesh, never by the thread count).
     """
     mesh = _as_mesh(mesh)
     if threads is not None and int(threads) < 1:
@@ -255,7 +255,7 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
                 nomove=bool(nomove), optim=bool(optim), no_optimize=bool(no_optimize),
                 keep_surface=bool(keep_surface), strict=bool(strict),
                 max_passes=int(max_passes), ridge_angle=float(ridge_angle),
-                no_ridges=bool(no_ridges))
+                no_ridges=bool(no_ridges), threads=int(threads) if threads is not None else 0)
 
     def once(m, vertex_sizes):
         return TetMesh._from_native(_hdimesh.adapt(m._native(), sizes=vertex_sizes, **args))

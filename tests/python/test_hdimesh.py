@@ -89,6 +89,16 @@ def test_adapt_matches_the_app(tmp_path):
     assert hdimesh.check(ours) == []
 
 
+def test_threads_give_the_same_mesh():
+    """threads= reaches the engine; the mesh is the same for any count, as the app's."""
+    sphere = hdimesh.read(SPHERE)
+    one = hdimesh.adapt(sphere, bench_field="A", threads=1)
+    for threads in (2, 3, None):
+        same_mesh(one, hdimesh.adapt(sphere, bench_field="A", threads=threads))
+    with pytest.raises(ValueError, match="threads must be at least 1"):
+        hdimesh.adapt(sphere, bench_field="A", threads=0)
+
+
 def test_bounds_alone_keep_the_input_sizes_as_the_app(tmp_path):
     """Only hausd and hmax given: the tet mesh keeps its own sizes within them, as `adapt`."""
     out = tmp_path / "app.mesh"

@@ -280,6 +280,18 @@ double OperatorContext::quality(const TetMesh& mesh, int t) const
     return cached;
 }
 
+void OperatorContext::fill_quality_cache(const TetMesh& mesh, Workers* workers) const
+{
+    if (!cache_enabled_) return;
+    if (quality_cache_.size() < mesh.tets.size())
+        quality_cache_.resize(mesh.tets.size(), std::numeric_limits<double>::quiet_NaN());
+    parallel_for(workers, mesh.tets.size(), [&](std::size_t first, std::size_t last) {
+        for (std::size_t t = first; t < last; ++t)
+            if (!mesh.is_dead(static_cast<int>(t)) && std::isnan(quality_cache_[t]))
+                quality_cache_[t] = mesh.quality(static_cast<int>(t));
+    });
+}
+
 double OperatorContext::worst_quality(const TetMesh& mesh, const std::vector<int>& tets) const
 {
     double worst = std::numeric_limits<double>::infinity();

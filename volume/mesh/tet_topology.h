@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/parallel.h"
 #include "common/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
@@ -98,6 +99,9 @@ struct OperatorContext
     void enable_caches();
     /// Qe of live tet t: mesh.quality(t), from the cache when it is on. Bitwise the same value.
     double quality(const TetMesh& mesh, int t) const;
+    /// With the cache on, computes every live tet's quality not yet cached, on `workers` (null:
+    /// one thread): each slot is written by one thread, and holds mesh.quality(t) as before.
+    void fill_quality_cache(const TetMesh& mesh, Workers* workers) const;
     /// Minimum of quality() over a list of tets (+infinity for an empty list).
     double worst_quality(const TetMesh& mesh, const std::vector<int>& tets) const;
     /// The tets around vertex v, walked from vertex_tet[v] (vertex_ball's order), into `ball`.

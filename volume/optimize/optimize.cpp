@@ -40,8 +40,11 @@ struct QualitySummary
     double fraction_good = 0;  // Qe >= 0.5
 };
 
-QualitySummary summarize_quality(const TetMesh& mesh, const OperatorContext& context)
+QualitySummary summarize_quality(const TetMesh& mesh, const OperatorContext& context,
+                                 Workers* workers)
 {
+    // the qualities not cached yet on the threads; the summary then reads the cache in order
+    context.fill_quality_cache(mesh, workers);
     QualitySummary s;
     s.min = std::numeric_limits<double>::infinity();
     long live = 0, good = 0;
@@ -70,7 +73,7 @@ public:
         context_.enable_caches();
         context_.enable_change_stamps(mesh_);
         for (int k = 0; k < kNumOperators; ++k) report_.operators.push_back({kOperatorNames[k]});
-        report_.min_quality_before = summarize_quality(mesh_, context_).min;
+        report_.min_quality_before = summarize_quality(mesh_, context_, options_.workers).min;
         if (options_.verbosity >= 2)
             emit(options_.messages, MessageKind::Report, "%-6s %-20s %10s %10s %9s %9s %9s\n",
                  "sweep", "operator", "attempts", "successes", "min Qe", "%Qe>=0.5", "time(s)");
@@ -324,7 +327,7 @@ public:
     OptimizeReport finish()
     {
         // measured before compact() renumbers the slots the cache is keyed by
-        report_.min_quality_after = summarize_quality(mesh_, context_).min;
+        report_.min_quality_after = summarize_quality(mesh_, context_, options_.workers).min;
         mesh_.compact();
         if (options_.verbosity >= 2)
             emit(options_.messages, MessageKind::Report, "min Qe %.4f -> %.4f after %d sweeps\n",
@@ -518,7 +521,7 @@ private:
     void print_sweep(const std::string& label, const SweepCounters& before)
     {
         if (options_.verbosity < 2) return;
-        const QualitySummary q = summarize_quality(mesh_, context_);
+        const QualitySummary q = summarize_quality(mesh_, context_, options_.workers);
         for (int k = 0; k < kNumOperators; ++k)
         {
             const long attempts = report_.operators[k].attempts - before[k][0];

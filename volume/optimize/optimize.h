@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/messages.h"
+#include "common/parallel.h"
 #include "common/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
@@ -32,6 +33,9 @@ struct OptimizeOptions
     int verbosity = 0;  ///< 2: a per-sweep table (operator, attempts, successes, min Qe, %
                         ///< Qe>=0.5, time) to `messages`, as Report lines
     MessageSink messages;
+    /// The whole-mesh quality sweeps run on these threads (null: one); the result does not
+    /// depend on them.
+    Workers* workers = nullptr;
 };
 
 struct OperatorStats

@@ -109,9 +109,10 @@ class RefinePass
 {
 public:
     RefinePass(TetMesh& mesh, const SizeField& field, int first_candidate_vertex,
-               bool trust_adjacency, const QuadDiagonalRule* rule = nullptr)
+               bool trust_adjacency, const QuadDiagonalRule* rule = nullptr,
+               Workers* workers = nullptr)
         : mesh_(mesh), field_(field), first_candidate_(first_candidate_vertex),
-          trust_adjacency_(trust_adjacency), rule_(rule)
+          trust_adjacency_(trust_adjacency), rule_(rule), workers_(workers)
     {
     }
 
@@ -218,6 +219,7 @@ private:
     int first_candidate_;
     bool trust_adjacency_;
     const QuadDiagonalRule* rule_;
+    Workers* workers_;
     int num_vertices_before_ = 0;
 
     std::vector<int> midpoint_;          // per edge slot: vertex id, 1 while only marked, or -1
@@ -277,29 +279,37 @@ int RefinePass::mark_edges(const EdgeTable& edges)
         for (int v = 0; v < nv; ++v)
             if (count[v] > 0) locked_size[v] /= count[v];
     }
-    for (int a = 0; a < nv; ++a)
-    {
-        const Vec3& pa = mesh_.points[a];
-        for (int s = edges.row_begin(a), end = edges.row_end(a); s < end; ++s)
+    // the field's queries in parallel, one flag per edge slot (rows by vertex); the marks are
+    // then set serially, as before: touched_[b] belongs to another row
+    std::vector<char> too_long(edges.num_edges(), 0);
+    parallel_for(workers_, static_cast<std::size_t>(nv), [&](std::size_t first, std::size_t last) {
+        for (int a = static_cast<int>(first); a < static_cast<int>(last); ++a)
         {
-            const int b = edges.upper(s);
-            const Vec3& pb = mesh_.points[b];
-            EdgeInField edge = measure_edge(field_, pa, pb);
-            if (!locked.empty())
+            const Vec3& pa = mesh_.points[a];
+            for (int s = edges.row_begin(a), end = edges.row_end(a); s < end; ++s)
             {
-                if (std::binary_search(locked.begin(), locked.end(),
-                                       Edge{std::min(a, b), std::max(a, b)}))
-                    continue;
-                edge.size = std::max({edge.size, locked_size[a], locked_size[b]});
-            }
-            if (edge.too_long())
-            {
-                midpoint_[s] = 1;
-                touched_[a] = touched_[b] = 1;
-                ++marked;
+                const int b = edges.upper(s);
+                const Vec3& pb = mesh_.points[b];
+                EdgeInField edge = measure_edge(field_, pa, pb);
+                if (!locked.empty())
+                {
+                    if (std::binary_search(locked.begin(), locked.end(),
+                                           Edge{std::min(a, b), std::max(a, b)}))
+                        continue;
+                    edge.size = std::max({edge.size, locked_size[a], locked_size[b]});
+                }
+                too_long[s] = edge.too_long();
             }
         }
-    }
+    });
+    for (int a = 0; a < nv; ++a)
+        for (int s = edges.row_begin(a), end = edges.row_end(a); s < end; ++s)
+            if (too_long[s])
+            {
+                midpoint_[s] = 1;
+                touched_[a] = touched_[edges.upper(s)] = 1;
+                ++marked;
+            }
     return marked;
 }
 
@@ -751,7 +761,9 @@ RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field)
 RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field,
                              const RefinePassOptions& options)
 {
-    return RefinePass(mesh, field, options.first_candidate_vertex, options.adjacency_valid).run();
+    return RefinePass(mesh, field, options.first_candidate_vertex, options.adjacency_valid, nullptr,
+                      options.workers)
+        .run();
 }
 
 RefinePassResult refine_pass(TetMesh& mesh, const SizeField& field, const QuadDiagonalRule& rule)

@@ -16,6 +16,7 @@
 #include <functional>
 #include <vector>
 
+#include "common/parallel.h"
 #include "common/size_field.h"
 #include "volume/mesh/tet_mesh.h"
 
@@ -90,6 +91,8 @@ struct RefinePassOptions
     /// the same field, and nothing since made an edge too long (the optimizer's operators and
     /// the projection never do; that pass deferred no edge): they are not measured again.
     int first_candidate_vertex = 0;
+    /// Measures the edges on these threads (null: one); the result does not depend on them.
+    Workers* workers = nullptr;
 };
 
 /// refine_pass, told what holds already.
