@@ -108,6 +108,7 @@ std::size_t ToleranceRefinement::refine(bool after_polish)
     // their faces in point_face_, are then read in memory order); a later round at the points
     // still far after the round before, whose hits it keeps in call.far_known.
     model_points_in_space_order();
+    refused_snaps_.clear();
     if (!work_limit_set_)
     {
         // Proportional to the mesh the loop made, never a time: outputs stay deterministic.
@@ -430,12 +431,21 @@ std::size_t ToleranceRefinement::snap_chord_ends(const std::vector<EdgeCandidate
         const auto he = mesh_.halfedge_handle(e, 0);
         const VertexHandle a = mesh_.from_vertex_handle(he), b = mesh_.to_vertex_handle(he);
         if (snapped_end(e)) continue;
-        const Vec3d mid = 0.5 * (mesh_.point(a) + mesh_.point(b));
+        const std::array<Vec3d, 2> ends = {mesh_.point(a), mesh_.point(b)};
+        const std::size_t i = static_cast<std::size_t>(e.idx());
+        if (i < refused_snaps_.size() && refused_snaps_[i] == ends) continue;
+        const Vec3d mid = 0.5 * (ends[0] + ends[1]);
         const ProjectedPoint on_model =
             ctx_.model.project_near(mid, VertexClass::Smooth, kNoCurve, ctx_.model_face(a));
         if (!on_model.ok) continue;
         const VertexHandle snapped = snap_vertex_of_edge(e, on_model.point);
-        if (!snapped.is_valid()) continue;
+        if (!snapped.is_valid())
+        {
+            if (refused_snaps_.size() <= i)
+                refused_snaps_.resize(i + 1, {kNoPoint, kNoPoint});  // NaN: equal to nothing
+            refused_snaps_[i] = ends;
+            continue;
+        }
         ++snaps;
         note_snap(snapped, call);
     }

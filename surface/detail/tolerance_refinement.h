@@ -154,6 +154,9 @@ private:
     bool work_limit_set_ = false;
     std::size_t work_limit_ = 0, work_done_ = 0, floor_refusals_ = 0;
     bool work_limit_reached_ = false;
+    // Per edge, where its ends were when this call's snap of one of them was refused: not
+    // tried again (each try projects its star's samples) until an end moves.
+    std::vector<std::array<Vec3d, 2>> refused_snaps_;
     // Per model point, by rank in space order: the output face that last proved it within the
     // tolerance, or was its closest (invalid: none yet). Faces are garbage-collected at the end
     // of the pipeline only: handles hold across the whole call.
