@@ -53,6 +53,7 @@ VolumeFromSurfaceOptions fill_options(const AdaptRequest& request, const AdaptOp
     o.refine = !request.switches.noinsert;
     o.optimize = !request.switches.no_optimize;
     o.adapt = options;
+    o.check.workers = options.workers;
     o.remesh.features = options.features;
     o.repair.strict = request.strict;
     o.source = request.source;

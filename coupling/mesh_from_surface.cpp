@@ -248,12 +248,12 @@ std::shared_ptr<const SizeField> clamped(std::shared_ptr<const SizeField> field,
 /// The thin parts of the input against the size wanted at its vertices (uniform or given per
 /// vertex; none when the remesher chooses, from the curvature).
 detail::ThinParts thin_parts(const SurfaceMesh& input, const surface::SurfaceRemeshSettings& s,
-                             double grade)
+                             double grade, const detail::ThinPartOptions& options)
 {
     std::vector<double> wanted = s.input_sizes;
     if (wanted.empty() && s.sizing.hsiz > 0) wanted.assign(input.n_vertices(), s.sizing.hsiz);
     if (wanted.empty()) return {};
-    return detail::find_thin_parts(input, wanted, grade);
+    return detail::find_thin_parts(input, wanted, grade, options);
 }
 
 /// The surface to fill and its sizes: the input kept, or remeshed to the sizing.
@@ -317,7 +317,9 @@ Boundary prepare_boundary(const Boundary& input, const VolumeFromSurfaceOptions&
         settings.sizing.hmax = 2.0 * surface::mean_edge_length(mesh);
     // Thin parts (ears, fins) get sizes their thickness allows, on the surface and in the volume.
     const double grade = settings.sizing.hgrad > 1 ? settings.sizing.hgrad - 1 : 0.3;
-    const detail::ThinParts thin = thin_parts(mesh, settings, grade);
+    detail::ThinPartOptions thin_options;
+    thin_options.workers = options.adapt.workers;
+    const detail::ThinParts thin = thin_parts(mesh, settings, grade, thin_options);
     settings.input_size_bounds = thin.bounds;
     const SurfaceMesh input_mesh = mesh;  // remesh_surface works in place
     report.remesh = surface::remesh_surface(mesh, settings);
@@ -358,10 +360,11 @@ Boundary prepare_boundary(const Boundary& input, const VolumeFromSurfaceOptions&
         if (!(sizing.hsiz > 0))
             for (auto v : mesh.vertices())
                 wanted[v.idx()] = sizing.field->size(surface::to_point(mesh.point(v)));
-        const detail::ThinParts remeshed_thin = detail::find_thin_parts(mesh, wanted, grade);
+        const detail::ThinParts remeshed_thin =
+            detail::find_thin_parts(mesh, wanted, grade, thin_options);
         if (!remeshed_thin.points.empty())
-            report.field =
-                std::make_shared<detail::ThinPartSize>(report.field, remeshed_thin, grade);
+            report.field = std::make_shared<detail::ThinPartSize>(report.field, remeshed_thin,
+                                                                  grade, options.adapt.workers);
     }
     report.field = clamped(report.field, sizing);
     return remeshed;
@@ -520,18 +523,20 @@ void soup_arrays(const TriangleSoup& soup, std::vector<Vec3>& points,
 /// to note_crossings.
 void cut_out_crossings(TriangleSoup& soup, std::vector<int>& source_point,
                        const surface::SoupRepairOptions& repair, const std::string& source,
-                       std::vector<std::string>& notes)
+                       Workers* workers, std::vector<std::string>& notes)
 {
     std::vector<Vec3> points;
     std::vector<Triangle> triangles;
     volume::SurfaceCheckOptions topology;
     topology.check_self_intersections = false;
+    volume::SurfaceCheckOptions crossings;
+    crossings.workers = workers;
     for (int round = 0; round < kCutRounds; ++round)
     {
         soup_arrays(soup, points, triangles);
         std::vector<char> crossing(triangles.size(), 0);
         int pairs = 0;
-        for (const auto& defect : volume::check_closed_surface(points, triangles))
+        for (const auto& defect : volume::check_closed_surface(points, triangles, crossings))
             if (defect.kind == volume::SurfaceDefectKind::SelfIntersection)
             {
                 ++pairs;
@@ -632,7 +637,7 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
             if (!options.keep_surface && options.check.check_self_intersections)
             {
                 cut_out_crossings(repaired, repair.source_point, repair_options, source,
-                                  report.repairs);
+                                  options.adapt.workers, report.repairs);
                 soup_arrays(repaired, points, triangles);
             }
             if (!options.sizing.vertex_sizes.empty())

@@ -135,40 +135,43 @@ std::vector<double> thickness_at_vertices(const SurfaceMesh& mesh, const Thickne
     tree.build(0, static_cast<int>(tree.corners.size()));
     const double self = options.self_fraction * all.diagonal().norm();
 
-    std::vector<int> stack;
-    for (auto vh : mesh.vertices())
-    {
-        const int v = vh.idx();
-        if (!(normals[v].norm() > 0)) continue;  // deleted, or on no face
-        const Vec3 origin = to_point(mesh.point(vh));
-        const Vec3 direction = -normals[v].normalized();
-        const Vec3 inverse = direction.cwiseInverse();
-        double best = infinity;
-        stack.assign(1, 0);
-        while (!stack.empty())
+    // each vertex's ray is its own: the same answers on any number of threads
+    parallel_for(options.workers, mesh.n_vertices(), [&](std::size_t first, std::size_t last) {
+        std::vector<int> stack;
+        for (std::size_t i = first; i < last; ++i)
         {
-            const Node& node = tree.nodes[stack.back()];
-            stack.pop_back();
-            if (!(enter(node.box, origin, inverse, best) < best)) continue;
-            if (node.count == 0)
+            const int v = static_cast<int>(i);
+            if (!(normals[v].norm() > 0)) continue;  // deleted, or on no face
+            const Vec3 origin = to_point(mesh.point(VertexHandle(v)));
+            const Vec3 direction = -normals[v].normalized();
+            const Vec3 inverse = direction.cwiseInverse();
+            double best = infinity;
+            stack.assign(1, 0);
+            while (!stack.empty())
             {
-                stack.push_back(node.left);
-                stack.push_back(node.right);
-                continue;
+                const Node& node = tree.nodes[stack.back()];
+                stack.pop_back();
+                if (!(enter(node.box, origin, inverse, best) < best)) continue;
+                if (node.count == 0)
+                {
+                    stack.push_back(node.left);
+                    stack.push_back(node.right);
+                    continue;
+                }
+                for (int i = node.first; i < node.first + node.count; ++i)
+                {
+                    const int f = tree.order[i];
+                    const auto& ids = face_vertices[f];
+                    if (ids[0] == v || ids[1] == v || ids[2] == v) continue;
+                    // leaving the solid: the face's outward normal along the ray
+                    if (!(tree.normals[f].dot(direction) > 0)) continue;
+                    const double t = hit(tree.corners[f], origin, direction);
+                    if (t > self && t < best) best = t;
+                }
             }
-            for (int i = node.first; i < node.first + node.count; ++i)
-            {
-                const int f = tree.order[i];
-                const auto& ids = face_vertices[f];
-                if (ids[0] == v || ids[1] == v || ids[2] == v) continue;
-                // leaving the solid: the face's outward normal along the ray
-                if (!(tree.normals[f].dot(direction) > 0)) continue;
-                const double t = hit(tree.corners[f], origin, direction);
-                if (t > self && t < best) best = t;
-            }
+            thickness[v] = best;
         }
-        thickness[v] = best;
-    }
+    });
     return thickness;
 }
 

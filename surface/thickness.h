@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "common/parallel.h"
 #include "surface/surface_mesh.h"
 
 namespace hdimesh::surface
@@ -14,6 +15,7 @@ struct ThicknessOptions
 {
     /// Hits nearer than this fraction of the bbox diagonal are the start's own sheet.
     double self_fraction = 1e-9;
+    Workers* workers = nullptr;  ///< the rays cast on these threads (null: this one)
 };
 
 /// Per vertex of `mesh` (faces oriented outward, no deleted elements): the distance along the

@@ -15,7 +15,9 @@ ThinParts find_thin_parts(const surface::SurfaceMesh& input, const std::vector<d
                           double grade, const ThinPartOptions& options)
 {
     ThinParts thin;
-    const std::vector<double> thickness = surface::thickness_at_vertices(input);
+    surface::ThicknessOptions rays;
+    rays.workers = options.workers;
+    const std::vector<double> thickness = surface::thickness_at_vertices(input, rays);
     std::vector<double> bounds(input.n_vertices(), std::numeric_limits<double>::infinity());
     for (auto v : input.vertices())
     {
@@ -42,7 +44,7 @@ constexpr long kMaxCells = 1L << 18;     // ... and at most this many (memory)
 }  // namespace
 
 ThinPartSize::ThinPartSize(std::shared_ptr<const SizeField> base, const ThinParts& thin,
-                           double grade)
+                           double grade, Workers* workers)
     : base_(std::move(base)), points_(thin.points), sizes_(thin.sizes), grade_(grade)
 {
     if (points_.empty() || !(grade_ > 0)) return;
@@ -58,51 +60,60 @@ ThinPartSize::ThinPartSize(std::shared_ptr<const SizeField> base, const ThinPart
     const Vec3 extent = (hi - lo_).cwiseMax(Vec3::Constant(1e-12 * (hi - lo_).norm() + 1e-300));
     const double target = std::min(kCellsPerPoint * points_.size(), double(kMaxCells));
     cell_ = std::cbrt(extent.prod() / std::max(target, 1.0));
-    auto cells = [&] {
+    auto count_cells = [&] {
         for (int k = 0; k < 3; ++k)
             n_[k] = static_cast<int>(std::min(std::ceil(extent[k] / cell_), double(kMaxCells)));
         for (int& n : n_) n = std::max(n, 1);
         return static_cast<double>(n_[0]) * n_[1] * n_[2];
     };
-    while (cells() > kMaxCells) cell_ *= 1.25;
+    while (count_cells() > kMaxCells) cell_ *= 1.25;
 
     // a cell's candidates: the vertices whose least over the cell is at most the least upper
     // bound any vertex gives over it (U); only they can give the least at a point in it
     const hdi::KnnIndex index(points_);
     const double smallest = *std::min_element(sizes_.begin(), sizes_.end());
     const double half_diagonal = 0.5 * std::sqrt(3.0) * cell_;
-    int nearest[kNearest];
-    double squared[kNearest];
-    std::vector<std::pair<double, int>> cell;
-    start_.reserve(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2] + 1);
-    start_.push_back(0);
-    for (int z = 0; z < n_[2]; ++z)
-        for (int y = 0; y < n_[1]; ++y)
-            for (int x = 0; x < n_[0]; ++x)
+    // each cell's list is its own (the index answers const queries from any thread); the
+    // lists joined in cell order: the same arrays on any number of threads
+    const std::size_t num_cells = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
+    std::vector<std::vector<std::pair<double, int>>> cells(num_cells);
+    parallel_for(workers, num_cells, [&](std::size_t first, std::size_t last) {
+        int nearest[kNearest];
+        double squared[kNearest];
+        for (std::size_t c = first; c < last; ++c)
+        {
+            const int x = static_cast<int>(c % n_[0]), y = static_cast<int>(c / n_[0] % n_[1]),
+                      z = static_cast<int>(c / n_[0] / n_[1]);
+            const Vec3 centre = lo_ + cell_ * Vec3(x + 0.5, y + 0.5, z + 0.5);
+            const int n = index.nearest(centre, kNearest, nearest, squared);
+            double upper = std::numeric_limits<double>::infinity();
+            for (int k = 0; k < n; ++k)
+                upper = std::min(
+                    upper, sizes_[nearest[k]] + grade_ * (std::sqrt(squared[k]) + half_diagonal));
+            const double radius = (upper - smallest) / grade_ + half_diagonal;
+            auto& cell = cells[c];
+            for (const hdi::Neighbour& near : index.within_radius(centre, radius))
             {
-                const Vec3 centre = lo_ + cell_ * Vec3(x + 0.5, y + 0.5, z + 0.5);
-                const int n = index.nearest(centre, kNearest, nearest, squared);
-                double upper = std::numeric_limits<double>::infinity();
-                for (int k = 0; k < n; ++k)
-                    upper = std::min(upper, sizes_[nearest[k]] +
-                                                grade_ * (std::sqrt(squared[k]) + half_diagonal));
-                const double radius = (upper - smallest) / grade_ + half_diagonal;
-                cell.clear();
-                for (const hdi::Neighbour& near : index.within_radius(centre, radius))
-                {
-                    const double lower =
-                        sizes_[near.index] +
-                        grade_ * std::max(0.0, std::sqrt(near.squared_distance) - half_diagonal);
-                    if (lower <= upper) cell.push_back({lower, near.index});
-                }
-                std::sort(cell.begin(), cell.end());  // least first: a lookup stops early
-                for (const auto& [lower, v] : cell)
-                {
-                    candidates_.push_back(v);
-                    lower_.push_back(lower);
-                }
-                start_.push_back(static_cast<int>(candidates_.size()));
+                const double lower =
+                    sizes_[near.index] +
+                    grade_ * std::max(0.0, std::sqrt(near.squared_distance) - half_diagonal);
+                if (lower <= upper) cell.push_back({lower, near.index});
             }
+            std::sort(cell.begin(), cell.end());  // least first: a lookup stops early
+        }
+    });
+    start_.reserve(num_cells + 1);
+    start_.push_back(0);
+    for (auto& cell : cells)
+    {
+        for (const auto& [lower, v] : cell)
+        {
+            candidates_.push_back(v);
+            lower_.push_back(lower);
+        }
+        start_.push_back(static_cast<int>(candidates_.size()));
+        std::vector<std::pair<double, int>>().swap(cell);
+    }
 }
 
 double ThinPartSize::size(const Vec3& p) const

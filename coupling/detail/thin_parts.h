@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "common/parallel.h"
 #include "common/size_field.h"
 #include "surface/surface_mesh.h"
 
@@ -21,6 +22,7 @@ struct ThinPartOptions
     double thickness_per_size = 2.0;
     /// ... but never below this fraction of the size it bounds (a needle would ask for millions).
     double min_fraction = 0.125;
+    Workers* workers = nullptr;  ///< thickness rays and the volume field's grid on these threads
 };
 
 struct ThinParts
@@ -42,7 +44,8 @@ ThinParts find_thin_parts(const surface::SurfaceMesh& input, const std::vector<d
 class ThinPartSize : public SizeField
 {
 public:
-    ThinPartSize(std::shared_ptr<const SizeField> base, const ThinParts& thin, double grade);
+    ThinPartSize(std::shared_ptr<const SizeField> base, const ThinParts& thin, double grade,
+                 Workers* workers = nullptr);
     double size(const Vec3& p) const override;
 
 private:

@@ -173,7 +173,7 @@ struct Box
 /// Pairs of faces that meet, from a uniform grid of their boxes: each pair is tested in the
 /// one cell holding the low corner of the two boxes' overlap.
 void add_self_intersections(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
-                            const std::vector<char>& skip, int max_pairs,
+                            const std::vector<char>& skip, int max_pairs, Workers* workers,
                             std::vector<SurfaceDefect>& out)
 {
     std::vector<int> faces;
@@ -227,26 +227,43 @@ void add_self_intersections(const std::vector<Vec3>& points, const std::vector<T
     }
     std::sort(entries.begin(), entries.end());
 
-    std::vector<std::pair<int, int>> crossing;
+    // the cells' pair tests are independent: run on the workers, then taken in cell order
+    // with the serial cut-off, so the pairs found are the same for any number of threads
+    std::vector<std::size_t> starts;
     for (std::size_t begin = 0; begin < entries.size();)
     {
+        starts.push_back(begin);
         std::size_t end = begin;
         while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
-        for (std::size_t x = begin; x < end; ++x)
-            for (std::size_t y = x + 1; y < end; ++y)
-            {
-                const int f = entries[x].second, g = entries[y].second;
-                const Box &bf = boxes[f], &bg = boxes[g];
-                if ((bf.lo.array() > bg.hi.array()).any() || (bg.lo.array() > bf.hi.array()).any())
-                    continue;
-                const Vec3 corner = bf.lo.cwiseMax(bg.lo);
-                if (key(index(corner[0], 0), index(corner[1], 1), index(corner[2], 2)) !=
-                    entries[begin].first)
-                    continue;
-                if (triangles_intersect(points, triangles[f], triangles[g]))
-                    crossing.push_back({std::min(f, g), std::max(f, g)});
-            }
         begin = end;
+    }
+    starts.push_back(entries.size());
+    std::vector<std::vector<std::pair<int, int>>> found(starts.size() - 1);
+    parallel_for(
+        workers, found.size(),
+        [&](std::size_t first, std::size_t last) {
+            for (std::size_t c = first; c < last; ++c)
+                for (std::size_t x = starts[c]; x < starts[c + 1]; ++x)
+                    for (std::size_t y = x + 1; y < starts[c + 1]; ++y)
+                    {
+                        const int f = entries[x].second, g = entries[y].second;
+                        const Box &bf = boxes[f], &bg = boxes[g];
+                        if ((bf.lo.array() > bg.hi.array()).any() ||
+                            (bg.lo.array() > bf.hi.array()).any())
+                            continue;
+                        const Vec3 corner = bf.lo.cwiseMax(bg.lo);
+                        if (key(index(corner[0], 0), index(corner[1], 1), index(corner[2], 2)) !=
+                            entries[starts[c]].first)
+                            continue;
+                        if (triangles_intersect(points, triangles[f], triangles[g]))
+                            found[c].push_back({std::min(f, g), std::max(f, g)});
+                    }
+        },
+        64);
+    std::vector<std::pair<int, int>> crossing;
+    for (const auto& pairs : found)
+    {
+        crossing.insert(crossing.end(), pairs.begin(), pairs.end());
         if (static_cast<int>(crossing.size()) >= max_pairs) break;
     }
     std::sort(crossing.begin(), crossing.end());
@@ -354,7 +371,7 @@ std::vector<SurfaceDefect> check_closed_surface(const std::vector<Vec3>& points,
         std::vector<char> not_tested = skip;
         for (int f = 0; f < num_faces; ++f) not_tested[f] |= flat[f];
         add_self_intersections(points, triangles, not_tested,
-                               std::max(1, options.max_intersections), defects);
+                               std::max(1, options.max_intersections), options.workers, defects);
     }
     std::stable_sort(
         defects.begin(), defects.end(),

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/parallel.h"
 #include "volume/mesh/geometry.h"
 #include "volume/mesh/tet_mesh.h"
 
@@ -57,6 +58,7 @@ struct SurfaceCheckOptions
     bool check_self_intersections = true;
     /// The search stops after this many crossing pairs (one is enough to refuse).
     int max_intersections = 1000;
+    Workers* workers = nullptr;  ///< the face-pair tests on these threads (null: this one)
 };
 
 /// Every defect of the surface, topology first, then geometry; empty when it bounds a volume
