@@ -12,6 +12,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <unordered_set>
 
@@ -440,12 +441,20 @@ std::function<double(const Vec3d&)> hole_size(const SurfaceSizing& s, const Tria
 /// checked before the fill); a wider crossing (two parts through each other) is refused.
 int note_crossings(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
                    const std::string& source, const std::function<double(const Vec3d&)>& size,
+                   std::optional<std::vector<volume::SurfaceDefect>> known, Workers* workers,
                    std::vector<std::string>& notes)
 {
     std::vector<volume::SurfaceDefect> crossings;
-    for (auto& defect : volume::check_closed_surface(points, triangles))
-        if (defect.kind == volume::SurfaceDefectKind::SelfIntersection)
-            crossings.push_back(std::move(defect));
+    if (known)
+        crossings = std::move(*known);
+    else
+    {
+        volume::SurfaceCheckOptions check;
+        check.workers = workers;
+        for (auto& defect : volume::check_closed_surface(points, triangles, check))
+            if (defect.kind == volume::SurfaceDefectKind::SelfIntersection)
+                crossings.push_back(std::move(defect));
+    }
     if (crossings.empty()) return 0;
     // clusters: faces of one pair, and faces sharing a point, belong together
     std::vector<int> faces;
@@ -521,9 +530,9 @@ void soup_arrays(const TriangleSoup& soup, std::vector<Vec3>& points,
 /// holes closed again (a local repair in bounded rounds, as MeshFix's): a round is kept only
 /// when its holes close and the surface stays closed and manifold. What still crosses is left
 /// to note_crossings.
-void cut_out_crossings(TriangleSoup& soup, std::vector<int>& source_point,
-                       const surface::SoupRepairOptions& repair, const std::string& source,
-                       Workers* workers, std::vector<std::string>& notes)
+std::optional<std::vector<volume::SurfaceDefect>> cut_out_crossings(
+    TriangleSoup& soup, std::vector<int>& source_point, const surface::SoupRepairOptions& repair,
+    const std::string& source, Workers* workers, std::vector<std::string>& notes)
 {
     std::vector<Vec3> points;
     std::vector<Triangle> triangles;
@@ -535,14 +544,15 @@ void cut_out_crossings(TriangleSoup& soup, std::vector<int>& source_point,
     {
         soup_arrays(soup, points, triangles);
         std::vector<char> crossing(triangles.size(), 0);
-        int pairs = 0;
-        for (const auto& defect : volume::check_closed_surface(points, triangles, crossings))
+        std::vector<volume::SurfaceDefect> found;
+        for (auto& defect : volume::check_closed_surface(points, triangles, crossings))
             if (defect.kind == volume::SurfaceDefectKind::SelfIntersection)
             {
-                ++pairs;
                 for (int f : defect.faces) crossing[f] = 1;
+                found.push_back(std::move(defect));
             }
-        if (!pairs) return;
+        const int pairs = static_cast<int>(found.size());
+        if (!pairs) return found;
         std::vector<char> near(points.size(), 0);
         for (std::size_t f = 0; f < triangles.size(); ++f)
             if (crossing[f])
@@ -569,10 +579,10 @@ void cut_out_crossings(TriangleSoup& soup, std::vector<int>& source_point,
         }
         catch (const InputError&)
         {
-            return;
+            return found;  // the soup kept: its crossings are these
         }
         soup_arrays(trial, points, triangles);
-        if (!volume::check_closed_surface(points, triangles, topology).empty()) return;
+        if (!volume::check_closed_surface(points, triangles, topology).empty()) return found;
         for (int& p : closed.source_point) p = source_point[p];
         source_point = std::move(closed.source_point);
         soup = std::move(trial);
@@ -581,6 +591,7 @@ void cut_out_crossings(TriangleSoup& soup, std::vector<int>& source_point,
                         " crossing pair(s) (the first near " + format_point(first) +
                         ") and closed " + std::to_string(closed.closed_holes) + " hole(s)");
     }
+    return std::nullopt;  // the last round's soup is not checked yet
 }
 
 }  // namespace
@@ -634,10 +645,11 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
                                  "\n(holes up to " +
                                  format_number(repair_options.hole_size_factor) +
                                  " local sizes across are closed; larger ones are refused)");
+            std::optional<std::vector<volume::SurfaceDefect>> crossings;
             if (!options.keep_surface && options.check.check_self_intersections)
             {
-                cut_out_crossings(repaired, repair.source_point, repair_options, source,
-                                  options.adapt.workers, report.repairs);
+                crossings = cut_out_crossings(repaired, repair.source_point, repair_options, source,
+                                              options.adapt.workers, report.repairs);
                 soup_arrays(repaired, points, triangles);
             }
             if (!options.sizing.vertex_sizes.empty())
@@ -651,8 +663,9 @@ TetMesh mesh_volume_from_surface(const TriangleSoup& soup, const VolumeFromSurfa
             }
             refs = repaired.refs;
             if (!options.keep_surface && options.check.check_self_intersections)
-                report.input_crossings = note_crossings(points, triangles, source,
-                                                        repair_options.local_size, report.repairs);
+                report.input_crossings =
+                    note_crossings(points, triangles, source, repair_options.local_size,
+                                   std::move(crossings), options.adapt.workers, report.repairs);
         }
         const volume::SurfaceRegions regions = volume::find_surface_regions(points, triangles);
         report.turned_shells = regions.turned_shells;
