@@ -1,19 +1,25 @@
 // The paper's Table 3 for our runs: data/sphere480.mesh adapted to the three-cylinder field,
-// cases A-E, whole pipeline (refine, project, optimize), Release, one thread unless asked.
+// cases A-E, whole pipeline (refine, project, optimize), Release; each case at 1 and 2 threads
+// unless asked.
 //
-//   bench_adapt [--cases ACE] [--no-projection] [--no-optimize] [--verbose] [--threads N]
+//   bench_adapt [--cases ACE] [--no-projection] [--no-optimize] [--verbose] [--threads N[,M...]]
 //
-// --verbose prints the optimizer's per-sweep tables (operators, attempts, successes, time).
+// --threads: the thread counts each case runs at (default 1,2); every count must give the same
+// mesh, else the bench names the case and exits 1. --verbose prints the optimizer's per-sweep
+// tables (operators, attempts, successes, time).
 //
-// Prints one row per case (tets, CPU and wall time, output tets per CPU second, min Qe,
-// % Qe >= 0.5, % Qt >= 0.66, % edges too long, boundary distance to the unit sphere, checker
-// verdict) and the CPU time split.
+// Prints one row per case (tets, CPU time of the first count's run, wall time of the adapt call
+// at each count, output tets per CPU second, min Qe, % Qe >= 0.5, % Qt >= 0.66, % edges too
+// long, boundary distance to the unit sphere, checker verdict), the CPU time split and the mesh
+// digests.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "common/parallel.h"
 #include "coupling/adapt.h"
@@ -43,6 +49,23 @@ std::uint64_t mesh_digest(const TetMesh& mesh)
     return h;
 }
 
+/// "1,2" -> {1, 2}; empty when a count is not an integer >= 1.
+std::vector<int> parse_thread_counts(const char* text)
+{
+    std::vector<int> counts;
+    for (const char* p = text; *p;)
+    {
+        char* end = nullptr;
+        const long n = std::strtol(p, &end, 10);
+        if (end == p || n < 1 || n > 1024 || (*end != ',' && *end != '\0') ||
+            (*end == ',' && end[1] == '\0'))
+            return {};
+        counts.push_back(static_cast<int>(n));
+        p = *end == ',' ? end + 1 : end;
+    }
+    return counts;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -50,7 +73,7 @@ int main(int argc, char** argv)
     std::string cases = "AC";
     coupling::AdaptOptions options;
     options.verbosity = 0;
-    int threads = 1;
+    std::vector<int> thread_counts = {1, 2};
     for (int i = 1; i < argc; ++i)
     {
         if (!std::strcmp(argv[i], "--cases") && i + 1 < argc)
@@ -61,41 +84,73 @@ int main(int argc, char** argv)
             options.optimize = false;
         else if (!std::strcmp(argv[i], "--verbose"))
             options.optimizer.verbosity = 2;
-        else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc && std::atoi(argv[i + 1]) >= 1)
-            threads = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc &&
+                 !(thread_counts = parse_thread_counts(argv[i + 1])).empty())
+            ++i;
         else
         {
             std::fprintf(stderr,
                          "usage: bench_adapt [--cases ABCDE] [--no-projection] [--no-optimize] "
-                         "[--verbose] [--threads N >= 1]\n");
+                         "[--verbose] [--threads N[,M...] each >= 1, default 1,2]\n");
             return 2;
         }
     }
-    Workers workers(threads);
-    options.workers = &workers;
+    // one pool per count, made once: its threads start before the first case, not inside it
+    std::vector<std::unique_ptr<Workers>> pools;
+    for (int n : thread_counts) pools.push_back(std::make_unique<Workers>(n));
     const TetMesh input = read_mesh(std::string(HDIMESH_DATA_DIR) + "/sphere480.mesh");
-    std::printf("sphere480 (%d tets) adapted; projection %s, optimization %s; %d thread%s\n\n",
+    std::string counts_text;
+    for (int n : thread_counts)
+        counts_text += (counts_text.empty() ? "" : ", ") + std::to_string(n);
+    std::printf("sphere480 (%d tets) adapted; projection %s, optimization %s; threads %s\n\n",
                 input.num_live_tets(), options.project ? "on" : "off",
-                options.optimize ? "on" : "off", threads, threads == 1 ? "" : "s");
-    // CPU time of the adapting thread is the figure of record (the machine may be shared);
-    // wall time is printed beside it
-    std::printf("%-4s %10s %9s %8s %8s %9s %8s %9s %10s %9s %8s  %s\n", "case", "tets", "vertices",
-                "cpu s", "wall s", "tets/cpu-s", "min Qe", "Qe>=0.5", "Qt>=0.66", "too long",
-                "max|r-1|", "checker");
+                options.optimize ? "on" : "off", counts_text.c_str());
+    // CPU time of the adapting thread in the first count's run is the figure of record (the
+    // machine may be shared); the adapt call's wall time at each count is printed beside it
+    std::printf("%-4s %10s %9s %8s", "case", "tets", "vertices", "cpu s");
+    for (int n : thread_counts)
+    {
+        const std::string title = "wall " + std::to_string(n) + "t";
+        std::printf(" %8s", title.c_str());
+    }
+    std::printf(" %9s %8s %9s %10s %9s %8s  %s\n", "tets/cpu-s", "min Qe", "Qe>=0.5", "Qt>=0.66",
+                "too long", "max|r-1|", "checker");
     std::string splits, digests;
+    bool all_equal = true;
     for (char c : cases)
     {
-        TetMesh mesh = input;
         const BenchmarkSize field(benchmark_case(c));
+        // the first count's mesh and report make the row; the others give a wall time and a
+        // digest that must equal the first's
+        TetMesh mesh = input;
+        options.workers = pools[0].get();
         const coupling::AdaptReport report = coupling::adapt(mesh, field, options);
+        const std::uint64_t digest = mesh_digest(mesh);
+        std::vector<double> walls = {report.seconds_total};
+        for (std::size_t k = 1; k < pools.size(); ++k)
+        {
+            TetMesh other = input;
+            options.workers = pools[k].get();
+            walls.push_back(coupling::adapt(other, field, options).seconds_total);
+            if (mesh_digest(other) != digest)
+            {
+                std::fprintf(stderr,
+                             "bench_adapt: case %c: %d threads give another mesh than %d "
+                             "(digest %016llx, not %016llx)\n",
+                             c, thread_counts[k], thread_counts[0],
+                             static_cast<unsigned long long>(mesh_digest(other)),
+                             static_cast<unsigned long long>(digest));
+                all_equal = false;
+            }
+        }
         const QualityReport q = compute_quality_report(mesh, &field);
         const auto violations = check_mesh(mesh);
-        std::printf("%-4c %10d %9d %8.2f %8.2f %9.0f %8.4f %8.2f%% %9.2f%% %8.3f%% %8.1e  %s\n", c,
-                    q.tets, q.vertices, report.cpu_seconds_total, report.seconds_total,
-                    q.tets / report.cpu_seconds_total, q.min_qe, q.percent_qe_ge_05,
-                    q.percent_qt_ge_066, q.percent_too_long,
-                    fixtures::max_unit_sphere_deviation(mesh),
-                    violations.empty() ? "clean" : "VIOLATIONS");
+        std::printf("%-4c %10d %9d %8.2f", c, q.tets, q.vertices, report.cpu_seconds_total);
+        for (double wall : walls) std::printf(" %8.2f", wall);
+        std::printf(
+            " %9.0f %8.4f %8.2f%% %9.2f%% %8.3f%% %8.1e  %s\n", q.tets / report.cpu_seconds_total,
+            q.min_qe, q.percent_qe_ge_05, q.percent_qt_ge_066, q.percent_too_long,
+            fixtures::max_unit_sphere_deviation(mesh), violations.empty() ? "clean" : "VIOLATIONS");
         std::fflush(stdout);
         char line[200];
         std::snprintf(line, sizeof line,
@@ -108,10 +163,15 @@ int main(int argc, char** argv)
                       report.passes.size(), report.converged ? "converged" : "NOT converged");
         splits += line;
         std::snprintf(line, sizeof line, "%c: %016llx\n", c,
-                      static_cast<unsigned long long>(mesh_digest(mesh)));
+                      static_cast<unsigned long long>(digest));
         digests += line;
     }
     std::printf("\ntime split\n%s", splits.c_str());
     std::printf("\nmesh digests (FNV-1a of tets and point bits)\n%s", digests.c_str());
+    if (!all_equal)
+    {
+        std::fprintf(stderr, "bench_adapt: FAILED: the mesh depends on the thread count\n");
+        return 1;
+    }
     return 0;
 }

@@ -264,7 +264,8 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
         return once(mesh, _vertex_sizes(sizes, mesh.points))
     if mesh.is_surface:
         return mesh_volume(mesh.points, mesh.triangles, sizes=sizes, hmin=hmin, hmax=hmax,
-                           hgrad=hgrad, hausd=hausd, verbose=verbose, progress=progress)
+                           hgrad=hgrad, hausd=hausd, verbose=verbose, progress=progress,
+                           threads=threads)
     current = mesh
     for _ in range(max(1, int(size_rounds))):
         current = once(current, _vertex_sizes(sizes, current.points))
@@ -304,7 +305,7 @@ def remesh_surface(vertices, faces, hsiz=None, hausd=None, ridge_angle=45.0, ref
 
 def mesh_volume(vertices, faces, hsiz=None, hausd=None, sizes=None, hmin=None, hmax=None,
                 hgrad=None, refs=None, keep_surface=False, strict=False, verbose=0,
-                progress=None):
+                progress=None, threads=None):
     """Fills the volume a closed surface bounds with tets; returns a TetMesh.
 
     The surface is repaired first (coincident points merged, degenerate and duplicated faces
@@ -314,7 +315,12 @@ def mesh_volume(vertices, faces, hsiz=None, hausd=None, sizes=None, hmin=None, h
     ``keep_surface``), checked (crossing faces raise ValueError), filled and optimized. Nested shells make voids, disjoint ones separate
     regions with tet refs 1, 2, ... ``sizes`` is an array (one per input vertex) or a callable
     evaluated on the input vertices.
+
+    ``threads``: threads the run uses (None: the cores present), as :func:`adapt`; the output
+    is the same bytes for any count.
     """
+    if threads is not None and int(threads) < 1:
+        raise ValueError(f"threads must be at least 1, got {threads}")
     vertices = _points("vertices", vertices)
     faces = _ids("faces", faces, 3, len(vertices))
     surface = TetMesh(vertices, triangles=faces, triangle_refs=refs)
@@ -324,7 +330,7 @@ def mesh_volume(vertices, faces, hsiz=None, hausd=None, sizes=None, hmin=None, h
         raise ValueError("no size: give hsiz, sizes or hausd (or keep_surface=True)")
     return adapt(surface, hsiz=hsiz, sizes=_vertex_sizes(sizes, vertices), hmin=hmin,
                  hmax=hmax, hgrad=hgrad, hausd=hausd, keep_surface=keep_surface,
-                 strict=strict, verbose=verbose, progress=progress)
+                 strict=strict, verbose=verbose, progress=progress, threads=threads)
 
 
 def quality(mesh, hsiz=None, sizes=None, bench_field=None):

@@ -99,6 +99,18 @@ def test_threads_give_the_same_mesh():
         hdimesh.adapt(sphere, bench_field="A", threads=0)
 
 
+def test_mesh_volume_threads_give_the_same_mesh():
+    """threads= reaches the volume-from-surface path: the same mesh for any count."""
+    surface = hdimesh.read(ICOSPHERE)
+    one = hdimesh.mesh_volume(surface.points, surface.triangles, hsiz=0.15, threads=1)
+    assert len(one.tets) > 0 and hdimesh.check(one) == []
+    for threads in (2, 3, None):
+        same_mesh(one, hdimesh.mesh_volume(surface.points, surface.triangles, hsiz=0.15,
+                                           threads=threads))
+    with pytest.raises(ValueError, match="threads must be at least 1"):
+        hdimesh.mesh_volume(surface.points, surface.triangles, hsiz=0.15, threads=0)
+
+
 def test_bounds_alone_keep_the_input_sizes_as_the_app(tmp_path):
     """Only hausd and hmax given: the tet mesh keeps its own sizes within them, as `adapt`."""
     out = tmp_path / "app.mesh"
