@@ -32,8 +32,7 @@ namespace
 // Surface passes at most, another while the volume's splits changed more than this fraction of
 // the triangles the last one left (a few too long edges are no reason to remesh it all again).
 constexpr int kSurfaceRounds = 3;
-constexpr double kQualityFloor = 0.3;  // the issue 41 floor: no tet under it unless forced
-constexpr int kFloorRounds = 3;        // boundary slides, each followed by a repair
+constexpr int kFloorRounds = 3;  // boundary slides, each followed by a repair
 constexpr double kSurfaceRepeatFraction = 0.01;
 constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
 constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
@@ -420,12 +419,11 @@ void raise_floor(AdaptState& s)
 {
     if (!s.model || !s.options.optimize || !s.options.slide_boundary) return;
     const StageTimer timer(s.report.seconds_optimize, s.report.cpu_seconds_optimize);
+    const detail::BoundaryFloorOptions floor;
     OptimizeOptions repair = s.optimizer;
-    repair.bad_quality = kQualityFloor;
+    repair.bad_quality = floor.floor;
     for (int round = 0; round < kFloorRounds; ++round)
     {
-        detail::BoundaryFloorOptions floor;
-        floor.floor = kQualityFloor;
         if (detail::raise_boundary_floor(s.mesh, *s.model, floor).moves == 0) break;
         improve_bad_elements(s.mesh, *s.volume_field, repair);
     }

@@ -249,7 +249,7 @@ TEST_CASE("a double cone pinched at its apex: two solids, each tip its own, qual
             add(base, ring(cone, rings) + j, ring(cone, rings) + (j + 1) % around);
     }
     soup.refs.assign(soup.triangles.size(), 1);
-    // 0.15: 3 % of the diagonal (at 4.5 % the tips, 0.06 apart, cross after the remesh: refused)
+    // a size at which the split tips stay apart after the remesh (coarser, they cross: refused)
     const auto report = mesh_checked(soup, uniform(0.15));
     CHECK(count_notes(report.repairs, "split pinched vertex") == 1);
     CHECK(report.regions == 2);

@@ -169,7 +169,7 @@ BoundaryFloorReport raise_boundary_floor(TetMesh& mesh, const BoundaryModel& mod
     for (int t = 0; t < mesh.num_tet_slots(); ++t)
     {
         if (mesh.is_dead(t) || !(mesh.quality(t) < options.floor)) continue;
-        ++report.below_before;
+        ++report.below;
         for (int v : mesh.tets[t])
             if (!locked[v] && (mesh.vertex_classes[v] == VertexClass::Surface ||
                                mesh.vertex_classes[v] == VertexClass::Ridge))
@@ -184,8 +184,6 @@ BoundaryFloorReport raise_boundary_floor(TetMesh& mesh, const BoundaryModel& mod
         Ball ball = gather_ball(mesh, seed, v);
         report.moves += raise_vertex(mesh, model, ball, options);
     }
-    for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        report.below_after += !mesh.is_dead(t) && mesh.quality(t) < options.floor;
     return report;
 }
 

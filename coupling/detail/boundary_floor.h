@@ -20,8 +20,8 @@ struct BoundaryFloorOptions
 
 struct BoundaryFloorReport
 {
-    int below_before = 0, below_after = 0;  ///< tets under the floor
-    int moves = 0;                          ///< boundary vertex moves kept
+    int below = 0;  ///< tets under the floor before the sweep
+    int moves = 0;  ///< boundary vertex moves kept
 };
 
 /// One sweep: moves the Surface and Ridge vertices of tets under options.floor along the model
