@@ -21,6 +21,7 @@ int main(int argc, char** argv)
         bool memory_set = false;
         double hausd = 0;
         int verbosity = 1, memory_mb = 0, max_passes = 40, threads = default_thread_count();
+        int block_tets = coupling::AdaptRequest{}.tets_per_block;
 
         cli::CommandLine cl("adapt",
                             "Adapts a tetrahedral mesh and its boundary to a size field; the\n"
@@ -87,11 +88,19 @@ int main(int argc, char** argv)
                   "threads to use (default: the cores present, here " +
                       std::to_string(default_thread_count()) +
                       "); the output is the same bytes for any count");
+        cl.option("--block-tets", &block_tets,
+                  "tets per block of the decomposition the final optimization runs on, in "
+                  "parallel (default " +
+                      std::to_string(block_tets) +
+                      "; 0: none); the output depends on it, never on --threads");
         cli::refuse_mmg_options(cl, cli::MmgTool::mmg3d);
         cl.parse(argc, argv);
         if (memory_set) cli::limit_memory_mb(memory_mb);
         if (threads < 1)
             throw cli::UsageError("--threads must be at least 1, got " + std::to_string(threads));
+        if (block_tets < 0)
+            throw cli::UsageError("--block-tets must be at least 0, got " +
+                                  std::to_string(block_tets));
         if (!(switches.ridge_angle > 0 && switches.ridge_angle < 180))
             throw cli::UsageError("--ridge-angle must be between 0 and 180 degrees");
         input = cli::mmg_input_name(input);
@@ -123,6 +132,7 @@ int main(int argc, char** argv)
         request.strict = strict;
         request.max_passes = max_passes;
         request.threads = threads;
+        request.tets_per_block = block_tets;
         request.verbosity = verbosity;
         request.messages = cli::print_messages();
         request.check = check;

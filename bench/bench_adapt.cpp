@@ -3,6 +3,7 @@
 // unless asked.
 //
 //   bench_adapt [--cases ACE] [--no-projection] [--no-optimize] [--verbose] [--threads N[,M...]]
+//               [--block-tets N]
 //
 // --threads: the thread counts each case runs at (default 1,2); every count must give the same
 // mesh, else the bench names the case and exits 1. --verbose prints the optimizer's per-sweep
@@ -12,6 +13,7 @@
 // at each count, output tets per CPU second, min Qe, % Qe >= 0.5, % Qt >= 0.66, % edges too
 // long, boundary distance to the unit sphere, checker verdict), the CPU time split and the mesh
 // digests.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -84,6 +86,8 @@ int main(int argc, char** argv)
             options.optimize = false;
         else if (!std::strcmp(argv[i], "--verbose"))
             options.optimizer.verbosity = 2;
+        else if (!std::strcmp(argv[i], "--block-tets") && i + 1 < argc)
+            options.tets_per_block = std::max(0, std::atoi(argv[++i]));
         else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc &&
                  !(thread_counts = parse_thread_counts(argv[i + 1])).empty())
             ++i;
@@ -91,7 +95,8 @@ int main(int argc, char** argv)
         {
             std::fprintf(stderr,
                          "usage: bench_adapt [--cases ABCDE] [--no-projection] [--no-optimize] "
-                         "[--verbose] [--threads N[,M...] each >= 1, default 1,2]\n");
+                         "[--verbose] [--threads N[,M...] each >= 1, default 1,2] "
+                         "[--block-tets N, default 65536, 0: no blocks]\n");
             return 2;
         }
     }

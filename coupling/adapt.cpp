@@ -18,6 +18,7 @@
 #include "surface/hdi_projection.h"
 #include "surface/surface_model.h"
 #include "surface/surface_quality.h"
+#include "volume/mesh/blocks.h"
 #include "volume/mesh/reorder.h"
 #include "volume/size/size_fields.h"
 
@@ -33,6 +34,7 @@ namespace
 // the triangles the last one left (a few too long edges are no reason to remesh it all again).
 constexpr int kSurfaceRounds = 3;
 constexpr int kFloorRounds = 3;  // boundary slides, each followed by a repair
+constexpr int kBandRings = 1;    // the second block round: the tets at the first's frozen faces
 constexpr double kSurfaceRepeatFraction = 0.01;
 constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
 constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
@@ -379,7 +381,9 @@ bool surface_round(AdaptState& s)
     return s.report.surface_triangles_after - remeshed > kSurfaceRepeatFraction * remeshed;
 }
 
-/// The final optimization, on a mesh renumbered along a space-filling curve.
+/// The final optimization, on a mesh renumbered along a space-filling curve; a large mesh in
+/// blocks (volume/mesh/blocks.h), on the run's threads: once with the cuts frozen, then the
+/// tets at those cuts cut elsewhere, then the few tets left bad where both rounds' cuts meet.
 void optimize(AdaptState& s)
 {
     if (!s.options.optimize) return;
@@ -387,7 +391,30 @@ void optimize(AdaptState& s)
     const StageTimer timer(s.report.seconds_optimize, s.report.cpu_seconds_optimize);
     s.mesh.compact();  // renumbering needs a compact mesh; the passes leave it so, this makes sure
     renumber_spatially(s.mesh);
-    optimize_mesh(s.mesh, *s.volume_field, s.optimizer);
+    const int blocks = volume::block_count(s.mesh.num_live_tets(), s.options.tets_per_block);
+    if (blocks <= 1)
+    {
+        optimize_mesh(s.mesh, *s.volume_field, s.optimizer);
+        return;
+    }
+    OptimizeOptions in_block = s.optimizer;  // a block runs on one thread, silent
+    in_block.workers = nullptr;
+    in_block.verbosity = 0;
+    in_block.messages = nullptr;
+    in_block.leave_required_vertex_balls = true;
+    const auto work = [&](TetMesh& block, int) { optimize_mesh(block, *s.volume_field, in_block); };
+    std::vector<char> frozen = volume::run_in_blocks(
+        s.mesh, volume::morton_blocks(s.mesh, blocks, 0), s.options.workers, work);
+    const std::vector<char> band = volume::tets_near(s.mesh, std::move(frozen), kBandRings);
+    const long long band_tets = std::count(band.begin(), band.end(), 1);
+    volume::run_in_blocks(
+        s.mesh,
+        volume::morton_blocks(s.mesh, volume::block_count(band_tets, s.options.tets_per_block), 1,
+                              &band),
+        s.options.workers, work);
+    OptimizeOptions repair = s.optimizer;
+    repair.bad_quality = std::max(repair.bad_quality, repair.target_quality);
+    improve_bad_elements(s.mesh, *s.volume_field, repair);
 }
 
 /// After a surface pass the boundary lies on the model already; else the refinement's

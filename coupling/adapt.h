@@ -76,6 +76,10 @@ struct AdaptOptions
     /// The run's thread pool (common/parallel.h), owned by the caller; null: one thread. The
     /// output does not depend on its thread count.
     Workers* workers = nullptr;
+    /// The grain of the decomposition the mutating stages run on (volume/mesh/blocks.h): a
+    /// mesh of n tets is cut into about n / tets_per_block blocks; 0: no blocks. The output
+    /// depends on it, never on the thread count.
+    int tets_per_block = 65536;
 };
 
 /// One refinement pass: what it split, the mesh after it, what the projection did.

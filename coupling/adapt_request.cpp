@@ -151,10 +151,14 @@ AdaptResult run_adapt(AdaptInput input, const AdaptRequest& request)
     if (request.threads < 0)
         throw InputError("threads must be at least 1 (0: the cores present), got " +
                          std::to_string(request.threads));
+    if (request.tets_per_block < 0)
+        throw InputError("tets per block must be at least 1 (0: no blocks), got " +
+                         std::to_string(request.tets_per_block));
     // one pool for the whole run: its threads start once, not per loop
     Workers workers(request.threads > 0 ? request.threads : default_thread_count());
     AdaptOptions options = adapt_options(request);
     options.workers = &workers;
+    options.tets_per_block = request.tets_per_block;
     AdaptResult result = input.is_surface ? fill_surface(input.surface, request, options)
                                           : adapt_tets(std::move(input.mesh), request, options);
     const auto violations = volume::check_mesh(result.mesh);

@@ -59,6 +59,8 @@ struct AdaptRequest
     int max_passes = 40;  ///< refinement passes at most
     /// Threads the run uses (0: the cores present); the output is the same for any count.
     int threads = 0;
+    /// The decomposition's grain (AdaptOptions::tets_per_block); the output depends on it.
+    int tets_per_block = AdaptOptions{}.tets_per_block;
     int verbosity = 1;  ///< 0 silent, 1 a summary, 2 a table per pass
     /// Where the report lines (Report), the input's repairs (Trace) and progress go.
     MessageSink messages;

@@ -72,6 +72,11 @@ public:
         context_ = OperatorContext(mesh_, &field);
         context_.enable_caches();
         context_.enable_change_stamps(mesh_);
+        if (options_.leave_required_vertex_balls)
+        {
+            at_required_.assign(mesh_.num_vertices(), 0);
+            for (int v : mesh_.required_vertices) at_required_[v] = 1;
+        }
         for (int k = 0; k < kNumOperators; ++k) report_.operators.push_back({kOperatorNames[k]});
         report_.min_quality_before = summarize_quality(mesh_, context_, options_.workers).min;
         if (options_.verbosity >= 2)
@@ -229,7 +234,7 @@ public:
     {
         std::vector<int> work;
         for (int t = 0; t < mesh_.num_tet_slots(); ++t)
-            if (!mesh_.is_dead(t) && quality(t) < threshold) work.push_back(t);
+            if (!mesh_.is_dead(t) && quality(t) < threshold && !left(t)) work.push_back(t);
         order_worst_first(work);
         for (int sweep = 0; sweep < options_.max_sweeps && !work.empty(); ++sweep)
         {
@@ -257,7 +262,7 @@ public:
             {
                 if (mesh_.is_dead(t)) continue;
                 for (int v : mesh_.tets[t]) changed_vertex_[v] = 1;
-                if (quality(t) < threshold) work.push_back(t);
+                if (quality(t) < threshold && !left(t)) work.push_back(t);
             }
             for (int t : still_bad)
             {
@@ -346,6 +351,15 @@ private:
     using SweepCounters = std::array<std::array<long, 2>, kNumOperators>;
 
     double quality(int t) const { return context_.quality(mesh_, t); }
+
+    /// A tet the sweeps leave alone (OptimizeOptions::leave_required_vertex_balls).
+    bool left(int t) const
+    {
+        if (at_required_.empty()) return false;
+        for (int v : mesh_.tets[t])
+            if (v < static_cast<int>(at_required_.size()) && at_required_[v]) return true;
+        return false;
+    }
 
     SweepCounters counters() const
     {
@@ -535,6 +549,7 @@ private:
 
     TetMesh& mesh_;
     std::vector<char> changed_vertex_;  // scratch of improve_below, all zero between uses
+    std::vector<char> at_required_;     // per vertex: required (leave_required_vertex_balls)
     // the collapses refused, by edge (u << 32 | v), with changes() + 1 at the refusal: the
     // options never change, so the verdict stands while no tet through u or v changes
     std::unordered_map<std::uint64_t, std::uint64_t> refused_collapses_;

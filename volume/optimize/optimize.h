@@ -30,6 +30,10 @@ struct OptimizeOptions
     double target_quality = 0.5;        ///< optimize_mesh works on every tet below this
     double collapse_min_quality = 0.3;  ///< a collapse may not create a tet worse than this
     int max_sweeps = 10;
+    /// The sweeps skip tets with a required vertex: a block's frozen faces (volume/mesh/
+    /// blocks.h) are inside the next round's blocks, where those tets are worked; here they
+    /// would stay stuck and be retried sweep after sweep.
+    bool leave_required_vertex_balls = false;
     int verbosity = 0;  ///< 2: a per-sweep table (operator, attempts, successes, min Qe, %
                         ///< Qe>=0.5, time) to `messages`, as Report lines
     MessageSink messages;
