@@ -4,16 +4,21 @@ surfremesh on the same surfaces, refining (1 % of the diagonal) and coarsening (
 
   bench/bench_coupled.py --volumes DIR --surfaces DIR [--build build] [--models fandisk,...]
                          [--fractions 0.01,0.04] [--extra "--nosurf"] [--round-trip 0.01,0.04]
-                         [--mmg PATH/mmg3d]
+                         [--mmg PATH/mmg3d] [--threads 1,2]
 
 For each model X, DIR/X.msh is the tet mesh and DIR/X.obj its input surface. Boundary columns
 come from scripts/surfstat.py against the input surface, volume columns from
 scripts/meshstat.py --hsiz h; CPU is adapt's own "cpu: total" (parse, read and write excluded);
-the checker column is adapt --check's verdict on its output (volume/check/check.h). With --mmg, Mmg
+the checker column is adapt --check's verdict on its output (volume/check/check.h).
+adapt runs once for each thread count of --threads (1 and 2 by default, `--threads N`), each a
+child process (os.wait4 on its pid) timed by perf_counter: the `wall 1t` and `wall 2t` columns and
+the speed-up `1t/2t` (first count's wall over the last's); the other columns are the first run's.
+Under an adapt row, a line: the speed-up against issue 42's 1.8x and whether the outputs are
+byte-identical (cmp), PASS/FAIL each. With --mmg, Mmg
 runs on the same tet mesh (converted to Medit by meshconvert) with -hsiz h, its defaults
 otherwise; its CPU is the whole process's (user + system, reading and writing included).
 """
-import argparse, json, os, re, resource, subprocess, sys, tempfile
+import argparse, json, os, re, resource, subprocess, sys, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PY = '/usr/bin/python3'  # Debian's, with numpy and scipy
@@ -61,26 +66,64 @@ def cpu_of(stdout):
     return float(m.group(1)) if m else float('nan')
 
 
-def print_volume_row(name, v, s, cpu, checker):
-    """One row of a tet mesh: v from meshstat, s from surfstat of its boundary."""
-    print('| %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | %s |' % (
+def print_volume_row(name, v, s, cpu, checker, threads, walls=None):
+    """One row of a tet mesh: v from meshstat, s from surfstat of its boundary; walls by thread
+    count (adapt's rows only)."""
+    walls = walls or {}
+    cells = ' | '.join('%.2f s' % walls[n] if n in walls else '—' for n in threads)
+    if len(threads) > 1:
+        cells += ' | ' + ('%.2fx' % (walls[threads[0]] / walls[threads[-1]])
+                          if threads[0] in walls and threads[-1] in walls else '—')
+    print('| %s | %d | %.3f | %.2f | %.2f | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | %s | %s |' % (
         name, v['n_tets'], v['Qe_min'], v['pct_Qe_ge_0.5'], v['pct_Qt_ge_0.66'], s['n_faces'],
-        s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'], s['hausdorff_rel'], cpu, checker),
-        flush=True)
+        s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'], s['hausdorff_rel'], cpu, cells,
+        checker), flush=True)
+
+
+def run_timed(cmd, stem):
+    """cmd as a child, its stdout and stderr into stem.out / stem.err: (return code, stdout,
+    stderr, wall s), the wall by perf_counter around os.wait4 on its pid."""
+    with open(stem + '.out', 'w') as out, open(stem + '.err', 'w') as err:
+        start = time.perf_counter()
+        proc = subprocess.Popen(cmd, stdout=out, stderr=err)
+        _, status, _ = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - start
+    with open(stem + '.out') as out, open(stem + '.err') as err:
+        return os.waitstatus_to_exitcode(status), out.read(), err.read(), wall
 
 
 def adapt_row(a, tag, vol, ref, h, out):
-    """Runs adapt on vol at size h into out and prints its row; False when it failed."""
-    run = subprocess.run([os.path.join(a.build, 'apps/adapt'), vol, '--hsiz', repr(h),
-                          '-o', out, '--check'] + a.extra.split(), capture_output=True, text=True)
-    if run.returncode != 0:
-        print('| adapt %s | failed: %s |' % (tag, run.stderr.strip()[-200:]))
-        return False
+    """Runs adapt on vol at size h into out, once per thread count of a.threads (the first
+    run's output at out), and prints its row and its threads line; False when it failed."""
+    walls, differ = {}, []
+    for n in a.threads:
+        path = out if n == a.threads[0] else '%s_%dt.mesh' % (out[:-5], n)
+        code, stdout, stderr, walls[n] = run_timed(
+            [os.path.join(a.build, 'apps/adapt'), vol, '--hsiz', repr(h), '-o', path, '--check',
+             '--threads', str(n)] + a.extra.split(), '%s_%dt' % (out[:-5], n))
+        if code != 0:
+            print('| adapt %s | failed with --threads %d: %s |' % (tag, n, stderr.strip()[-200:]))
+            return False
+        if n == a.threads[0]:
+            run_stdout = stdout
+        elif subprocess.run(['cmp', '-s', out, path]).returncode != 0:
+            differ.append(n)
     obj = out[:-5] + '_boundary.obj'
     boundary_obj(out, obj)
     v, s = meshstat(out, h), surfstat(obj, ref, h)
-    checker = 'clean' if 'check output: clean' in run.stdout else 'VIOLATIONS'
-    print_volume_row('adapt ' + tag, v, s, cpu_of(run.stdout), checker)
+    checker = 'clean' if 'check output: clean' in run_stdout else 'VIOLATIONS'
+    print_volume_row('adapt ' + tag, v, s, cpu_of(run_stdout), checker, a.threads, walls)
+    if len(a.threads) > 1:
+        notes = []
+        if 1 in walls and 2 in walls:
+            x = walls[1] / walls[2]
+            notes.append('2-thread speed-up %.2f / %.2f s = %.2fx >= 1.8x %s' % (
+                walls[1], walls[2], x, 'PASS' if x >= 1.8 else 'FAIL'))
+        same = ', '.join('%dt' % n for n in a.threads)
+        notes.append('outputs at %s byte-identical (cmp) PASS' % same if not differ else
+                     'FAIL: output at %s differs from %dt (cmp)' % (
+                         ', '.join('%dt' % n for n in differ), a.threads[0]))
+        print('|  | threads: %s |' % '; '.join(notes), flush=True)
     if s['euler'] != s['ref_topology']['euler'] or s['components'] != s['ref_topology']['components']:
         print('|  | topology changed: euler %d, components %d |' % (s['euler'], s['components']))
     return True
@@ -107,7 +150,7 @@ def mmg_row(a, tag, vol, ref, h, work, stem):
         return
     obj = out[:-5] + '_boundary.obj'
     boundary_obj(out, obj)
-    print_volume_row('Mmg ' + tag, meshstat(out, h), surfstat(obj, ref, h), cpu, '—')
+    print_volume_row('Mmg ' + tag, meshstat(out, h), surfstat(obj, ref, h), cpu, '—', a.threads)
 
 
 def main():
@@ -124,13 +167,25 @@ def main():
     ap.add_argument('--round-trip', default='',
                     help='F1,F2: also adapt the F1 output to F2 (e.g. 0.01,0.04; its Hausdorff '
                          'is to the original input)')
+    ap.add_argument('--threads', default='1,2',
+                    help="adapt's thread counts, one run each (the first's output is the row's)")
     a = ap.parse_args()
+    try:
+        a.threads = [int(n) for n in a.threads.split(',')]
+    except ValueError:
+        a.threads = []
+    if not a.threads or min(a.threads) < 1 or len(set(a.threads)) != len(a.threads):
+        sys.exit('--threads: distinct counts >= 1, e.g. 1,2')
+    walls = ''.join(' wall %dt |' % n for n in a.threads)
+    speedup = ' %dt/%dt |' % (a.threads[0], a.threads[-1]) if len(a.threads) > 1 else ''
+    dashes = '---|' * (len(a.threads) + (len(a.threads) > 1))
     trip = [float(f) for f in a.round_trip.split(',')] if a.round_trip else None
     work = a.keep or tempfile.mkdtemp(prefix='bench_coupled_')
     os.makedirs(work, exist_ok=True)
     print('| run | tets | min Qe | % Qe >= 0.5 | % Qt >= 0.66 | bd triangles | bd min angle | '
-          'bd % Qe >= 0.7 | bd % Qt >= 0.66 | Hausdorff / diag | CPU | checker |')
-    print('|---|---|---|---|---|---|---|---|---|---|---|---|')
+          'bd % Qe >= 0.7 | bd % Qt >= 0.66 | Hausdorff / diag | CPU |' + walls + speedup +
+          ' checker |')
+    print('|---|---|---|---|---|---|---|---|---|---|---|' + dashes + '---|')
     for model in a.models.split(','):
         vol = os.path.join(a.volumes, model + '.msh')
         ref = os.path.join(a.surfaces, model + '.obj')
@@ -153,9 +208,10 @@ def main():
                 capture_output=True, text=True)
             cpu = sum(float(x) for x in srun.stderr.strip().splitlines()[-1].split('+'))
             s = surfstat(sobj, ref, h)
-            print('| surfremesh %s | — | — | — | — | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s | — |' % (
+            print('| surfremesh %s | — | — | — | — | %d | %.1f° | %.1f | %.2f | %.2e | %.2f s |%s — |' % (
                 tag, s['n_faces'], s['min_angle'], s['pct_Qe_ge_07'], s['pct_Qt_ge_066'],
-                s['hausdorff_rel'], cpu), flush=True)
+                s['hausdorff_rel'], cpu, ' — |' * (len(a.threads) + (len(a.threads) > 1))),
+                flush=True)
 
 
 if __name__ == '__main__':

@@ -1,11 +1,13 @@
 #!/usr/bin/python3
 """Our adapt beside TetGen, Mmg and Gmsh on the paper's benchmark: speed on one core (issue 40).
 
-  bench/compare_peers.py [--build build] [--cases CDE] [--mmg PATH/mmg3d]
+  bench/compare_peers.py [--build build] [--cases CDE] [--threads 1,2] [--mmg PATH/mmg3d]
 
 The protocol. For each case of the three-cylinder field (C, D and E by default; A and B on
 request), starting from data/sphere480.mesh:
-  hdimesh  build/apps/adapt --bench-field X -v 1 (the default), one run
+  hdimesh  build/apps/adapt --bench-field X -v 1 (the default) --threads N, one run for each N of
+           --threads (1 and 2 by default, in that order); the outputs must be the same bytes
+           (cmp), the rows' figures are those of the first run
   TetGen   `tetgen -rq1.4mQ` iterated (Q only silences it): before each round the size at every
            node of the current mesh is re-evaluated from the field and written as a .mtr (TetGen
            adapts to sizes at nodes only); rounds until the tet count changes by less than 2 %
@@ -20,15 +22,20 @@ own rusage gives its CPU time (user + system) and its peak resident set (ru_maxr
 Linux), whole process for everyone: reading, setting up, meshing and writing. Wall time is
 perf_counter around the child. For the iterated peers CPU and wall are summed over the rounds
 and the peak is the largest round's; the field evaluation and the .mtr/.sol writing between
-rounds (this script's Python) count for no one. Our adapt at -v 1 also computes its quality
-tables of the input and the output, which its CPU includes (-v 2 would add a summary of the
-whole mesh after every optimization sweep).
+rounds (this script's Python) count for no one. TetGen is serial; Gmsh runs its default 3-D
+algorithm on one thread (its HXT, the threaded one, is in compare_volume_peers.py). Our adapt at
+-v 1 also computes its quality tables of the input and the output, which its CPU includes (-v 2
+would add a summary of the whole mesh after every optimization sweep).
 
-Columns: output tets, CPU s, wall s, tets per CPU-second, microseconds of CPU per output tet,
-peak RSS in bytes per output tet, and the output measured by our meshstat against the same
-field (min Qe, % Qe >= 0.5, % Qt >= 0.66), the largest distance of a boundary vertex to the unit
-sphere, the rounds of the iterated peers (* when the cap came first) and our checker's verdict
-on our output. Under our row, the stage split of adapt's own CPU (its `cpu:` line) and the
+Columns: output tets, CPU s, the wall time of each thread count (`wall 1t`, `wall 2t`: a serial
+peer fills the first only) and the speed-up (`1t/2t`, first over last), tets per CPU-second,
+microseconds of CPU per output tet, peak RSS in bytes per output tet, and the output measured by
+our meshstat against the same field (min Qe, % Qe >= 0.5, % Qt >= 0.66), the largest distance of
+a boundary vertex to the unit sphere, the rounds of the iterated peers (* when the cap came
+first) and our checker's verdict (meshstat's: clean, or the count per kind; a peer's mesh may
+break a rule of ours its format does not know, so read the kinds). Under our row, one line per
+further thread count: its CPU, peak and whether its output is byte-identical to the first's (a
+FAIL line when not). Under our row, the stage split of adapt's own CPU (its `cpu:` line) and the
 refinement rate: the most tets after a refinement pass (adapt's `refinement:` line) per
 CPU-second of the refine stage. That count is not the splitting's alone: a pass's count follows
 its splits, the projection of the new boundary vertices and the repair of bad tets around them
@@ -36,8 +43,9 @@ its splits, the projection of the new boundary vertices and the repair of bad te
 
 After each case a targets line, each PASS/FAIL with its figure: ours >= 100k tets/CPU-s;
 refinement >= 2M tets/CPU-s; min Qe >= 0.3, >= 99 % Qe >= 0.5, >= 99 % Qt >= 0.66; on C our
-wall <= TetGen's iterated wall; on E our peak <= 100 B/tet. After all cases, when C and E both
-ran, our us/tet on E within 20 % of C's.
+1-thread wall <= TetGen's iterated wall; on E our peak <= 100 B/tet; on C, D and E (issue 42)
+our 2-thread speed-up (1-thread wall / 2-thread wall) >= 1.8x and our 2-thread wall <= TetGen's.
+After all cases, when C and E both ran, our us/tet on E within 20 % of C's.
 
 TetGen and Gmsh rows appear only when `tetgen` / `gmsh` are installed (Debian packages of those
 names); Mmg's only with --mmg (build Mmg from its repository: cmake -DUSE_SCOTCH=OFF
@@ -141,16 +149,17 @@ def read_medit(path, keys=('Vertices', 'Tetrahedra')):
 
 
 def boundary_faces(tets):
-    """The faces (sorted vertex ids) used by exactly one of the (n,4) 0-based tets."""
-    faces = np.concatenate([tets[:, [1, 2, 3]], tets[:, [0, 2, 3]], tets[:, [0, 1, 3]], tets[:, [0, 1, 2]]])
-    faces.sort(axis=1)
-    if faces.max(initial=0) < 1 << 21:  # one int64 key a face: a much faster unique
-        keys = (faces[:, 0] << 42) | (faces[:, 1] << 21) | faces[:, 2]
-        uniq, counts = np.unique(keys, return_counts=True)
-        once = uniq[counts == 1]
-        return np.stack([once >> 42, (once >> 21) & ((1 << 21) - 1), once & ((1 << 21) - 1)], axis=1)
-    uniq, counts = np.unique(faces, axis=0, return_counts=True)
-    return uniq[counts == 1]
+    """The faces used by exactly one of the (n,4) 0-based tets, as the tet lists them: outward
+    when the tets are positive (b c d, a d c, a b d, a c b)."""
+    faces = np.concatenate([tets[:, [1, 2, 3]], tets[:, [0, 3, 2]], tets[:, [0, 1, 3]],
+                            tets[:, [0, 2, 1]]])
+    ids = np.sort(faces, axis=1)
+    if ids.max(initial=0) < 1 << 21:  # one int64 key a face: a much faster unique
+        keys = (ids[:, 0] << 42) | (ids[:, 1] << 21) | ids[:, 2]
+        _, first, counts = np.unique(keys, return_index=True, return_counts=True)
+    else:
+        _, first, counts = np.unique(ids, axis=0, return_index=True, return_counts=True)
+    return faces[first[counts == 1]]
 
 
 def boundary_deviation(path):
@@ -162,7 +171,11 @@ def boundary_deviation(path):
 
 
 def write_medit(path, vertices, tets):
-    """A Medit mesh of (n,3) vertices and (m,4) 0-based tets, its boundary as Triangles."""
+    """A Medit mesh of (n,3) vertices and (m,4) 0-based tets, its boundary as Triangles: the
+    tets turned positive first, so the triangles face outward."""
+    a, b, c, d = (vertices[tets[:, k]] for k in range(4))
+    negative = np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a)) < 0
+    tets = np.where(negative[:, None], tets[:, [0, 2, 1, 3]], tets)
     tris = boundary_faces(tets)
     with open(path, 'w') as f:
         f.write('MeshVersionFormatted 2\nDimension 3\n')
@@ -199,13 +212,23 @@ def parse_adapt_log(text):
     return {'stages': stages, 'refine_tets': int(refined.group(2)) if refined else None}
 
 
-def run_ours(build, case, work):
-    out = os.path.join(work, f'ours_{case}.mesh')
-    log = os.path.join(work, f'ours_{case}.log')
-    usage = run_child([f'{build}/apps/adapt', INPUT, '-o', out, '--bench-field', case, '-v', '1'], log)
-    with open(log) as f:
+def run_ours(build, case, work, threads):
+    """adapt once for each thread count: the first run's Run, its extra holding every run's
+    Usage by thread count ('walls') and the counts whose output differs from the first's."""
+    runs, differ = {}, []
+    for n in threads:
+        out = os.path.join(work, f'ours_{case}_{n}t.mesh')
+        log = os.path.join(work, f'ours_{case}_{n}t.log')
+        runs[n] = run_child([f'{build}/apps/adapt', INPUT, '-o', out, '--bench-field', case, '-v',
+                             '1', '--threads', str(n)], log)
+        if n == threads[0]:
+            first, first_log = out, log
+        elif subprocess.run(['cmp', '-s', first, out]).returncode != 0:
+            differ.append(n)
+    with open(first_log) as f:
         extra = parse_adapt_log(f.read())
-    return Run(out, usage, '-', extra)
+    extra.update(threads=runs, differ=differ)
+    return Run(first, runs[threads[0]], '-', extra)
 
 
 def read_tetgen(base):
@@ -286,34 +309,63 @@ def measure(build, path, case):
     out = subprocess.run([f'{build}/apps/meshstat', path, '--bench-field', case, '--json'],
                          capture_output=True, text=True)
     text = out.stdout[:out.stdout.rfind('}') + 1]
-    return json.loads(text)
+    q = json.loads(text)
+    if not q['clean'] and out.stderr:  # format_violations: its first line, the count per kind
+        q['kinds'] = out.stderr.splitlines()[0].rstrip()
+    return q
 
 
-def verdict(tool, q):
-    """Our checker's verdict on our output. Peers' meshes may lack refs our strict checker asks
-    for, so it is not shown for them."""
-    if tool != 'hdimesh':
-        return '-'
-    return 'clean' if q['clean'] else f"{q['violations']} violations"
+def verdict(q):
+    """Our checker's verdict: clean, or the count per kind (a peer's mesh may lack refs our
+    strict checker asks for; the kinds tell that from a broken mesh)."""
+    return 'clean' if q['clean'] else q.get('kinds') or f"{q['violations']} violations"
 
 
-def figures(run, q):
-    """The speed and memory figures of one row."""
+def figures(run, q, threads):
+    """The speed and memory figures of one row; walls by thread count (a serial peer's under the
+    first count only)."""
     tets, u = q['tets'], run.usage
-    return {'tets': tets, 'cpu': u.cpu, 'wall': u.wall, 'rate': tets / u.cpu,
+    walls = {n: r.wall for n, r in (run.extra or {}).get('threads', {threads[0]: u}).items()}
+    return {'tets': tets, 'cpu': u.cpu, 'wall': u.wall, 'walls': walls, 'rate': tets / u.cpu,
             'us_per_tet': 1e6 * u.cpu / tets, 'bytes_per_tet': u.rss / tets,
             'min_qe': q['min_qe'], 'qe05': q['percent_qe_ge_05'], 'qt066': q['percent_qt_ge_066']}
 
 
-HEADER = (f"{'case':<5}{'tool':<9}{'tets':>10}{'CPU s':>9}{'wall s':>9}{'tets/CPU-s':>11}"
-          f"{'us/tet':>8}{'B/tet':>7}{'min Qe':>8}{'Qe>=0.5':>9}{'Qt>=0.66':>10}{'max|r-1|':>10}"
-          f"{'rounds':>7}  checker")
+def header(threads):
+    walls = ''.join(f"{f'wall {n}t':>9}" for n in threads)
+    speedup = f"{f'{threads[0]}t/{threads[-1]}t':>7}" if len(threads) > 1 else ''
+    return (f"{'case':<5}{'tool':<9}{'tets':>10}{'CPU s':>9}{walls}{speedup}{'tets/CPU-s':>11}"
+            f"{'us/tet':>8}{'B/tet':>7}{'min Qe':>8}{'Qe>=0.5':>9}{'Qt>=0.66':>10}{'max|r-1|':>10}"
+            f"{'rounds':>7}  checker")
 
 
-def row(case, tool, f, run, q, deviation):
-    return (f"{case:<5}{tool:<9}{f['tets']:>10}{f['cpu']:>9.2f}{f['wall']:>9.2f}{f['rate']:>11.0f}"
+def speedup(f, threads):
+    """The first thread count's wall over the last's, None when either is missing."""
+    a, b = f['walls'].get(threads[0]), f['walls'].get(threads[-1])
+    return a / b if len(threads) > 1 and a and b else None
+
+
+def row(case, tool, f, run, q, deviation, threads):
+    walls = ''.join(f"{f['walls'][n]:>9.2f}" if n in f['walls'] else f"{'-':>9}" for n in threads)
+    s = speedup(f, threads)
+    walls += (f'{s:>6.2f}x' if s else f"{'-':>7}") if len(threads) > 1 else ''
+    return (f"{case:<5}{tool:<9}{f['tets']:>10}{f['cpu']:>9.2f}{walls}{f['rate']:>11.0f}"
             f"{f['us_per_tet']:>8.2f}{f['bytes_per_tet']:>7.0f}{f['min_qe']:>8.3f}{f['qe05']:>8.2f}%"
-            f"{f['qt066']:>9.2f}%{deviation:>10.1e}{run.rounds:>7}  {verdict(tool, q)}")
+            f"{f['qt066']:>9.2f}%{deviation:>10.1e}{run.rounds:>7}  {verdict(q)}")
+
+
+def thread_lines(f, extra, threads):
+    """Under our row: each further thread count's CPU and peak, and whether its output is the
+    first's bytes."""
+    lines = []
+    for n in threads[1:]:
+        u = extra['threads'][n]
+        same = n not in extra['differ']
+        lines.append(f"     hdimesh {n}t: CPU {u.cpu:.2f} s, wall {u.wall:.2f} s, peak "
+                     f"{u.rss / f['tets']:.0f} B/tet; output "
+                     + (f'byte-identical to {threads[0]}t (cmp)' if same else
+                        f'FAIL: differs from {threads[0]}t (cmp)'))
+    return lines
 
 
 def stage_line(extra):
@@ -334,7 +386,7 @@ def check(name, ok, shown):
     return f"{name} {shown} {'PASS' if ok else 'FAIL'}"
 
 
-def targets_line(case, results):
+def targets_line(case, results, threads):
     """Issue 40's targets on one case, each PASS/FAIL with its figure."""
     ours = results.get((case, 'hdimesh'))
     if not ours:
@@ -350,7 +402,18 @@ def targets_line(case, results):
     tetgen = results.get((case, 'TetGen'))
     if case == 'C' and tetgen:
         wall = tetgen[0]['wall']
-        parts.append(check('wall', f['wall'] <= wall, f"{f['wall']:.2f} s <= TetGen {wall:.2f} s"))
+        parts.append(check('1-thread wall', f['wall'] <= wall,
+                           f"{f['wall']:.2f} s <= TetGen {wall:.2f} s"))
+    if case in 'CDE' and 1 in f['walls'] and 2 in f['walls']:
+        s = f['walls'][1] / f['walls'][2]
+        parts.append(check('2-thread speed-up', s >= 1.8,
+                           f"{f['walls'][1]:.2f} / {f['walls'][2]:.2f} s = {s:.2f}x >= 1.8x"))
+        if tetgen:
+            wall = tetgen[0]['wall']
+            parts.append(check('2-thread wall', f['walls'][2] <= wall,
+                               f"{f['walls'][2]:.2f} s <= TetGen {wall:.2f} s"))
+    elif case in 'CDE':
+        parts.append('2-thread targets: no 1- and 2-thread runs (--threads 1,2)')
     if case == 'E':
         parts.append(check('peak', f['bytes_per_tet'] <= 100,
                            f"{f['bytes_per_tet']:.0f} <= 100 B/tet"))
@@ -372,20 +435,28 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--build', default=os.path.join(ROOT, 'build'))
     ap.add_argument('--cases', default='CDE')
+    ap.add_argument('--threads', default='1,2',
+                    help="adapt's thread counts, one run each; the first gives the row's figures")
     ap.add_argument('--mmg', help="Mmg's mmg3d executable (a bench-only peer)")
     ap.add_argument('--keep', action='store_true', help='keep the work directory')
     args = ap.parse_args()
     if any(c not in CASES for c in args.cases):
         sys.exit(f'--cases: letters of {"".join(CASES)}')
+    try:
+        threads = [int(n) for n in args.threads.split(',')]
+    except ValueError:
+        threads = []
+    if not threads or min(threads) < 1 or len(set(threads)) != len(threads):
+        sys.exit('--threads: distinct counts >= 1, e.g. 1,2')
     work = tempfile.mkdtemp(prefix='hdimesh_peers_')
-    runners = [('hdimesh', lambda c: run_ours(args.build, c, work))]
+    runners = [('hdimesh', lambda c: run_ours(args.build, c, work, threads))]
     if shutil.which('tetgen'):
         runners.append(('TetGen', lambda c: run_tetgen(c, work)))
     if args.mmg:
         runners.append(('Mmg', lambda c: run_mmg(args.mmg, c, work)))
     if shutil.which('gmsh'):
         runners.append(('Gmsh', lambda c: run_gmsh(c, work)))
-    print(HEADER, flush=True)
+    print(header(threads), flush=True)
     results = {}
     for case in args.cases:
         for tool, run in runners:
@@ -395,12 +466,14 @@ def main():
                 print(f'{case:<5}{tool:<9} failed: {e}', getattr(e, 'output', '') or '', flush=True)
                 continue
             q = measure(args.build, r.path, case)
-            f = figures(r, q)
+            f = figures(r, q, threads)
             results[(case, tool)] = (f, r.extra or {})
-            print(row(case, tool, f, r, q, boundary_deviation(r.path)), flush=True)
+            print(row(case, tool, f, r, q, boundary_deviation(r.path), threads), flush=True)
             if tool == 'hdimesh':
                 print(stage_line(r.extra), flush=True)
-        print(targets_line(case, results), flush=True)
+                for line in thread_lines(f, r.extra, threads):
+                    print(line, flush=True)
+        print(targets_line(case, results, threads), flush=True)
     line = scaling_line(results)
     if line:
         print(line)
