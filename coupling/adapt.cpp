@@ -381,6 +381,29 @@ bool surface_round(AdaptState& s)
     return s.report.surface_triangles_after - remeshed > kSurfaceRepeatFraction * remeshed;
 }
 
+/// Per vertex: the vertices of the tets at a cut vertex that the final optimization would still
+/// work on: below the target quality, or with a too-short edge it could collapse.
+std::vector<char> left_at_cuts(const TetMesh& mesh, const SizeField& field,
+                               const std::vector<char>& cuts, const OptimizeOptions& optimizer)
+{
+    std::vector<char> seeds(mesh.num_vertices(), 0);
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        const auto& tv = mesh.tets[t];
+        if (mesh.is_dead(t) || std::none_of(tv.begin(), tv.end(), [&](int v) { return cuts[v]; }))
+            continue;
+        bool left = mesh.quality(t) < optimizer.target_quality;
+        for (int e = 0; e < 6 && !left && optimizer.collapse; ++e)
+        {
+            const int a = tv[tet::kEdgeVertices[e][0]], b = tv[tet::kEdgeVertices[e][1]];
+            left = measure_edge(field, mesh.points[a], mesh.points[b]).too_short();
+        }
+        if (left)
+            for (int v : tv) seeds[v] = 1;
+    }
+    return seeds;
+}
+
 /// The final optimization, on a mesh renumbered along a space-filling curve; a large mesh in
 /// blocks (volume/mesh/blocks.h), on the run's threads: once with the cuts frozen, then the
 /// tets at those cuts cut elsewhere, then the few tets left bad where both rounds' cuts meet.
@@ -403,15 +426,20 @@ void optimize(AdaptState& s)
     in_block.messages = nullptr;
     in_block.leave_required_vertex_balls = true;
     const auto work = [&](TetMesh& block, int) { optimize_mesh(block, *s.volume_field, in_block); };
-    std::vector<char> frozen = volume::run_in_blocks(
-        s.mesh, volume::morton_blocks(s.mesh, blocks, 0), s.options.workers, work);
-    const std::vector<char> band = volume::tets_near(s.mesh, std::move(frozen), kBandRings);
+    // (the renumbering put the tets in Morton order already: the first round cuts runs of ids)
+    const std::vector<char> cuts = volume::run_in_blocks(
+        s.mesh, volume::contiguous_blocks(s.mesh, blocks), s.options.workers, work);
+    // the tets a block left (stuck against a cut, or with an edge too short there) and their
+    // neighbours, cut elsewhere
+    const std::vector<char> band =
+        volume::tets_near(s.mesh, left_at_cuts(s.mesh, *s.volume_field, cuts, s.optimizer), 1);
     const long long band_tets = std::count(band.begin(), band.end(), 1);
     volume::run_in_blocks(
         s.mesh,
         volume::morton_blocks(s.mesh, volume::block_count(band_tets, s.options.tets_per_block), 1,
                               &band),
         s.options.workers, work);
+    // where both rounds' cuts meet
     OptimizeOptions repair = s.optimizer;
     repair.bad_quality = std::max(repair.bad_quality, repair.target_quality);
     improve_bad_elements(s.mesh, *s.volume_field, repair);

@@ -39,6 +39,12 @@ struct EntityIndex
 
 Edge sorted_pair(const Edge& e) { return {std::min(e[0], e[1]), std::max(e[0], e[1])}; }
 
+Triangle face_key(const TetVertices& tv, int f)
+{
+    const auto& fv = tet::kFaceVertices[f];
+    return sorted_triple({tv[fv[0]], tv[fv[1]], tv[fv[2]]});
+}
+
 template <class Key, class Entities, class Sort>
 EntityIndex<Key> index_entities(const Entities& entities, int num_vertices, Sort sort_key)
 {
@@ -84,8 +90,9 @@ struct SharedView
     EntityIndex<Triangle> triangles;
     EntityIndex<Edge> edges;
     std::vector<char> required_triangle, required_edge, ridge;  ///< per entity
-    std::vector<char> required_tet;                            ///< per tet slot
-    std::vector<char> pinned_vertex;  ///< corner or required: never moved
+    std::vector<char> required_tet;                             ///< per tet slot
+    std::vector<char> pinned_vertex;                            ///< corner or required: never moved
+    std::vector<int> index_in_block;  ///< per tet slot: its place in its block's list
 };
 
 /// One block: its mesh, and after the work, the whole mesh's id of each of its vertices
@@ -94,7 +101,7 @@ struct Block
 {
     TetMesh mesh;
     std::vector<int> copied_triangles, copied_edges;  ///< the whole mesh's, by index
-    std::vector<int> frozen_vertices;                 ///< the whole mesh's, on frozen faces
+    std::vector<int> cut_vertices;  ///< the whole mesh's, on faces shared with another block
     std::unordered_map<Vec3, int, PointHash, PointEqual> kept;  ///< fixed vertex -> global id
     std::vector<int> global_vertex;
 };
@@ -114,16 +121,26 @@ Block extract_block(const SharedView& view, const std::vector<int>& tets, int b)
         return static_cast<int>(std::lower_bound(vertices.begin(), vertices.end(), v) -
                                 vertices.begin());
     };
-    for (int v : vertices) out.add_vertex(mesh.points[v], mesh.vertex_refs[v], mesh.vertex_classes[v]);
+    for (int v : vertices)
+        out.add_vertex(mesh.points[v], mesh.vertex_refs[v], mesh.vertex_classes[v]);
     for (int t : tets)
     {
         const auto& tv = mesh.tets[t];
-        const int lt = out.add_tet({local(tv[0]), local(tv[1]), local(tv[2]), local(tv[3])},
-                                   mesh.tet_refs[t]);
+        const int lt =
+            out.add_tet({local(tv[0]), local(tv[1]), local(tv[2]), local(tv[3])}, mesh.tet_refs[t]);
         if (view.required_tet[t]) out.required_tets.push_back(lt);
     }
+    // the adjacency inside the block is the mesh's: no search
+    out.neighbors.resize(tets.size());
+    for (std::size_t i = 0; i < tets.size(); ++i)
+        for (int f = 0; f < 4; ++f)
+        {
+            const int n = mesh.neighbors[tets[i]][f];
+            out.neighbors[i][f] =
+                n != kNoTet && view.block_of_tet[n] == b ? view.index_in_block[n] : kNoTet;
+        }
     // faces: the mesh's triangles with a tet here (once), and the frozen faces
-    std::vector<char> frozen(vertices.size(), 0);
+    std::vector<char> frozen(vertices.size(), 0), cut(vertices.size(), 0);
     for (std::size_t i = 0; i < tets.size(); ++i)
     {
         const int t = tets[i];
@@ -139,13 +156,16 @@ Block extract_block(const SharedView& view, const std::vector<int>& tets, int b)
             const bool locked = n != kNoTet && !inside;
             if (found < 0 && !locked) continue;
             const Triangle& tri = found >= 0 ? mesh.triangles[found] : face;
-            const int lt = out.add_triangle({local(tri[0]), local(tri[1]), local(tri[2])},
-                                            found >= 0 ? mesh.triangle_refs[found] : kFrozenFaceRef);
+            const int lt =
+                out.add_triangle({local(tri[0]), local(tri[1]), local(tri[2])},
+                                 found >= 0 ? mesh.triangle_refs[found] : kFrozenFaceRef);
             if (found >= 0) block.copied_triangles.push_back(found);
             if (locked || (found >= 0 && view.required_triangle[found]))
                 out.required_triangles.push_back(lt);
             if (locked)
                 for (int k = 0; k < 3; ++k) frozen[out.triangles[lt][k]] = 1;
+            if (locked && view.block_of_tet[n] >= 0)
+                for (int k = 0; k < 3; ++k) cut[out.triangles[lt][k]] = 1;
         }
     }
     // feature edges of the block's tets
@@ -173,12 +193,13 @@ Block extract_block(const SharedView& view, const std::vector<int>& tets, int b)
         }
     }
     for (int v : mesh.corners)
-        if (std::binary_search(vertices.begin(), vertices.end(), v)) out.corners.push_back(local(v));
+        if (std::binary_search(vertices.begin(), vertices.end(), v))
+            out.corners.push_back(local(v));
     for (std::size_t i = 0; i < vertices.size(); ++i)
         if (frozen[i] || view.pinned_vertex[vertices[i]])
             out.required_vertices.push_back(static_cast<int>(i));
     for (std::size_t i = 0; i < vertices.size(); ++i)
-        if (frozen[i]) block.frozen_vertices.push_back(vertices[i]);
+        if (cut[i]) block.cut_vertices.push_back(vertices[i]);
     // the vertices the work may not move or remove, found again by their positions
     std::vector<char> on_edge(vertices.size(), 0);
     for (const auto& e : out.edges) on_edge[e[0]] = on_edge[e[1]] = 1;
@@ -225,7 +246,7 @@ std::vector<char> merge_blocks(TetMesh& mesh, const BlockPartition& partition,
 {
     std::vector<char> frozen(mesh.num_vertices(), 0);
     for (const Block& block : blocks)
-        for (int v : block.frozen_vertices) frozen[v] = 1;
+        for (int v : block.cut_vertices) frozen[v] = 1;
     // the block-free parts of the mesh keep their entities; the blocks bring theirs
     std::vector<char> triangle_copied(mesh.triangles.size(), 0), edge_copied(mesh.edges.size(), 0);
     for (const Block& block : blocks)
@@ -254,12 +275,43 @@ std::vector<char> merge_blocks(TetMesh& mesh, const BlockPartition& partition,
             edge_ridge.push_back(view.ridge[i]);
             edge_required.push_back(view.required_edge[i]);
         }
-    std::vector<char> required_tet;
-    for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        if (partition.block_of_tet[t] >= 0) mesh.kill_tet(t);
-    mesh.neighbors.clear();
-    required_tet.assign(mesh.num_tet_slots(), 0);
-    for (int t : mesh.required_tets) required_tet[t] = !mesh.is_dead(t);
+    // tets: the block-free ones in order, then each block's; the adjacency is kept from both
+    // sides and the faces on a cut matched by their vertices
+    const int nt = mesh.num_tet_slots();
+    std::vector<char> required_tet(nt, 0);
+    for (int t : mesh.required_tets) required_tet[t] = 1;
+    std::vector<TetVertices> tets, neighbors;
+    std::vector<int> tet_refs;
+    std::vector<char> tet_required;
+    struct OpenFace
+    {
+        Triangle key;
+        int tet, face;
+        bool operator<(const OpenFace& o) const
+        {
+            return key != o.key ? key < o.key : (tet != o.tet ? tet < o.tet : face < o.face);
+        }
+    };
+    std::vector<OpenFace> open;
+    std::vector<int> kept_index(nt, -1);
+    for (int t = 0; t < nt; ++t)
+        if (!mesh.is_dead(t) && partition.block_of_tet[t] < 0)
+            kept_index[t] = static_cast<int>(tets.size()), tets.push_back(mesh.tets[t]);
+    for (int t = 0; t < nt; ++t)
+    {
+        const int i = kept_index[t];
+        if (i < 0) continue;
+        tet_refs.push_back(mesh.tet_refs[t]);
+        tet_required.push_back(required_tet[t]);
+        TetVertices row;
+        for (int f = 0; f < 4; ++f)
+        {
+            const int n = mesh.neighbors[t][f];
+            row[f] = n == kNoTet ? kNoTet : kept_index[n];
+            if (n != kNoTet && kept_index[n] < 0) open.push_back({face_key(tets[i], f), i, f});
+        }
+        neighbors.push_back(row);
+    }
 
     for (Block& block : blocks)
     {
@@ -270,13 +322,22 @@ std::vector<char> merge_blocks(TetMesh& mesh, const BlockPartition& partition,
                 to_global[v] = mesh.add_vertex(m.points[v], m.vertex_refs[v], m.vertex_classes[v]);
         std::vector<char> required(m.num_tet_slots(), 0);
         for (int t : m.required_tets) required[t] = 1;
+        const int offset = static_cast<int>(tets.size());
         for (int t = 0; t < m.num_tet_slots(); ++t)
         {
-            if (m.is_dead(t)) continue;
             const auto& tv = m.tets[t];
-            mesh.add_tet({to_global[tv[0]], to_global[tv[1]], to_global[tv[2]], to_global[tv[3]]},
-                         m.tet_refs[t]);
-            required_tet.push_back(required[t]);
+            tets.push_back(
+                {to_global[tv[0]], to_global[tv[1]], to_global[tv[2]], to_global[tv[3]]});
+            tet_refs.push_back(m.tet_refs[t]);
+            tet_required.push_back(required[t]);
+            TetVertices row;
+            for (int f = 0; f < 4; ++f)
+            {
+                const int n = m.neighbors[t][f];
+                row[f] = n == kNoTet ? kNoTet : offset + n;
+                if (n == kNoTet) open.push_back({face_key(tets.back(), f), offset + t, f});
+            }
+            neighbors.push_back(row);
         }
         std::vector<char> required_triangle(m.triangles.size(), 0), ridge(m.edges.size(), 0),
             required_edge(m.edges.size(), 0);
@@ -340,11 +401,22 @@ std::vector<char> merge_blocks(TetMesh& mesh, const BlockPartition& partition,
         mesh.edges.push_back(edges[i]);
         mesh.edge_refs.push_back(edge_refs[i]);
     }
+    // a face open on both sides is a cut: its two tets are neighbours; once, the boundary
+    std::sort(open.begin(), open.end());
+    for (std::size_t i = 0; i + 1 < open.size(); ++i)
+        if (open[i].key == open[i + 1].key)
+        {
+            neighbors[open[i].tet][open[i].face] = open[i + 1].tet;
+            neighbors[open[i + 1].tet][open[i + 1].face] = open[i].tet;
+            ++i;
+        }
+    mesh.tets = std::move(tets);
+    mesh.tet_refs = std::move(tet_refs);
+    mesh.neighbors = std::move(neighbors);
     mesh.required_tets.clear();
     for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        if (required_tet[t]) mesh.required_tets.push_back(t);
-    const CompactionMaps maps = mesh.compact();
-    mesh.build_adjacency();
+        if (tet_required[t]) mesh.required_tets.push_back(t);
+    const CompactionMaps maps = mesh.compact();  // drops the vertices the blocks removed
     std::vector<char> kept(mesh.num_vertices(), 0);
     for (std::size_t v = 0; v < frozen.size(); ++v)
         if (frozen[v] && maps.old2new_verts[v] >= 0) kept[maps.old2new_verts[v]] = 1;
@@ -356,7 +428,21 @@ std::vector<char> merge_blocks(TetMesh& mesh, const BlockPartition& partition,
 int block_count(long long live_tets, int tets_per_block)
 {
     if (tets_per_block < 1) return 1;
-    return static_cast<int>(std::max<long long>(1, (live_tets + tets_per_block / 2) / tets_per_block));
+    return static_cast<int>(
+        std::max<long long>(1, (live_tets + tets_per_block / 2) / tets_per_block));
+}
+
+BlockPartition contiguous_blocks(const TetMesh& mesh, int num_blocks)
+{
+    BlockPartition partition;
+    partition.num_blocks = std::max(num_blocks, 1);
+    partition.block_of_tet.assign(mesh.num_tet_slots(), -1);
+    const long long n = mesh.num_live_tets();
+    long long i = 0;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        if (!mesh.is_dead(t))
+            partition.block_of_tet[t] = static_cast<int>(i++ * partition.num_blocks / n);
+    return partition;
 }
 
 BlockPartition morton_blocks(const TetMesh& mesh, int num_blocks, int round,
@@ -375,8 +461,8 @@ BlockPartition morton_blocks(const TetMesh& mesh, int num_blocks, int round,
     {
         if (mesh.is_dead(t) || (active && !(*active)[t])) continue;
         const auto& tv = mesh.tets[t];
-        const Vec3 c =
-            0.25 * (mesh.points[tv[0]] + mesh.points[tv[1]] + mesh.points[tv[2]] + mesh.points[tv[3]]);
+        const Vec3 c = 0.25 * (mesh.points[tv[0]] + mesh.points[tv[1]] + mesh.points[tv[2]] +
+                               mesh.points[tv[3]]);
         low = low.cwiseMin(c);
         high = high.cwiseMax(c);
         centroids.push_back(c);
@@ -398,17 +484,16 @@ BlockPartition morton_blocks(const TetMesh& mesh, int num_blocks, int round,
     std::sort(keyed.begin(), keyed.end());
     const long long n = static_cast<long long>(keyed.size());
     for (long long i = 0; i < n; ++i)
-        partition.block_of_tet[keyed[i].second] =
-            static_cast<int>(i * partition.num_blocks / n);
+        partition.block_of_tet[keyed[i].second] = static_cast<int>(i * partition.num_blocks / n);
     return partition;
 }
 
 std::vector<char> run_in_blocks(TetMesh& mesh, const BlockPartition& partition, Workers* workers,
-                   const std::function<void(TetMesh& block, int index)>& work)
+                                const std::function<void(TetMesh& block, int index)>& work)
 {
     assert(mesh.has_adjacency());
     const int nv = mesh.num_vertices();
-    SharedView view{mesh, partition.block_of_tet, {}, {}, {}, {}, {}, {}, {}};
+    SharedView view{mesh, partition.block_of_tet, {}, {}, {}, {}, {}, {}, {}, {}};
     view.triangles = index_entities<Triangle>(mesh.triangles, nv, sorted_triple);
     view.edges = index_entities<Edge>(mesh.edges, nv, sorted_pair);
     view.required_triangle.assign(mesh.triangles.size(), 0);
@@ -426,14 +511,24 @@ std::vector<char> run_in_blocks(TetMesh& mesh, const BlockPartition& partition, 
     // each block's tets in mesh order (a counting sort)
     const int nb = partition.num_blocks;
     std::vector<std::vector<int>> tets(nb);
+    view.index_in_block.assign(mesh.num_tet_slots(), -1);
     for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        if (partition.block_of_tet[t] >= 0) tets[partition.block_of_tet[t]].push_back(t);
+    {
+        const int b = partition.block_of_tet[t];
+        if (b < 0) continue;
+        view.index_in_block[t] = static_cast<int>(tets[b].size());
+        tets[b].push_back(t);
+    }
 
     std::vector<Block> blocks(nb);
     const auto task = [&](std::size_t b) {
         blocks[b] = extract_block(view, tets[b], static_cast<int>(b));
         std::vector<int>().swap(tets[b]);
-        work(blocks[b].mesh, static_cast<int>(b));
+        TetMesh& block = blocks[b].mesh;
+        work(block, static_cast<int>(b));
+        // the merge takes each block's adjacency as it is
+        if (block.num_live_tets() != block.num_tet_slots()) block.compact();
+        if (!block.has_adjacency()) block.build_adjacency();
         map_block_vertices(blocks[b]);
     };
     if (workers && workers->threads() > 1 && nb > 1)

@@ -33,6 +33,10 @@ int block_count(long long live_tets, int tets_per_block);
 BlockPartition morton_blocks(const TetMesh& mesh, int num_blocks, int round,
                              const std::vector<char>* active = nullptr);
 
+/// The live tets in `num_blocks` runs of equal size in id order: Morton blocks already when
+/// the tets follow a space-filling curve (renumber_spatially).
+BlockPartition contiguous_blocks(const TetMesh& mesh, int num_blocks);
+
 /// Each block extracted as a mesh of its own, work(block mesh, block index) run on it (on
 /// `workers`, blocks in any order; work must not use workers itself), and merged back. In a
 /// block the faces it shares with another block or an inactive tet are required triangles of
@@ -41,9 +45,9 @@ BlockPartition morton_blocks(const TetMesh& mesh, int num_blocks, int round,
 /// vertices. Vertices it does not move or remove keep their ids in the merge (required, corner,
 /// feature-edge and non-interior vertices are found by their exact positions).
 /// \pre mesh has its adjacency. Leaves it compact with its adjacency; returns, per vertex of
-/// the merged mesh, whether it was on a frozen face.
+/// the merged mesh, whether it was on a cut: a face between two blocks.
 std::vector<char> run_in_blocks(TetMesh& mesh, const BlockPartition& partition, Workers* workers,
-                   const std::function<void(TetMesh& block, int index)>& work);
+                                const std::function<void(TetMesh& block, int index)>& work);
 
 /// Per tet slot: whether it is within `rings` vertex rings of a vertex marked in `vertices`
 /// (1: it has such a vertex).
