@@ -3,7 +3,9 @@
 // unless asked.
 //
 //   bench_adapt [--cases ACE] [--no-projection] [--no-optimize] [--verbose] [--threads N[,M...]]
-//               [--block-tets N]
+//               [--block-tets N] [--dmin-factor X]
+//
+// --dmin-factor scales each case's dmin (the scale sweep: C, E, E at 0.5).
 //
 // --threads: the thread counts each case runs at (default 1,2); every count must give the same
 // mesh, else the bench names the case and exits 1. --verbose prints the optimizer's per-sweep
@@ -76,6 +78,7 @@ int main(int argc, char** argv)
     coupling::AdaptOptions options;
     options.verbosity = 0;
     std::vector<int> thread_counts = {1, 2};
+    double dmin_factor = 1.0;  // the scale sweep: E with dmin halved is E at --dmin-factor 0.5
     for (int i = 1; i < argc; ++i)
     {
         if (!std::strcmp(argv[i], "--cases") && i + 1 < argc)
@@ -86,6 +89,9 @@ int main(int argc, char** argv)
             options.optimize = false;
         else if (!std::strcmp(argv[i], "--verbose"))
             options.optimizer.verbosity = 2;
+        else if (!std::strcmp(argv[i], "--dmin-factor") && i + 1 < argc &&
+                 (dmin_factor = std::atof(argv[i + 1])) > 0)
+            ++i;
         else if (!std::strcmp(argv[i], "--block-tets") && i + 1 < argc)
             options.tets_per_block = std::max(0, std::atoi(argv[++i]));
         else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc &&
@@ -96,7 +102,7 @@ int main(int argc, char** argv)
             std::fprintf(stderr,
                          "usage: bench_adapt [--cases ABCDE] [--no-projection] [--no-optimize] "
                          "[--verbose] [--threads N[,M...] each >= 1, default 1,2] "
-                         "[--block-tets N, default 65536, 0: no blocks]\n");
+                         "[--block-tets N, default 65536, 0: no blocks] [--dmin-factor X]\n");
             return 2;
         }
     }
@@ -124,7 +130,9 @@ int main(int argc, char** argv)
     bool all_equal = true;
     for (char c : cases)
     {
-        const BenchmarkSize field(benchmark_case(c));
+        BenchmarkFieldParams params = benchmark_case(c);
+        params.dmin *= dmin_factor;
+        const BenchmarkSize field(params);
         // the first count's mesh and report make the row; the others give a wall time and a
         // digest that must equal the first's
         TetMesh mesh = input;
