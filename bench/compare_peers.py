@@ -431,6 +431,17 @@ def scaling_line(results):
                                     f'{a:.2f} -> {b:.2f} ({100 * change:+.1f}%, within 20%)')
 
 
+def parse_thread_counts(text):
+    """--threads '1,2' -> [1, 2]; exits with a usage line unless distinct counts >= 1."""
+    try:
+        threads = [int(n) for n in text.split(',')]
+    except ValueError:
+        threads = []
+    if not threads or min(threads) < 1 or len(set(threads)) != len(threads):
+        sys.exit('--threads: distinct counts >= 1, e.g. 1,2')
+    return threads
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--build', default=os.path.join(ROOT, 'build'))
@@ -442,12 +453,7 @@ def main():
     args = ap.parse_args()
     if any(c not in CASES for c in args.cases):
         sys.exit(f'--cases: letters of {"".join(CASES)}')
-    try:
-        threads = [int(n) for n in args.threads.split(',')]
-    except ValueError:
-        threads = []
-    if not threads or min(threads) < 1 or len(set(threads)) != len(threads):
-        sys.exit('--threads: distinct counts >= 1, e.g. 1,2')
+    threads = parse_thread_counts(args.threads)
     work = tempfile.mkdtemp(prefix='hdimesh_peers_')
     runners = [('hdimesh', lambda c: run_ours(args.build, c, work, threads))]
     if shutil.which('tetgen'):

@@ -278,12 +278,7 @@ def main():
     ap.add_argument('--threads', default='1,2',
                     help="adapt's thread counts, one run each; the first gives the row's figures")
     args = ap.parse_args()
-    try:
-        threads = [int(n) for n in args.threads.split(',')]
-    except ValueError:
-        threads = []
-    if not threads or min(threads) < 1 or len(set(threads)) != len(threads):
-        sys.exit('--threads: distinct counts >= 1, e.g. 1,2')
+    threads = compare_peers.parse_thread_counts(args.threads)
     columns = sorted(set(threads) | {1, 2})  # the wall columns: ours, and Gmsh HXT's -nt 1 and 2
     work = tempfile.mkdtemp(prefix='hdimesh_volpeers_')
     have_gmsh = shutil.which('gmsh') is not None
