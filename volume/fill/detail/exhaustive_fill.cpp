@@ -475,15 +475,30 @@ void polish_steiner_points(const std::vector<Vec3>& points, CavityFill& fill)
 {
     const int first_new = static_cast<int>(points.size());
     if (fill.new_points.empty()) return;
-    std::vector<Vec3> all = points;
-    all.insert(all.end(), fill.new_points.begin(), fill.new_points.end());
+    // the fill's own vertices, numbered locally: `points` is the whole mesh's, and a copy of it
+    // per fill made the mirror's fills quadratic in the mesh (80 MB a fill at 19M tets)
+    std::vector<int> ids;
+    for (const auto& t : fill.tets) ids.insert(ids.end(), t.begin(), t.end());
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    auto local = [&](int id) {
+        return static_cast<int>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
+    };
+    std::vector<Vec3> all(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        all[i] = ids[i] < first_new ? points[ids[i]] : fill.new_points[ids[i] - first_new];
+    std::vector<TetVertices> tets;
+    tets.reserve(fill.tets.size());
+    for (const auto& t : fill.tets)
+        tets.push_back({local(t[0]), local(t[1]), local(t[2]), local(t[3])});
     for (int round = 0; round < 2; ++round)
         for (int k = 0; k < static_cast<int>(fill.new_points.size()); ++k)
         {
-            const int id = first_new + k;
+            if (!std::binary_search(ids.begin(), ids.end(), first_new + k)) continue;
+            const int id = local(first_new + k);
             std::vector<Triangle> link;
             double worst_now = std::numeric_limits<double>::max();
-            for (const auto& t : fill.tets)
+            for (const auto& t : tets)
                 for (int i = 0; i < 4; ++i)
                     if (t[i] == id)
                     {
@@ -501,7 +516,7 @@ void polish_steiner_points(const std::vector<Vec3>& points, CavityFill& fill)
             }
         }
     double worst = std::numeric_limits<double>::max();
-    for (const auto& t : fill.tets)
+    for (const auto& t : tets)
         worst = std::min(worst, tet_quality(all[t[0]], all[t[1]], all[t[2]], all[t[3]]));
     fill.worst_quality = worst;
 }
