@@ -62,7 +62,8 @@ int main(int argc, char** argv)
                   "vectors, symmetric tensors) carried onto the output, each output vertex by "
                   "P1 interpolation in the input tet of its region (outside the input: the "
                   "nearest tet's, extrapolated); written to OUT less its extension plus "
-                  ".field.sol (.field.solb), in the file's layout");
+                  ".field.sol (.field.solb), in the file's layout; a .vtu output also gets "
+                  "them as point data field1, field2, ...");
         cl.alias("-field", "--field");
         cl.option("--stats", &stats_path, "write the final quality report as JSON");
         cl.flags({
@@ -190,7 +191,13 @@ int main(int argc, char** argv)
             write_solutions(carried, field_output);
             if (verbosity >= 1) std::cout << "fields " << field_output << "\n";
         }
-        write_mesh(result.mesh, output);  // last: a run that fails leaves no output
+        WriteOptions write_options;
+        if (!field_path.empty() && io::lower_extension(output) == ".vtu")
+            for (std::size_t k = 0; k < result.transfer.fields.size(); ++k)
+                write_options.point_fields.push_back({"field" + std::to_string(k + 1),
+                                                      result.transfer.fields[k].components,
+                                                      result.transfer.fields[k].values});
+        write_mesh(result.mesh, output, write_options);  // last: a failed run leaves no output
         return 0;
     });
 }

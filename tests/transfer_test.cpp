@@ -3,13 +3,12 @@
 // input, from each vertex's own region at an interface; the multi-solution .sol files adapt
 // --field reads and writes.
 
-#include "volume/mesh/field_transfer.h"
-
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -18,6 +17,8 @@
 #include "common/sol_io.h"
 #include "fixtures.h"
 #include "volume/check/check.h"
+#include "volume/io/tet_io.h"
+#include "volume/mesh/field_transfer.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;
@@ -232,4 +233,25 @@ TEST_CASE("a bad multi-solution .sol is refused naming the file and the line")
     contains(type, "unknown solution type 4");
     const std::string cut = message("cut.sol", head + "2\n2 1 2\n1 1 2 3\n1 1\n", 2);
     contains(cut, "cut.sol:");
+}
+
+TEST_CASE(".vtu point data: carried fields after size, with their component counts")
+{
+    const TetMesh mesh = fixtures::box_mesh(2);
+    const int nv = mesh.num_vertices();
+    WriteOptions options;
+    options.point_fields.push_back({"field1", 1, std::vector<double>(nv, 1.5)});
+    options.point_fields.push_back({"field2", 3, std::vector<double>(3 * nv, -2.0)});
+    const std::string path = scratch().file("fields.vtu");
+    write_mesh(mesh, path, options);
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(text.find("<PointData>") != std::string::npos);
+    CHECK(text.find("Name=\"field1\" format=\"appended\" offset=\"0\"") != std::string::npos);
+    // the second array starts after the first's 8-byte size and its nv doubles
+    CHECK(text.find("Name=\"field2\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" +
+                    std::to_string(8 + 8 * nv) + "\"") != std::string::npos);
+    options.point_fields[1].values.pop_back();
+    CHECK_THROWS_AS(write_mesh(mesh, scratch().file("bad.vtu"), options), InputError);
+    CHECK(!std::ifstream(scratch().file("bad.vtu")).good());
 }

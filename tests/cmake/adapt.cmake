@@ -53,3 +53,8 @@ if(EXISTS /usr/bin/python3)
     add_test(NAME adapt_app_field_wrong_count
              COMMAND bash -c "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py make ${PROJECT_SOURCE_DIR}/data/icosphere320_tetgen.mesh ${adapt_out}/G.sol && ! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/nofield.mesh --hsiz 0.3 --field ${adapt_out}/G.sol 2> ${adapt_out}/nofield.txt && grep -q 'G.sol:[0-9]*: SolAtVertices has' ${adapt_out}/nofield.txt && test ! -e ${adapt_out}/nofield.mesh && test ! -e ${adapt_out}/nofield.field.sol")
 endif()
+# A .vtu output also carries the fields as point data, each with its component count.
+if(EXISTS /usr/bin/python3)
+    add_test(NAME adapt_app_field_vtu
+             COMMAND bash -c "set -e; /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py make ${PROJECT_SOURCE_DIR}/data/sphere480.mesh ${adapt_out}/Fv.sol && $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/fields.vtu --hsiz 0.3 --field ${adapt_out}/Fv.sol -v 0 && grep -aq 'Name=\"field2\" NumberOfComponents=\"3\"' ${adapt_out}/fields.vtu && grep -aq 'Name=\"field3\" format' ${adapt_out}/fields.vtu && test -e ${adapt_out}/fields.field.sol")
+endif()

@@ -94,11 +94,10 @@ int TransferSource::nearest_in_region(int from, const Vec3& p, int ref) const
                     next.push_back(vertex_tets_[n]);
         std::sort(next.begin(), next.end());
         next.erase(std::unique(next.begin(), next.end()), next.end());
-        next.erase(std::remove_if(next.begin(), next.end(),
-                                  [&](int u) {
-                                      return std::binary_search(seen.begin(), seen.end(), u);
-                                  }),
-                   next.end());
+        next.erase(
+            std::remove_if(next.begin(), next.end(),
+                           [&](int u) { return std::binary_search(seen.begin(), seen.end(), u); }),
+            next.end());
         for (int u : next)
         {
             if (tet_refs_[u] != ref) continue;
@@ -186,7 +185,8 @@ TransferReport transfer_fields(const TransferSource& source, const std::vector<V
     {
         report.outside += s.outside;
         report.other_region += s.other_region;
-        if (s.outside) report.max_outside_distance = std::max(report.max_outside_distance, s.distance);
+        if (s.outside)
+            report.max_outside_distance = std::max(report.max_outside_distance, s.distance);
     }
     for (const VertexField& field : fields)
     {

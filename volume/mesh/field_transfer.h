@@ -63,7 +63,7 @@ private:
     std::vector<Vec3> points_;
     std::vector<TetVertices> tets_;  ///< the source's slots (dead ones never referenced)
     std::vector<int> tet_refs_;
-    std::vector<int> vertex_tets_start_, vertex_tets_;  ///< live tets around each vertex
+    std::vector<int> vertex_tets_start_, vertex_tets_;      ///< live tets around each vertex
     std::vector<std::pair<Triangle, int>> boundary_faces_;  ///< sorted face -> its tet, by face
 };
 
@@ -76,7 +76,7 @@ struct TransferReport
 {
     std::vector<VertexField> fields;  ///< at the target's vertices, in the order given
     int vertices = 0;                 ///< target vertices
-    int outside = 0;  ///< in no source tet: extrapolated from the nearest source tet
+    int outside = 0;       ///< in no source tet: extrapolated from the nearest source tet
     int other_region = 0;  ///< located in another region's tet, taken from their own region's
     double max_outside_distance = 0;  ///< the farthest outside vertex from the source boundary
 };
