@@ -1,8 +1,11 @@
 // adapt: adapts a tet mesh and its boundary to a size field, or meshes the volume a closed
 // surface bounds (parse -> read -> coupling::run_adapt -> write).
+#include <filesystem>
 #include <iostream>
 
+#include "common/buffer_io.h"
 #include "common/parallel.h"
+#include "common/sol_io.h"
 #include "coupling/adapt_request.h"
 #include "size_flags.h"
 #include "volume/check/quality_report.h"
@@ -14,14 +17,16 @@ using namespace hdimesh::volume;
 int main(int argc, char** argv)
 {
     return cli::run("adapt", [&] {
-        std::string input, output, stats_path;
+        std::string input, output, stats_path, field_path;
         cli::SizeFlags size;
         coupling::AdaptSwitches switches;
         bool check = false, keep_surface = false, has_hausd = false, strict = false;
         bool memory_set = false;
         double hausd = 0;
         int verbosity = 1, memory_mb = 0, max_passes = 40, threads = default_thread_count();
-        int block_tets = coupling::AdaptRequest{}.tets_per_block;
+        // (a named default: GCC 12 warns of the temporary's vectors as maybe uninitialized)
+        const coupling::AdaptRequest defaults;
+        int block_tets = defaults.tets_per_block;
 
         cli::CommandLine cl("adapt",
                             "Adapts a tetrahedral mesh and its boundary to a size field; the\n"
@@ -52,6 +57,14 @@ int main(int argc, char** argv)
         cl.option("--ridge-angle", &switches.ridge_angle,
                   "ridge detection angle in degrees on the boundary (default 45)");
         cl.alias("-ar", "--ridge-angle");
+        cl.option("--field", &field_path,
+                  "a .sol/.solb of fields at the input's vertices (one or several scalars, "
+                  "vectors, symmetric tensors) carried onto the output, each output vertex by "
+                  "P1 interpolation in the input tet of its region (outside the input: the "
+                  "nearest tet's, extrapolated); written to OUT less its extension plus "
+                  ".field.sol (.field.solb), in the file's layout; a .vtu output also gets "
+                  "them as point data field1, field2, ...");
+        cl.alias("-field", "--field");
         cl.option("--stats", &stats_path, "write the final quality report as JSON");
         cl.flags({
             {"--check", &check, "print the mesh checker's verdict on the input and output"},
@@ -143,6 +156,15 @@ int main(int argc, char** argv)
             throw cli::UsageError("--keep-surface applies to a surface input");
         if (optim_only && in.is_surface)
             throw cli::UsageError("--optim needs a tet mesh, not a surface");
+        Solutions fields;
+        if (!field_path.empty())
+        {
+            if (in.is_surface)
+                throw cli::UsageError("--field needs a tet mesh input, not a surface");
+            fields = read_solutions(field_path, in.mesh.num_vertices());
+            for (const Solution& solution : fields.solutions)
+                request.fields.push_back({sol_components(solution.type), solution.values});
+        }
         const coupling::AdaptResult result = coupling::run_adapt(std::move(in), request);
 
         if (verbosity >= 1 || !stats_path.empty())  // (a report of a large mesh takes a while)
@@ -155,7 +177,27 @@ int main(int argc, char** argv)
                 std::cout << "output " << output << "\n" << format_quality_table(quality);
             if (!stats_path.empty()) write_quality_json(quality, stats_path);
         }
-        write_mesh(result.mesh, output);  // last: a run that fails leaves no output
+        if (!field_path.empty())
+        {
+            // F's layout: its solutions' types in its order, its format (.sol or .solb)
+            Solutions carried;
+            carried.num_vertices = result.mesh.num_vertices();
+            for (std::size_t k = 0; k < fields.solutions.size(); ++k)
+                carried.solutions.push_back(
+                    {fields.solutions[k].type, result.transfer.fields[k].values});
+            const std::string field_output =
+                std::filesystem::path(output).replace_extension("").string() + ".field" +
+                io::lower_extension(field_path);
+            write_solutions(carried, field_output);
+            if (verbosity >= 1) std::cout << "fields " << field_output << "\n";
+        }
+        WriteOptions write_options;
+        if (!field_path.empty() && io::lower_extension(output) == ".vtu")
+            for (std::size_t k = 0; k < result.transfer.fields.size(); ++k)
+                write_options.point_fields.push_back({"field" + std::to_string(k + 1),
+                                                      result.transfer.fields[k].components,
+                                                      result.transfer.fields[k].values});
+        write_mesh(result.mesh, output, write_options);  // last: a failed run leaves no output
         return 0;
     });
 }

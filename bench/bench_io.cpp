@@ -66,10 +66,10 @@ int main(int argc, char** argv)
     const Format formats[] = {
         {"Medit ASCII", "box.mesh", {}, true},
         {"Medit binary v2", "box.meshb", {}, true},
-        {"Gmsh 2.2 ASCII", "box22.msh", {{}, "2.2", false}, true},
-        {"Gmsh 2.2 binary", "box22b.msh", {{}, "2.2", true}, true},
-        {"Gmsh 4.1 ASCII", "box41.msh", {{}, "4.1", false}, true},
-        {"Gmsh 4.1 binary", "box41b.msh", {{}, "4.1", true}, true},
+        {"Gmsh 2.2 ASCII", "box22.msh", {{}, "2.2", false, {}}, true},
+        {"Gmsh 2.2 binary", "box22b.msh", {{}, "2.2", true, {}}, true},
+        {"Gmsh 4.1 ASCII", "box41.msh", {{}, "4.1", false, {}}, true},
+        {"Gmsh 4.1 binary", "box41b.msh", {{}, "4.1", true, {}}, true},
         {"VTK .vtu (write)", "box.vtu", {}, false},
     };
 

@@ -1,7 +1,8 @@
 #pragma once
 // Medit solution files with one scalar per vertex (SolAtVertices, type 1), the usual way to
 // hand a size field to Mmg-like tools: .sol (ASCII) and .solb (libMeshb binary). Both meshes
-// read their --sol through here.
+// read their --sol through here. Fields carried through an adaptation (adapt --field) are
+// files of several solutions of any type (scalars, vectors, symmetric tensors): read_solutions.
 
 #include <string>
 #include <vector>
@@ -20,5 +21,39 @@ std::vector<double> read_sol_sizes(const std::string& path, int expected_vertice
 
 /// Writes .sol or .solb by extension, atomically.
 void write_sol(const std::vector<double>& values, const std::string& path);
+
+/// Medit's solution types at a vertex in 3D (GmfSca, GmfVec, GmfSymMat).
+enum class SolType
+{
+    Scalar = 1,
+    Vector = 2,  ///< 3 values
+    Tensor = 3,  ///< a symmetric 3x3 matrix: 6 values (m11 m12 m13 m22 m23 m33, as Mmg)
+};
+
+/// Values per vertex of a solution of this type: 1, 3 or 6.
+int sol_components(SolType type);
+
+/// One solution: sol_components(type) values per vertex, vertex after vertex.
+struct Solution
+{
+    SolType type = SolType::Scalar;
+    std::vector<double> values;
+};
+
+/// A SolAtVertices section with its solutions in the file's order.
+struct Solutions
+{
+    int num_vertices = 0;
+    std::vector<Solution> solutions;
+};
+
+/// Medit .sol or .solb with one or several solutions of types 1, 2 or 3 at the vertices.
+/// expected_vertices < 0: don't check the count. InputError naming the file and the line
+/// (.sol) or byte (.solb) on a wrong count, a value that is not finite or an unknown type.
+Solutions read_solutions(const std::string& path, int expected_vertices = -1);
+
+/// Writes .sol or .solb by extension, atomically, the solutions in their order. InputError
+/// when a solution's value count is not num_vertices times its components.
+void write_solutions(const Solutions& solutions, const std::string& path);
 
 }  // namespace hdimesh

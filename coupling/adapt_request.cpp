@@ -1,8 +1,11 @@
 #include "coupling/adapt_request.h"
 
+#include <cstdio>
+
 #include "common/buffer_io.h"
 #include "common/errors.h"
 #include "common/sol_io.h"
+#include "common/stage_timer.h"
 #include "volume/check/boundary_repair.h"
 #include "volume/check/check.h"
 #include "volume/check/quality_report.h"
@@ -64,6 +67,10 @@ AdaptResult fill_surface(const surface::TriangleSoup& soup, const AdaptRequest& 
                          const AdaptOptions& options)
 {
     if (request.switches.optim) throw InputError("optim needs a tet mesh, not a surface");
+    if (!request.fields.empty())
+        throw InputError(
+            "fields are carried from a tet mesh, not a surface (no tets to "
+            "interpolate in)");
     const VolumeFromSurfaceOptions o =
         fill_options(request, options, static_cast<int>(soup.points.size()));
     VolumeFromSurfaceReport report;
@@ -77,6 +84,34 @@ AdaptResult fill_surface(const surface::TriangleSoup& soup, const AdaptRequest& 
         emit(request.messages, MessageKind::Report, "input %s (a surface)\n%s",
              request.source.c_str(), format_volume_from_surface_report(report).c_str());
     return result;
+}
+
+/// Fields of the wrong size are refused before the adaptation runs, not after.
+void check_fields(const std::vector<volume::VertexField>& fields, int vertices)
+{
+    for (std::size_t k = 0; k < fields.size(); ++k)
+        if (fields[k].components < 1 ||
+            fields[k].values.size() != static_cast<std::size_t>(vertices) * fields[k].components)
+            throw InputError("field " + std::to_string(k + 1) + " has " +
+                             std::to_string(fields[k].values.size()) + " values, not " +
+                             std::to_string(vertices) + " vertices x " +
+                             std::to_string(fields[k].components) + " components");
+}
+
+void report_transfer(const AdaptRequest& request, const AdaptResult& result)
+{
+    const volume::TransferReport& t = result.transfer;
+    char farthest[64] = "";
+    if (t.outside > 0)
+        std::snprintf(farthest, sizeof farthest, ", at most %.3g away", t.max_outside_distance);
+    emit(request.messages, MessageKind::Report,
+         "fields: %d carried to %d vertices (%d outside the input, extrapolated from the "
+         "nearest tet%s; %d from their own region's tet at an interface) in "
+         "%.3f s, %.1f %% of the adaptation's %.3f s\n",
+         static_cast<int>(t.fields.size()), t.vertices, t.outside, farthest, t.other_region,
+         result.transfer_seconds,
+         result.adapt_seconds > 0 ? 100.0 * result.transfer_seconds / result.adapt_seconds : 0.0,
+         result.adapt_seconds);
 }
 
 AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptOptions options)
@@ -99,15 +134,36 @@ AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptO
     volume::SizeSpec spec = request.size;
     if (!request.sol.empty()) spec.vertex_sizes = read_sol_sizes(request.sol, mesh.num_vertices());
     result.field = volume::make_size_field(spec, mesh);
+    // the input as it is before adapt changes it, kept only when fields are to be carried
+    std::unique_ptr<volume::TransferSource> transfer_source;
+    WallStopwatch transfer_clock;
+    if (!request.fields.empty())
+    {
+        check_fields(request.fields, mesh.num_vertices());
+        transfer_source = std::make_unique<volume::TransferSource>(mesh);
+    }
+    result.transfer_seconds = transfer_clock.seconds();
     if (request.verbosity >= 1)
         emit(request.messages, MessageKind::Report, "input %s\n%s", request.source.c_str(),
              volume::format_quality_table(volume::compute_quality_report(mesh, result.field.get()))
                  .c_str());
+    WallStopwatch adapt_clock;
     const AdaptReport report = adapt(mesh, *result.field, options);
+    result.adapt_seconds = adapt_clock.seconds();
     // -v 1 is a summary; at -v 2 the pass rows were reported as they ran
     if (request.verbosity >= 1)
         emit(request.messages, MessageKind::Report, "%s",
              format_adapt_report(report, false).c_str());
+    if (transfer_source)
+    {
+        transfer_clock.restart();
+        volume::TransferOptions transfer_options;
+        transfer_options.workers = options.workers;
+        result.transfer =
+            volume::transfer_fields(*transfer_source, request.fields, mesh, transfer_options);
+        result.transfer_seconds += transfer_clock.seconds();
+        if (request.verbosity >= 1) report_transfer(request, result);
+    }
     result.mesh = std::move(mesh);
     return result;
 }

@@ -14,6 +14,7 @@
 #include "coupling/adapt.h"
 #include "coupling/mesh_from_surface.h"
 #include "surface/surface_io.h"
+#include "volume/mesh/field_transfer.h"
 #include "volume/mesh/tet_mesh.h"
 #include "volume/size/size_spec.h"
 
@@ -67,6 +68,9 @@ struct AdaptRequest
     std::function<void(const std::string& stage, int tets)> progress;  ///< may throw to stop
     bool check = false;           ///< report the checker's verdict on the input and output
     std::string source = "mesh";  ///< the input's name in messages
+    /// Fields at the input's vertices (a tet input) carried onto the output
+    /// (volume::transfer_fields: P1 in the input tet of each output vertex's own region).
+    std::vector<volume::VertexField> fields;
 };
 
 struct AdaptResult
@@ -75,6 +79,10 @@ struct AdaptResult
     /// The field it was adapted to (the surface's sizes carried into the volume for a surface)
     std::shared_ptr<const SizeField> field;
     std::vector<std::string> repairs;  ///< what mending the input changed, one line each
+    /// The request's fields at the output's vertices (transfer.fields) and how they were found.
+    volume::TransferReport transfer;
+    double adapt_seconds = 0;     ///< wall time of the adaptation proper
+    double transfer_seconds = 0;  ///< wall time of the fields' transfer (the locator included)
 };
 
 /// Adapts a tet input to the request, or fills a surface input's volume. Throws InputError

@@ -373,10 +373,10 @@ TEST_CASE("fuzz: truncated and byte-corrupted copies of valid files never crash"
     const Variant variants[] = {
         {"fuzz.mesh", {}},
         {"fuzz.meshb", {}},
-        {"fuzz22.msh", {{}, "2.2", false}},
-        {"fuzz22b.msh", {{}, "2.2", true}},
-        {"fuzz41.msh", {{}, "4.1", false}},
-        {"fuzz41b.msh", {{}, "4.1", true}},
+        {"fuzz22.msh", {{}, "2.2", false, {}}},
+        {"fuzz22b.msh", {{}, "2.2", true, {}}},
+        {"fuzz41.msh", {{}, "4.1", false, {}}},
+        {"fuzz41b.msh", {{}, "4.1", true, {}}},
     };
     const char interesting[] = {'0', '9', '-', '.', 'e', ' ', '\n', '$', '#', '\0', '\x7f', '\xff'};
     for (const Variant& variant : variants)

@@ -214,8 +214,13 @@ TEST_CASE(
     const TetMesh original = read_mesh(fixtures::data_path("sphere480.mesh"));
     TetMesh current = original;
     const std::string chain[] = {"a.mesh", "b.meshb", "c.msh", "d.msh", "e.msh", "f.msh", "g.mesh"};
-    const WriteOptions options[] = {
-        {}, {}, {{}, "2.2", false}, {{}, "2.2", true}, {{}, "4.1", false}, {{}, "4.1", true}, {}};
+    const WriteOptions options[] = {{},
+                                    {},
+                                    {{}, "2.2", false, {}},
+                                    {{}, "2.2", true, {}},
+                                    {{}, "4.1", false, {}},
+                                    {{}, "4.1", true, {}},
+                                    {}};
     for (std::size_t k = 0; k < std::size(chain); ++k)
     {
         CAPTURE(chain[k]);

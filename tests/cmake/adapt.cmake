@@ -44,3 +44,17 @@ if(EXISTS /usr/bin/python3)
     add_test(NAME adapt_app_two_materials
              COMMAND bash -c "$<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/box_with_ball.msh -o ${adapt_out}/two_materials.mesh --hsiz 0.1 --check > ${adapt_out}/two_materials.txt 2>&1 && grep -q 'surface: 1180 triangles -> .*on the input' ${adapt_out}/two_materials.txt && grep -q 'check output: clean' ${adapt_out}/two_materials.txt && /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/interface_check.py ${adapt_out}/two_materials.mesh")
 endif()
+# Fields carried through adapt (-field, ParMmg's spelling): a linear scalar and vector come out
+# exact at every output vertex, those the projection moved outside the input included, in the
+# input file's layout; a field file of the wrong vertex count is refused naming its line.
+if(EXISTS /usr/bin/python3)
+    add_test(NAME adapt_app_field_transfer
+             COMMAND bash -c "set -e; /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py make ${PROJECT_SOURCE_DIR}/data/sphere480.mesh ${adapt_out}/F.sol && $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/fields.mesh --hsiz 0.3 -field ${adapt_out}/F.sol > ${adapt_out}/fields.txt && grep -q 'fields: 3 carried to' ${adapt_out}/fields.txt && /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py check ${adapt_out}/fields.mesh ${adapt_out}/fields.field.sol")
+    add_test(NAME adapt_app_field_wrong_count
+             COMMAND bash -c "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py make ${PROJECT_SOURCE_DIR}/data/icosphere320_tetgen.mesh ${adapt_out}/G.sol && ! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/nofield.mesh --hsiz 0.3 --field ${adapt_out}/G.sol 2> ${adapt_out}/nofield.txt && grep -q 'G.sol:[0-9]*: SolAtVertices has' ${adapt_out}/nofield.txt && test ! -e ${adapt_out}/nofield.mesh && test ! -e ${adapt_out}/nofield.field.sol")
+endif()
+# A .vtu output also carries the fields as point data, each with its component count.
+if(EXISTS /usr/bin/python3)
+    add_test(NAME adapt_app_field_vtu
+             COMMAND bash -c "set -e; /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py make ${PROJECT_SOURCE_DIR}/data/sphere480.mesh ${adapt_out}/Fv.sol && $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/fields.vtu --hsiz 0.3 --field ${adapt_out}/Fv.sol -v 0 && grep -aq 'Name=\"field2\" NumberOfComponents=\"3\"' ${adapt_out}/fields.vtu && grep -aq 'Name=\"field3\" format' ${adapt_out}/fields.vtu && test -e ${adapt_out}/fields.field.sol")
+endif()

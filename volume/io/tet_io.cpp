@@ -167,6 +167,13 @@ void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions
         options.vertex_sizes.size() != static_cast<std::size_t>(mesh.num_vertices()))
         throw InputError(path + ": " + std::to_string(options.vertex_sizes.size()) +
                          " vertex sizes for " + std::to_string(mesh.num_vertices()) + " vertices");
+    for (const PointField& field : options.point_fields)
+        if (field.components < 1 ||
+            field.values.size() != static_cast<std::size_t>(mesh.num_vertices()) * field.components)
+            throw InputError(path + ": point field '" + field.name + "' has " +
+                             std::to_string(field.values.size()) + " values for " +
+                             std::to_string(mesh.num_vertices()) + " vertices x " +
+                             std::to_string(field.components));
     write_file_atomically(path, [&](std::ostream& out) {
         switch (format)
         {

@@ -62,17 +62,26 @@ TetMesh read_mesh(const std::string& path);
 /// and the element (numbered from 1, as in the files).
 void finish_mesh(TetMesh& mesh, const std::string& source);
 
+/// A named array at the vertices: components values per vertex, vertex after vertex.
+struct PointField
+{
+    std::string name;
+    int components = 1;
+    std::vector<double> values;
+};
+
 struct WriteOptions
 {
     std::vector<double> vertex_sizes;  ///< optional point data "size" for .vtu (and nothing else)
     std::string gmsh_version = "4.1";  ///< "2.2" or "4.1" for .msh
     bool gmsh_binary = false;
+    std::vector<PointField> point_fields;  ///< more point data for .vtu (carried fields)
 };
 
 /// Writes by extension: .mesh, .meshb, .msh, .vtu (raw appended binary, cell data "ref" and
 /// "Qe", point data "size" when given). Atomic (temporary file + rename): a failed write
-/// leaves no partial file. InputError for a bad option (unknown gmsh_version, vertex_sizes of
-/// the wrong length), IoError when the file system refuses.
+/// leaves no partial file. InputError for a bad option (unknown gmsh_version, vertex_sizes or a
+/// point field of the wrong length), IoError when the file system refuses.
 void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions& options = {});
 
 }  // namespace hdimesh::volume

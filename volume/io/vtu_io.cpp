@@ -1,8 +1,8 @@
 // VTK XML unstructured grid (.vtu) for viewing in ParaView: tets (VTK_TETRA = 10) then
 // boundary triangles (VTK_TRIANGLE = 5) as cells, cell data "ref" (Int32) and "Qe" (Float64:
-// tet_quality / triangle_quality), point data "size" when given. Arrays are raw binary in one
-// <AppendedData> block (each preceded by its UInt64 byte count), the most compact form
-// ParaView and meshio both read.
+// tet_quality / triangle_quality), point data "size" and the carried fields when given. Arrays are
+// raw binary in one <AppendedData> block (each preceded by its UInt64 byte count), the most compact
+// form ParaView and meshio both read.
 
 #include <cstdint>
 #include <string>
@@ -46,6 +46,9 @@ void write_vtu(const TetMesh& mesh, std::ostream& out, const WriteOptions& optio
     // the appended block's layout, in writing order
     std::vector<AppendedArray> arrays;
     if (with_size) arrays.push_back({"Float64", "size", 1, 8 * nv});
+    for (const PointField& field : options.point_fields)
+        arrays.push_back({"Float64", field.name, field.components, 8 * nv * field.components});
+    const int point_arrays = (with_size ? 1 : 0) + static_cast<int>(options.point_fields.size());
     arrays.push_back({"Int32", "ref", 1, 4 * ncells});
     arrays.push_back({"Float64", "Qe", 1, 8 * ncells});
     arrays.push_back({"Float64", "Points", 3, 24 * nv});
@@ -82,7 +85,9 @@ void write_vtu(const TetMesh& mesh, std::ostream& out, const WriteOptions& optio
         for (int i = 0; i < count; ++i) w.text(data_array(k++));
         w.text(close);
     };
-    if (with_size) group("      <PointData Scalars=\"size\">\n", 1, "      </PointData>\n");
+    if (point_arrays > 0)
+        group(with_size ? "      <PointData Scalars=\"size\">\n" : "      <PointData>\n",
+              point_arrays, "      </PointData>\n");
     group("      <CellData Scalars=\"ref\">\n", 2, "      </CellData>\n");
     group("      <Points>\n", 1, "      </Points>\n");
     group("      <Cells>\n", 3, "      </Cells>\n");
@@ -96,6 +101,11 @@ void write_vtu(const TetMesh& mesh, std::ostream& out, const WriteOptions& optio
     {
         block_size(k++);
         w.bytes(options.vertex_sizes.data(), 8 * nv);
+    }
+    for (const PointField& field : options.point_fields)
+    {
+        block_size(k++);
+        w.bytes(field.values.data(), 8 * field.values.size());
     }
     block_size(k++);
     for (int t : live.ids) w.raw(static_cast<std::int32_t>(mesh.tet_refs[t]));
