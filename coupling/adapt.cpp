@@ -34,7 +34,8 @@ namespace
 // the triangles the last one left (a few too long edges are no reason to remesh it all again).
 constexpr int kSurfaceRounds = 3;
 constexpr int kFloorRounds = 3;  // boundary slides, each followed by a repair
-constexpr int kBandRings = 1;    // the second block round: the tets at the first's frozen faces
+constexpr int kBandRings =
+    1;  // the second block round: the tets the first left at its cuts and these rings around them
 constexpr double kSurfaceRepeatFraction = 0.01;
 constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
 constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
@@ -431,8 +432,8 @@ void optimize(AdaptState& s)
         s.mesh, volume::contiguous_blocks(s.mesh, blocks), s.options.workers, work);
     // the tets a block left (stuck against a cut, or with an edge too short there) and their
     // neighbours, cut elsewhere
-    const std::vector<char> band =
-        volume::tets_near(s.mesh, left_at_cuts(s.mesh, *s.volume_field, cuts, s.optimizer), 1);
+    const std::vector<char> band = volume::tets_near(
+        s.mesh, left_at_cuts(s.mesh, *s.volume_field, cuts, s.optimizer), kBandRings);
     const long long band_tets = std::count(band.begin(), band.end(), 1);
     volume::run_in_blocks(
         s.mesh,

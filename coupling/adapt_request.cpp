@@ -86,18 +86,6 @@ AdaptResult fill_surface(const surface::TriangleSoup& soup, const AdaptRequest& 
     return result;
 }
 
-/// Fields of the wrong size are refused before the adaptation runs, not after.
-void check_fields(const std::vector<volume::VertexField>& fields, int vertices)
-{
-    for (std::size_t k = 0; k < fields.size(); ++k)
-        if (fields[k].components < 1 ||
-            fields[k].values.size() != static_cast<std::size_t>(vertices) * fields[k].components)
-            throw InputError("field " + std::to_string(k + 1) + " has " +
-                             std::to_string(fields[k].values.size()) + " values, not " +
-                             std::to_string(vertices) + " vertices x " +
-                             std::to_string(fields[k].components) + " components");
-}
-
 void report_transfer(const AdaptRequest& request, const AdaptResult& result)
 {
     const volume::TransferReport& t = result.transfer;
@@ -139,7 +127,8 @@ AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptO
     WallStopwatch transfer_clock;
     if (!request.fields.empty())
     {
-        check_fields(request.fields, mesh.num_vertices());
+        // fields of the wrong size are refused before the adaptation runs, not after
+        volume::check_vertex_fields(request.fields, mesh.num_vertices());
         transfer_source = std::make_unique<volume::TransferSource>(mesh);
     }
     result.transfer_seconds = transfer_clock.seconds();
@@ -208,7 +197,7 @@ AdaptResult run_adapt(AdaptInput input, const AdaptRequest& request)
         throw InputError("threads must be at least 1 (0: the cores present), got " +
                          std::to_string(request.threads));
     if (request.tets_per_block < 0)
-        throw InputError("tets per block must be at least 1 (0: no blocks), got " +
+        throw InputError("tets per block must be at least 0 (0: no blocks), got " +
                          std::to_string(request.tets_per_block));
     // one pool for the whole run: its threads start once, not per loop
     Workers workers(request.threads > 0 ? request.threads : default_thread_count());

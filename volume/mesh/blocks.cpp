@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "common/morton.h"
+#include "volume/mesh/tet_topology.h"
 
 namespace hdimesh::volume
 {
@@ -67,7 +68,7 @@ struct PointHash
         std::uint64_t h = 1469598103934665603ull, bits;
         for (int k = 0; k < 3; ++k)
         {
-            const double x = p[k];
+            const double x = p[k] + 0.0;  // -0.0 and 0.0 compare equal: they must hash alike
             std::memcpy(&bits, &x, sizeof bits);
             h = (h ^ bits) * 1099511628211ull;
         }
@@ -200,34 +201,30 @@ Block extract_block(const SharedView& view, const std::vector<int>& tets, int b)
             out.required_vertices.push_back(static_cast<int>(i));
     for (std::size_t i = 0; i < vertices.size(); ++i)
         if (cut[i]) block.cut_vertices.push_back(vertices[i]);
-    // the vertices the work may not move or remove, found again by their positions
-    std::vector<char> on_edge(vertices.size(), 0);
-    for (const auto& e : out.edges) on_edge[e[0]] = on_edge[e[1]] = 1;
+    // the vertices the work may not move or remove (the operators' own rule), found again by
+    // their positions
+    const MeshConstraints constraints(out);
     for (std::size_t i = 0; i < vertices.size(); ++i)
-        if (frozen[i] || on_edge[i] || view.pinned_vertex[vertices[i]] ||
-            out.vertex_classes[i] != VertexClass::Interior)
+        if (!constraints.is_free_vertex(static_cast<int>(i)))
             block.kept.emplace(out.points[i], vertices[i]);
     return block;
 }
 
 /// After the work: the whole mesh's id of each block vertex a tet, triangle or edge uses
-/// (-1: new), and the count of new ones.
-int map_block_vertices(Block& block)
+/// (-1: new).
+void map_block_vertices(Block& block)
 {
     TetMesh& m = block.mesh;
     std::vector<char> used(m.num_vertices(), 0);
     m.for_each_vertex_id([&](int& v) { used[v] = 1; });
     block.global_vertex.assign(m.num_vertices(), -2);  // -2: unused
-    int fresh = 0;
     for (int v = 0; v < m.num_vertices(); ++v)
     {
         if (!used[v]) continue;
         auto it = block.kept.find(m.points[v]);
         block.global_vertex[v] = it != block.kept.end() ? it->second : -1;
-        if (it == block.kept.end()) ++fresh;
     }
     block.kept.clear();
-    return fresh;
 }
 
 /// Keeps the first of each key in `keys` (sorted key, position): returns positions to keep.

@@ -18,12 +18,6 @@ namespace
 /// with the located one; a second and third ring cover an interface that moved by an element.
 constexpr int kRegionSearchRings = 3;
 
-Triangle sorted(Triangle face)
-{
-    std::sort(face.begin(), face.end());
-    return face;
-}
-
 }  // namespace
 
 TransferSource::TransferSource(const TetMesh& mesh)
@@ -49,7 +43,8 @@ TransferSource::TransferSource(const TetMesh& mesh)
             for (int f = 0; f < 4; ++f)
             {
                 const auto& fv = tet::kFaceVertices[f];
-                faces.push_back({sorted({tets_[t][fv[0]], tets_[t][fv[1]], tets_[t][fv[2]]}), t});
+                faces.push_back(
+                    {sorted_triple({tets_[t][fv[0]], tets_[t][fv[1]], tets_[t][fv[2]]}), t});
             }
     std::sort(faces.begin(), faces.end());
     for (std::size_t i = 0; i < faces.size();)
@@ -72,7 +67,7 @@ std::array<double, 4> TransferSource::weights(int t, const Vec3& p) const
 
 int TransferSource::tet_of_boundary_face(Triangle face) const
 {
-    const Triangle key = sorted(face);
+    const Triangle key = sorted_triple(face);
     const auto it = std::lower_bound(
         boundary_faces_.begin(), boundary_faces_.end(), key,
         [](const std::pair<Triangle, int>& item, const Triangle& k) { return item.first < k; });
@@ -145,22 +140,26 @@ TransferSource::Source TransferSource::find(const Vec3& p, int ref) const
     return source;
 }
 
-TransferReport transfer_fields(const TransferSource& source, const std::vector<VertexField>& fields,
-                               const TetMesh& target, const TransferOptions& options)
+void check_vertex_fields(const std::vector<VertexField>& fields, int num_vertices)
 {
-    const std::size_t n_old = static_cast<std::size_t>(source.num_vertices());
+    const std::size_t n = static_cast<std::size_t>(num_vertices);
     for (std::size_t k = 0; k < fields.size(); ++k)
     {
         const VertexField& field = fields[k];
         if (field.components < 1)
             throw InputError("field " + std::to_string(k + 1) + ": " +
                              std::to_string(field.components) + " components per vertex");
-        if (field.values.size() != n_old * field.components)
+        if (field.values.size() != n * field.components)
             throw InputError("field " + std::to_string(k + 1) + " has " +
                              std::to_string(field.values.size()) + " values, not " +
-                             std::to_string(n_old) + " vertices x " +
-                             std::to_string(field.components));
+                             std::to_string(n) + " vertices x " + std::to_string(field.components));
     }
+}
+
+TransferReport transfer_fields(const TransferSource& source, const std::vector<VertexField>& fields,
+                               const TetMesh& target, const TransferOptions& options)
+{
+    check_vertex_fields(fields, source.num_vertices());
 
     // each vertex's region: the lowest ref among its tets (an interface vertex takes the lower)
     const int nv = target.num_vertices();

@@ -81,6 +81,10 @@ struct TransferReport
     double max_outside_distance = 0;  ///< the farthest outside vertex from the source boundary
 };
 
+/// Throws InputError naming the first field whose component count is below 1 or whose size is
+/// not num_vertices x components.
+void check_vertex_fields(const std::vector<VertexField>& fields, int num_vertices);
+
 /// Carries `fields` (each source vertices x components values) onto `target`'s vertices.
 /// Throws InputError naming the field when its size does not match the source or its
 /// component count is below 1.
