@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "volume/mesh/boundary.h"
 #include "volume/mesh/geometry.h"
 #include "volume/mesh/tet_tables.h"
 
@@ -36,24 +37,15 @@ TransferSource::TransferSource(const TetMesh& mesh)
         if (!mesh.is_dead(t))
             for (int v : tets_[t]) vertex_tets_[fill[v]++] = t;
 
-    // a face of one tet only is on the boundary (the locator's outward faces)
-    std::vector<std::pair<Triangle, int>> faces;
-    for (int t = 0; t < mesh.num_tet_slots(); ++t)
-        if (!mesh.is_dead(t))
-            for (int f = 0; f < 4; ++f)
-            {
-                const auto& fv = tet::kFaceVertices[f];
-                faces.push_back(
-                    {sorted_triple({tets_[t][fv[0]], tets_[t][fv[1]], tets_[t][fv[2]]}), t});
-            }
-    std::sort(faces.begin(), faces.end());
-    for (std::size_t i = 0; i < faces.size();)
-    {
-        std::size_t j = i + 1;
-        while (j < faces.size() && faces[j].first == faces[i].first) ++j;
-        if (j == i + 1) boundary_faces_.push_back(faces[i]);
-        i = j;
-    }
+    // a face of one tet only is on the boundary (the locator's outward faces); the groups come
+    // in sorted key order
+    const FaceGroups groups = group_tet_faces(mesh);
+    for (int k = 0; k < groups.num_faces(); ++k)
+        if (groups.start[k + 1] - groups.start[k] == 1)
+        {
+            const TetFace& use = groups.uses[groups.start[k]];
+            boundary_faces_.push_back({sorted_triple(face_vertices(mesh, use)), use.tet});
+        }
 }
 
 std::array<double, 4> TransferSource::weights(int t, const Vec3& p) const
