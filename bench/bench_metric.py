@@ -70,11 +70,18 @@ def run_child(cmd, stem):
 
 
 def tet_count(path):
-    return len(read_mesh(path)[1])
+    try:
+        return len(read_mesh(path)[1])
+    except (OSError, ValueError, IndexError, TypeError) as e:
+        raise ToolError('%s: not a Medit ASCII tet mesh (%s)' % (path, e))
 
 
 def write_metric(mesh, case, params, sol):
-    write_sol(sol, metric(read_mesh(mesh)[0], case, **params))
+    try:
+        V = read_mesh(mesh)[0]
+    except (OSError, ValueError, IndexError, TypeError) as e:  # a tool's unreadable output is its error
+        raise ToolError('%s: not a Medit ASCII tet mesh (%s)' % (mesh, e))
+    write_sol(sol, metric(V, case, **params))
 
 
 def command(tool, exe, cur, sol, nxt):
@@ -105,7 +112,10 @@ def measure(mesh, case, params):
     sol = mesh[:-len('.mesh')] + '.final.sol'
     write_metric(mesh, case, params, sol)
     out = subprocess.run([PY, os.path.join(ROOT, 'scripts/metricstat.py'), mesh, sol, '--json'],
-                         capture_output=True, text=True, check=True)
+                         capture_output=True, text=True)
+    if out.returncode != 0:
+        # the checker's last line is its exception's message
+        raise ToolError('metricstat: ' + (out.stderr.strip().splitlines() or ['failed'])[-1])
     return json.loads(out.stdout)
 
 

@@ -14,14 +14,14 @@ layer   a boundary-layer-like refinement across the plane z = 0.5, which cuts th
         grows from the plane about like a layer of growth ratio 1 + (hmax - hmin)/delta = 1.066
         (it is 0.029 at the faces z = 0, 1). Its metric volume, the integral of sqrt(det M), is
         1.11e4, i.e. about 94k regular tets of unit edges (6 sqrt(2) per unit of metric volume);
-        an adapted mesh holds more (Mmg: 1.2-1.3x), so ~120k tets are expected.
+        an adapted mesh holds more (Mmg: about 1.3x), so ~120-125k tets are expected.
 shock   a shock along the sphere |p| = 0.6 (centre at the corner (0,0,0): an eighth of it in the
         cube, cutting the faces x = 0, y = 0, z = 0). With d = | |p| - 0.6 |, n = p / |p|, and the
         profile s(a, b) = a + (b - a) (1 - exp(-d / delta)):
             h_n = s(hmin, hmax) along n,   h_t = s(htan, hmax) in the two tangential directions,
         i.e. M = h_n^-2 n nᵀ + h_t^-2 (I - n nᵀ). Defaults hmin 0.002, htan 0.05 (aspect ratio 25
         at the shock), hmax 0.1, delta 0.7 (a growth ratio 1.14 of h_n away from the shock):
-        metric volume 1.12e4, ~95k unit tets, ~120k expected. At p = 0, the corner where n is
+        metric volume 1.12e4, ~95k unit tets, ~120-125k expected. At p = 0, the corner where n is
         undefined, n is taken as x (one vertex; its sizes are 0.058 and 0.079 there).
 """
 import argparse, os, sys
