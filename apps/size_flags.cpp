@@ -34,7 +34,12 @@ volume::SizeSpec SizeFlags::spec() const
 std::shared_ptr<const SizeField> SizeFlags::make(const volume::TetMesh& input) const
 {
     volume::SizeSpec sizes = spec();
-    if (sol_set) sizes.vertex_sizes = read_sol_sizes(sol, input.num_vertices());
+    if (sol_set)
+    {
+        SolSizing sizing = read_sol_sizing(sol, input.num_vertices());
+        sizes.vertex_sizes = std::move(sizing.sizes);
+        sizes.vertex_metrics = std::move(sizing.metrics);
+    }
     return volume::make_size_field(sizes, input);
 }
 

@@ -10,6 +10,7 @@
 #include "common/buffer_io.h"
 #include "common/errors.h"
 #include "common/medit_reader.h"
+#include "common/metric.h"
 
 namespace hdimesh
 {
@@ -215,6 +216,38 @@ std::vector<double> read_sol_sizes(const std::string& path, int expected_vertice
             throw InputError(path + ": size at vertex " + std::to_string(v + 1) +
                              " is not positive");
     return sizes;
+}
+
+SolSizing read_sol_sizing(const std::string& path, int expected_vertices)
+{
+    Solutions file = read_solutions(path, expected_vertices);
+    if (file.solutions.size() != 1)
+        throw InputError(path + ": " + std::to_string(file.solutions.size()) +
+                         " solutions, a size field is one (a scalar size or a tensor metric)");
+    Solution& one = file.solutions[0];
+    SolSizing sizing;
+    if (one.type == SolType::Scalar)
+    {
+        for (std::size_t v = 0; v < one.values.size(); ++v)
+            if (!(one.values[v] > 0))
+                throw InputError(path + ": size at vertex " + std::to_string(v + 1) +
+                                 " is not positive");
+        sizing.sizes = std::move(one.values);
+        return sizing;
+    }
+    if (one.type != SolType::Tensor)
+        throw InputError(path +
+                         ": a vector solution (type 2) is no size field: give sizes "
+                         "(type 1) or metrics (type 3)");
+    for (std::size_t v = 0; 6 * v < one.values.size(); ++v)
+    {
+        const std::string problem = metric_problem(metric_from_medit(&one.values[6 * v]));
+        if (!problem.empty())
+            throw InputError(path + ": the metric at vertex " + std::to_string(v + 1) + " is " +
+                             problem);
+    }
+    sizing.metrics = std::move(one.values);
+    return sizing;
 }
 
 void write_sol(const std::vector<double>& values, const std::string& path)

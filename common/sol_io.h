@@ -27,7 +27,7 @@ enum class SolType
 {
     Scalar = 1,
     Vector = 2,  ///< 3 values
-    Tensor = 3,  ///< a symmetric 3x3 matrix: 6 values (m11 m12 m13 m22 m23 m33, as Mmg)
+    Tensor = 3,  ///< a symmetric 3x3 matrix: 6 values in Medit's order (m11 m12 m22 m13 m23 m33)
 };
 
 /// Values per vertex of a solution of this type: 1, 3 or 6.
@@ -51,6 +51,16 @@ struct Solutions
 /// expected_vertices < 0: don't check the count. InputError naming the file and the line
 /// (.sol) or byte (.solb) on a wrong count, a value that is not finite or an unknown type.
 Solutions read_solutions(const std::string& path, int expected_vertices = -1);
+
+/// The sizing a .sol/.solb gives at the vertices, as Mmg reads it: one scalar solution (sizes,
+/// each > 0) or one tensor solution (metrics, 6 values per vertex in Medit's order, each
+/// symmetric positive definite). InputError naming the file and the vertex otherwise.
+struct SolSizing
+{
+    std::vector<double> sizes;    ///< a scalar file's, else empty
+    std::vector<double> metrics;  ///< a tensor file's, 6 per vertex, else empty
+};
+SolSizing read_sol_sizing(const std::string& path, int expected_vertices);
 
 /// Writes .sol or .solb by extension, atomically, the solutions in their order. InputError
 /// when a solution's value count is not num_vertices times its components.

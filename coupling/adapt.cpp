@@ -168,6 +168,10 @@ void classify_boundary(AdaptState& s)
     if (!s.options.surface || !s.options.project) return;
     const StageTimer timer(s.report.seconds_surface, s.report.cpu_seconds_surface);
     s.report.surface_refusal = coupled_surface_refusal(s.mesh);
+    // the surface pass places its points by sizes alone: in a metric the boundary is refined by
+    // the splits, landing on the model, and shaped by the volume's operators
+    if (s.field.anisotropic())
+        s.report.surface_refusal = "a metric: the boundary is split in it, not remeshed";
     if (!s.report.surface_refusal.empty() || s.mesh.num_live_tets() == 0) return;
     s.input = extract_boundary(s.mesh);
     s.settings = surface_settings(s.input->surface, s.field, s.options);

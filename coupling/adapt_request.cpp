@@ -41,11 +41,17 @@ VolumeFromSurfaceOptions fill_options(const AdaptRequest& request, const AdaptOp
         throw InputError(
             "no size field: give hsiz, sol (sizes at the vertices), hausd or bench_field (or "
             "keep_surface)");
+    SolSizing from_file;
+    if (!request.sol.empty()) from_file = read_sol_sizing(request.sol, points);
+    // the surface pass and the front place points by sizes alone
+    if (!size.vertex_metrics.empty() || !from_file.metrics.empty())
+        throw InputError(
+            "anisotropic metrics need a tet mesh input: a surface is remeshed and filled by "
+            "sizes only");
     VolumeFromSurfaceOptions o;
     o.sizing.hsiz = size.hsiz;
     o.sizing.hausd = request.hausd;
-    o.sizing.vertex_sizes =
-        request.sol.empty() ? size.vertex_sizes : read_sol_sizes(request.sol, points);
+    o.sizing.vertex_sizes = request.sol.empty() ? size.vertex_sizes : from_file.sizes;
     if (size.benchmark != 0)
         o.sizing.field =
             std::make_shared<volume::BenchmarkSize>(volume::benchmark_case(size.benchmark));
@@ -120,7 +126,12 @@ AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptO
             "no size field: give hsiz, sol (sizes at the vertices) or bench_field "
             "(or optim)");
     volume::SizeSpec spec = request.size;
-    if (!request.sol.empty()) spec.vertex_sizes = read_sol_sizes(request.sol, mesh.num_vertices());
+    if (!request.sol.empty())
+    {
+        SolSizing sizing = read_sol_sizing(request.sol, mesh.num_vertices());
+        spec.vertex_sizes = std::move(sizing.sizes);
+        spec.vertex_metrics = std::move(sizing.metrics);
+    }
     result.field = volume::make_size_field(spec, mesh);
     // the input as it is before adapt changes it, kept only when fields are to be carried
     std::unique_ptr<volume::TransferSource> transfer_source;

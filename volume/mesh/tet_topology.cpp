@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "volume/mesh/geometry.h"
 #include "volume/mesh/tet_tables.h"
 
 namespace hdimesh::volume
@@ -267,16 +268,28 @@ void OperatorContext::forget_balls() const
     for (auto& cached : ball_cache_) cached.vertex = -1;
 }
 
+double OperatorContext::shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const
+{
+    if (field == nullptr || !field->anisotropic()) return tet_quality(a, b, c, d);
+    return metric_tet_quality(field->metric(0.25 * (a + b + c + d)), a, b, c, d);
+}
+
+double OperatorContext::tet_shape(const TetMesh& mesh, int t) const
+{
+    const auto& v = mesh.tets[t];
+    return shape(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]);
+}
+
 double OperatorContext::quality(const TetMesh& mesh, int t) const
 {
-    if (!cache_enabled_) return mesh.quality(t);
+    if (!cache_enabled_) return tet_shape(mesh, t);
     if (static_cast<std::size_t>(t) >= quality_cache_.size())
         quality_cache_.resize(std::max<std::size_t>(t + 1, mesh.tets.size()),
                               std::numeric_limits<double>::quiet_NaN());
     double& cached = quality_cache_[t];
-    if (std::isnan(cached)) cached = mesh.quality(t);
+    if (std::isnan(cached)) cached = tet_shape(mesh, t);
     // a stale entry means some change bypassed tets_changed(): catch it in debug builds
-    assert(cached == mesh.quality(t));
+    assert(cached == tet_shape(mesh, t));
     return cached;
 }
 
@@ -288,7 +301,7 @@ void OperatorContext::fill_quality_cache(const TetMesh& mesh, Workers* workers) 
     parallel_for(workers, mesh.tets.size(), [&](std::size_t first, std::size_t last) {
         for (std::size_t t = first; t < last; ++t)
             if (!mesh.is_dead(static_cast<int>(t)) && std::isnan(quality_cache_[t]))
-                quality_cache_[t] = mesh.quality(static_cast<int>(t));
+                quality_cache_[t] = tet_shape(mesh, static_cast<int>(t));
     });
 }
 

@@ -97,7 +97,10 @@ struct OperatorContext
     /// tets_changed() and every change of topology through replace_tets() (the operators in
     /// volume/ do); a debug build checks every cached answer against a fresh one.
     void enable_caches();
-    /// Qe of live tet t: mesh.quality(t), from the cache when it is on. Bitwise the same value.
+    /// Qe of (a,b,c,d) as the operators judge shapes: in the field's metric at the centroid
+    /// when the field is anisotropic, else the Euclidean Qe (tet_quality).
+    double shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const;
+    /// shape() of live tet t, from the cache when it is on. Bitwise the same value.
     double quality(const TetMesh& mesh, int t) const;
     /// With the cache on, computes every live tet's quality not yet cached, on `workers` (null:
     /// one thread): each slot is written by one thread, and holds mesh.quality(t) as before.
@@ -137,6 +140,7 @@ struct OperatorContext
     double size_quality(const Vec3& p, const Vec3& q) const;
 
 private:
+    double tet_shape(const TetMesh& mesh, int t) const;
     struct CachedBall
     {
         int vertex = -1;

@@ -121,7 +121,8 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         const auto& p = mesh.points;
         auto point_of = [&](int v) -> const Vec3& { return v == to ? place : p[v]; };
         auto quality_of = [&](const TetVertices& tv) {
-            return tet_quality(point_of(tv[0]), point_of(tv[1]), point_of(tv[2]), point_of(tv[3]));
+            return context.shape(point_of(tv[0]), point_of(tv[1]), point_of(tv[2]),
+                                 point_of(tv[3]));
         };
         std::vector<int> reshaped;  // tets of `to` outside the shell, when `to` moves
         if (attempt > 0)

@@ -63,9 +63,9 @@ void best_triangulation(const TetMesh& mesh, const OperatorContext& context, Edg
                     double value = std::min(best[i * m + k], best[k * m + j]);
                     if (value <= best_here) continue;
                     const Vec3 &ri = p[ring[i]], &rk = p[ring[k]], &rj = p[ring[j]];
-                    value = std::min(value, tet_quality(ri, rk, rj, pb));
+                    value = std::min(value, context.shape(ri, rk, rj, pb));
                     if (value <= best_here) continue;
-                    value = std::min(value, tet_quality(ri, rj, rk, pa));
+                    value = std::min(value, context.shape(ri, rj, rk, pa));
                     if (value > best_here)
                     {
                         best_here = value;

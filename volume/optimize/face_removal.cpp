@@ -46,7 +46,8 @@ FaceRemovalResult remove_face(TetMesh& mesh, OperatorContext& context, int t, in
         !constraints.is_removable_tet(pair.lower) || !constraints.is_removable_tet(pair.upper))
         return result;
     // layer 3: geometry, layer 4: quality
-    result.worst_before = std::min(mesh.quality(pair.lower), mesh.quality(pair.upper));
+    result.worst_before =
+        std::min(context.quality(mesh, pair.lower), context.quality(mesh, pair.upper));
     const auto& pts = mesh.points;
     const std::vector<TetVertices> added = {
         {pair.x, pair.y, pair.p, pair.q},
@@ -55,7 +56,7 @@ FaceRemovalResult remove_face(TetMesh& mesh, OperatorContext& context, int t, in
     };
     double worst = 1e300;
     for (const auto& tv : added)
-        worst = std::min(worst, tet_quality(pts[tv[0]], pts[tv[1]], pts[tv[2]], pts[tv[3]]));
+        worst = std::min(worst, context.shape(pts[tv[0]], pts[tv[1]], pts[tv[2]], pts[tv[3]]));
     result.worst_after = worst;
     if (worst <= 0.0 || worst <= result.worst_before + options.min_gain) return result;
     if (context.too_long(pts[pair.p], pts[pair.q])) return result;
@@ -227,7 +228,7 @@ void choose_faces(const TetMesh& mesh, const OperatorContext& context, MultiFace
         for (int k = 0; k < 3; ++k)
         {
             if (k == face.parent_edge) continue;
-            const double stop = tet_quality(p[face.v[k]], p[face.v[(k + 1) % 3]], pa, pb);
+            const double stop = context.shape(p[face.v[k]], p[face.v[(k + 1) % 3]], pa, pb);
             const double through =
                 face.child[k] >= 0 ? subtree_value(plan.faces[face.child[k]]) : kImpossible;
             face.extend[k] = through > stop;

@@ -1,10 +1,12 @@
 #include "volume/optimize/smooth.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "common/metric.h"
 #include "volume/check/quality_report.h"
 #include "volume/mesh/tet_tables.h"
 #include "volume/optimize/vertex_marks.h"
@@ -34,6 +36,12 @@ struct BallFace
     double face_longest2 = 0;  // longest squared edge of the face
     double perimeter = 0;      // |f1 - f0| + |f2 - f1| + |f0 - f2|
 
+    // in an anisotropic field: the metric at the tet's centroid when the move began (held
+    // while the vertex moves, so every candidate is judged by the same measure), its square root
+    // mapping to the space where the metric is the identity, and back
+    bool in_metric = false;
+    Metric m, root, root_inverse;
+
     explicit BallFace(const std::array<Vec3, 3>& face) : f(face)
     {
         e1 = f[1] - f[0];
@@ -43,8 +51,20 @@ struct BallFace
         perimeter = (f[1] - f[0]).norm() + (f[2] - f[1]).norm() + (f[0] - f[2]).norm();
     }
 
+    void set_metric(const Metric& metric)
+    {
+        in_metric = true;
+        m = metric;
+        const Eigen::SelfAdjointEigenSolver<Metric> eigen(metric);
+        const Eigen::Matrix3d& q = eigen.eigenvectors();
+        root = q * eigen.eigenvalues().cwiseSqrt().asDiagonal() * q.transpose();
+        root_inverse =
+            q * eigen.eigenvalues().cwiseSqrt().cwiseInverse().asDiagonal() * q.transpose();
+    }
+
     double quality(const Vec3& p) const
     {
+        if (in_metric) return metric_tet_quality(m, f[0], f[1], f[2], p);
         // tet_quality(a, b, c, d) with a, b, c = f0, f1, f2 and d = p
         const Vec3& a = f[0];
         const Vec3& b = f[1];
@@ -77,8 +97,12 @@ struct MovingBall
         // acos falls as its argument rises: the smallest angle is the acos of the largest cosine
         double largest = -1.0;
         for (const BallFace& face : faces)
-            largest =
-                std::max(largest, smallest_dihedral_cosine(face.f[0], face.f[1], face.f[2], p));
+            largest = std::max(
+                largest,
+                face.in_metric
+                    ? smallest_dihedral_cosine(face.root * face.f[0], face.root * face.f[1],
+                                               face.root * face.f[2], face.root * p)
+                    : smallest_dihedral_cosine(face.f[0], face.f[1], face.f[2], p));
         return std::min(180.0, dihedral_cosine_to_deg(largest));
     }
 
@@ -159,6 +183,9 @@ MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int
         const Vec3& f1 = mesh.points[tv[fv[2]]];
         const Vec3& f2 = mesh.points[tv[fv[1]]];
         ball.faces.emplace_back(std::array<Vec3, 3>{f0, f1, f2});
+        if (context.field != nullptr && context.field->anisotropic())
+            ball.faces.back().set_metric(
+                context.field->metric(0.25 * (f0 + f1 + f2 + mesh.points[v])));
         edge_sum += ball.faces.back().perimeter;
         for (int k : fv)
             if (marks.mark(tv[k])) neighbour_ids.push_back(tv[k]);
@@ -169,7 +196,27 @@ MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int
     return ball;
 }
 
-/// George's target: the 1/Q^2-weighted mean of the points that make each tet regular.
+/// The face's points mapped by `root`.
+std::array<Vec3, 3> mapped(const Eigen::Matrix3d& root, const std::array<Vec3, 3>& f)
+{
+    return {root * f[0], root * f[1], root * f[2]};
+}
+
+/// The apex over face f that makes a regular tet of the face's mean edge, on the positive side;
+/// false for a flat face.
+bool regular_apex(const std::array<Vec3, 3>& f, Vec3& apex)
+{
+    // (f0, f1, f2, P) positive: P lies on the side of (f1 - f0) x (f2 - f0)
+    const Vec3 normal = (f[1] - f[0]).cross(f[2] - f[0]);
+    const double norm = normal.norm();
+    if (norm <= 0) return false;
+    const double edge = ((f[1] - f[0]).norm() + (f[2] - f[1]).norm() + (f[0] - f[2]).norm()) / 3;
+    apex = (f[0] + f[1] + f[2]) / 3 + (std::sqrt(2.0 / 3.0) * edge / norm) * normal;
+    return true;
+}
+
+/// George's target: the 1/Q^2-weighted mean of the points that make each tet regular (in the
+/// metric, for a metric).
 Vec3 nodal_shifting_target(const MovingBall& ball, const Vec3& current)
 {
     Vec3 sum = Vec3::Zero();
@@ -177,13 +224,9 @@ Vec3 nodal_shifting_target(const MovingBall& ball, const Vec3& current)
     for (std::size_t i = 0; i < ball.faces.size(); ++i)
     {
         const BallFace& face = ball.faces[i];
-        const auto& f = face.f;
-        // (f0, f1, f2, P) positive: P lies on the side of (f1 - f0) x (f2 - f0)
-        const Vec3 normal = face.e1.cross(face.e2);
-        const double norm = normal.norm();
-        if (norm <= 0) continue;
-        const double edge = face.perimeter / 3;
-        const Vec3 ideal = (f[0] + f[1] + f[2]) / 3 + (std::sqrt(2.0 / 3.0) * edge / norm) * normal;
+        Vec3 ideal;
+        if (!regular_apex(face.in_metric ? mapped(face.root, face.f) : face.f, ideal)) continue;
+        if (face.in_metric) ideal = face.root_inverse * ideal;
         const double q = std::max(ball.quality_at(i, current), 1e-3);
         const double weight = 1.0 / (q * q);
         sum += weight * ideal;
@@ -420,6 +463,9 @@ PointPlacement place_vertex(const OperatorContext& context,
     for (const auto& f : faces)
     {
         ball.faces.emplace_back(f);
+        if (context.field != nullptr && context.field->anisotropic())
+            ball.faces.back().set_metric(
+                context.field->metric(0.25 * (f[0] + f[1] + f[2] + start)));
         edge_sum += ball.faces.back().perimeter;
         for (const Vec3& q : f) ball.neighbours.push_back(q);
     }

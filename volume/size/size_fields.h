@@ -80,6 +80,8 @@ class ScaledSize : public SizeField
 public:
     ScaledSize(const SizeField& field, double factor) : field_(field), factor_(factor) {}
     double size(const Vec3& p) const override { return factor_ * field_.size(p); }
+    bool anisotropic() const override { return field_.anisotropic(); }
+    Metric metric(const Vec3& p) const override { return field_.metric(p) / (factor_ * factor_); }
 
 private:
     const SizeField& field_;

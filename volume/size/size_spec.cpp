@@ -8,6 +8,7 @@
 
 #include "common/errors.h"
 #include "volume/mesh/tet_tables.h"
+#include "volume/size/metric_fields.h"
 #include "volume/size/size_fields.h"
 
 namespace hdimesh::volume
@@ -56,10 +57,11 @@ std::vector<double> mean_incident_edge_length(const TetMesh& mesh)
 
 void check_spec(const SizeSpec& spec, const TetMesh& input)
 {
-    const int given =
-        int(spec.hsiz != 0) + int(!spec.vertex_sizes.empty()) + int(spec.benchmark != 0);
+    const int given = int(spec.hsiz != 0) + int(!spec.vertex_sizes.empty()) +
+                      int(!spec.vertex_metrics.empty()) + int(spec.benchmark != 0);
     if (given > 1)
-        throw InputError("give only one of hsiz, vertex sizes (sol) and a benchmark field");
+        throw InputError(
+            "give only one of hsiz, vertex sizes or metrics (sol) and a benchmark field");
     if (spec.hsiz != 0 && !(spec.hsiz > 0 && std::isfinite(spec.hsiz)))
         throw InputError("hsiz must be positive");
     if (!(spec.hmin >= 0) || !(spec.hmax >= 0)) throw InputError("hmin and hmax must be positive");
@@ -79,11 +81,25 @@ void check_spec(const SizeSpec& spec, const TetMesh& input)
     }
 }
 
+/// The anisotropic field of vertex metrics: graded, interpolated, bounded.
+std::shared_ptr<const SizeField> make_metric_field(const SizeSpec& spec, const TetMesh& input)
+{
+    std::vector<Metric> metrics =
+        metrics_from_medit(spec.vertex_metrics, input.num_vertices(), "vertex metrics");
+    if (spec.hgrad > 0) grade_vertex_metrics(input, metrics, spec.hgrad);
+    std::shared_ptr<const SizeField> field = std::make_shared<BackgroundMeshMetric>(input, metrics);
+    if (spec.hmin > 0 || spec.hmax > 0)
+        field = std::make_shared<BoundedMetric>(
+            field, spec.hmin, spec.hmax > 0 ? spec.hmax : std::numeric_limits<double>::infinity());
+    return field;
+}
+
 }  // namespace
 
 std::shared_ptr<const SizeField> make_size_field(const SizeSpec& spec, const TetMesh& input)
 {
     check_spec(spec, input);
+    if (!spec.vertex_metrics.empty()) return make_metric_field(spec, input);
     std::shared_ptr<const SizeField> field;
     bool at_vertices = false;  // the field is already a background over the input
     std::vector<double> vertex_sizes;
