@@ -356,8 +356,9 @@ PYBIND11_MODULE(_hdimesh, mod)
 
     mod.def(
         "read",
-        [](const std::string& path) {
+        [](const std::string& path, bool fields) {
             TetMesh mesh;
+            std::vector<volume::PointField> point_fields;
             {
                 py::gil_scoped_release release;
                 if (coupling::is_surface_format(path))
@@ -371,23 +372,43 @@ PYBIND11_MODULE(_hdimesh, mod)
                 }
                 else
                     mesh = volume::read_mesh(path);
+                if (fields) point_fields = volume::read_point_fields(path, mesh);
             }
-            return from_mesh(std::move(mesh));
+            if (!fields) return from_mesh(std::move(mesh));
+            std::vector<std::string> names;
+            std::vector<volume::VertexField> values;
+            for (volume::PointField& field : point_fields)
+            {
+                names.push_back(field.name);
+                values.push_back({field.components, std::move(field.values)});
+            }
+            const std::vector<int> old2new = mesh.compact().old2new_verts;
+            py::list arrays = carried_fields(std::move(values), old2new);
+            py::dict d = from_mesh(std::move(mesh));
+            d["fields"] = py::make_tuple(names, arrays);
+            return d;
         },
-        py::arg("path"));
+        py::arg("path"), py::arg("fields") = false);
 
     mod.def(
         "write",
-        [](const py::dict& m, const std::string& path) {
+        [](const py::dict& m, const std::string& path, const std::vector<std::string>& names,
+           const std::vector<Array<double>>& fields) {
             TetMesh mesh = to_mesh(m);
+            volume::WriteOptions options;
+            std::vector<volume::VertexField> values = to_fields(fields);
+            for (std::size_t k = 0; k < values.size() && k < names.size(); ++k)
+                options.point_fields.push_back(
+                    {names[k], values[k].components, std::move(values[k].values)});
             py::gil_scoped_release release;
             if (coupling::is_surface_format(path))
                 surface::write_surface(surface::build_surface(coupling::triangle_soup(mesh), path),
                                        path);
             else
-                volume::write_mesh(mesh, path);
+                volume::write_mesh(mesh, path, options);
         },
-        py::arg("mesh"), py::arg("path"));
+        py::arg("mesh"), py::arg("path"), py::arg("names") = std::vector<std::string>{},
+        py::arg("fields") = std::vector<Array<double>>{});
 
     mod.def("adapt", &adapt, py::arg("mesh"), py::arg("hsiz"), py::arg("sizes"),
             py::arg("bench_field"), py::arg("hmin"), py::arg("hmax"), py::arg("hgrad"),

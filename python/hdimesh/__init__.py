@@ -169,16 +169,28 @@ Violation = collections.namedtuple("Violation", "kind element message")
 Violation.__str__ = lambda v: f"{v.kind} {v.element + 1}: {v.message}"
 
 
-def read(path):
-    """Reads .mesh/.meshb (Medit), .msh (Gmsh 2.2, 4.1), or a surface (.obj .off .stl .ply)."""
-    return TetMesh._from_native(_hdimesh.read(str(path)))
+def read(path, fields=False):
+    """Reads .mesh/.meshb (Medit), .msh (Gmsh 2.2, 4.1), or a surface (.obj .off .stl .ply).
+
+    With ``fields=True`` (a .msh only), its $NodeData sections become the mesh's ``fields``,
+    by name: (n,) for one component, else (n, k)."""
+    d = _hdimesh.read(str(path), fields=bool(fields))
+    names, arrays = d.pop("fields", ((), ()))
+    mesh = TetMesh._from_native(d)
+    mesh.fields = dict(zip(names, arrays))
+    return mesh
 
 
 def write(mesh, path):
     """Writes by extension: .mesh .meshb .msh .vtu, or the triangles to .obj .off .stl .ply.
 
-    Atomic: a failed write leaves no file."""
-    _hdimesh.write(_as_mesh(mesh)._native(), str(path))
+    The mesh's ``fields`` go into a .msh as $NodeData (1, 3, 6 or 9 values per vertex) and
+    into a .vtu as point data; the other formats hold none. Atomic: a failed write leaves no
+    file."""
+    mesh = _as_mesh(mesh)
+    _hdimesh.write(mesh._native(), str(path), names=list(mesh.fields),
+                   fields=[np.ascontiguousarray(a.reshape(len(a), -1))
+                           for a in mesh.fields.values()])
 
 
 def _as_mesh(mesh):

@@ -293,3 +293,20 @@ def test_fields_need_a_tet_input():
                       fields={"u": np.zeros(4)})
     with pytest.raises(TypeError, match="fields must be a dict"):
         hdimesh.adapt(hdimesh.TetMesh(*one_tet()), hsiz=0.5, fields=[np.zeros(4)])
+
+
+def test_fields_through_gmsh_node_data(tmp_path):
+    mesh = hdimesh.read(SPHERE)
+    u = linear(mesh.points)
+    out = hdimesh.adapt(mesh, hsiz=0.4, fields={"u": u, "v": np.stack([u, u, -u], axis=1)})
+    hdimesh.write(out, tmp_path / "out.msh")
+    back = hdimesh.read(tmp_path / "out.msh", fields=True)
+    assert sorted(back.fields) == ["u", "v"]
+    assert np.array_equal(back.fields["u"], out.fields["u"])
+    assert np.array_equal(back.fields["v"], out.fields["v"])
+    assert hdimesh.read(tmp_path / "out.msh").fields == {}  # opt-in
+    hdimesh.write(mesh, tmp_path / "plain.msh")
+    with pytest.raises(ValueError, match=r"plain.msh:\d+: no \$NodeData section"):
+        hdimesh.read(tmp_path / "plain.msh", fields=True)
+    with pytest.raises(ValueError, match=r"read from a \.msh"):
+        hdimesh.read(SPHERE, fields=True)
