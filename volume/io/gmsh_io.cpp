@@ -430,14 +430,14 @@ private:
         if (binary_)
         {
             start_binary();
-            bin_.require(static_cast<unsigned long long>(nv), (v4_ ? 8 : 4) + 8 * field.components,
+            bin_.require(static_cast<unsigned long long>(nv), 4 + 8 * field.components,
                          "$NodeData values");
         }
         for (int i = 0; i < nv; ++i)
         {
-            const long long tag = !binary_ ? text_.integer("node tag")
-                                  : v4_ ? bin_.integer_in<std::uint64_t>("node tag", 0, LLONG_MAX)
-                                        : bin_.integer_in<std::int32_t>("node tag", 0, INT_MAX);
+            // a binary tag is an int in 4.1 too, as Gmsh writes and reads it (size_t from 4.2)
+            const long long tag = binary_ ? bin_.integer_in<std::int32_t>("node tag", 0, INT_MAX)
+                                          : text_.integer("node tag");
             const int v = data_vertex(tag, through_nodes, field.name);
             if (seen[v])
                 fail("$NodeData '" + field.name + "': node " + std::to_string(tag) +
@@ -843,7 +843,7 @@ public:
 
     /// One $NodeData per field, after the mesh (a 6-component symmetric tensor, in Mmg's
     /// order m11 m12 m13 m22 m23 m33, as Gmsh's 9: Gmsh reads 1, 3 or 9 components).
-    void write_node_data(const std::vector<PointField>& fields, bool v4)
+    void write_node_data(const std::vector<PointField>& fields)
     {
         static constexpr int kFull[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
         const int nv = mesh_.num_vertices();
@@ -854,12 +854,10 @@ public:
             w_.integer(out).character('\n').integer(nv).character('\n');
             for (int v = 0; v < nv; ++v)
             {
-                if (!binary_)
-                    w_.integer(v + 1);
-                else if (v4)
-                    w_.raw(static_cast<std::uint64_t>(v + 1));
+                if (binary_)
+                    w_.raw(static_cast<std::int32_t>(v + 1));  // an int in 2.2 and 4.1 alike
                 else
-                    w_.raw(static_cast<std::int32_t>(v + 1));
+                    w_.integer(v + 1);
                 const double* values = field.values.data() + static_cast<std::size_t>(v) * in;
                 for (int c = 0; c < out; ++c)
                 {
@@ -943,9 +941,11 @@ std::vector<PointField> read_gmsh_fields(const std::string& path, const std::str
 void write_gmsh(const TetMesh& mesh, std::ostream& out, const WriteOptions& options)
 {
     GmshWriter writer(mesh, out, options.gmsh_binary);
-    const bool v4 = options.gmsh_version != "2.2";
-    v4 ? writer.write_v4() : writer.write_v2();
-    writer.write_node_data(options.point_fields, v4);
+    if (options.gmsh_version == "2.2")
+        writer.write_v2();
+    else
+        writer.write_v4();
+    writer.write_node_data(options.point_fields);
 }
 
 }  // namespace hdimesh::volume::io_detail
