@@ -174,8 +174,8 @@ int main(int argc, char** argv)
             for (const Solution& solution : solutions.solutions)
                 fields.push_back({"field" + std::to_string(fields.size() + 1),
                                   sol_components(solution.type), solution.values});
-            for (const PointField& field : fields)
-                request.fields.push_back({field.components, field.values});
+            for (PointField& field : fields)  // (the values come back carried)
+                request.fields.push_back({field.components, std::move(field.values)});
         }
         const coupling::AdaptResult result = coupling::run_adapt(std::move(in), request);
 
