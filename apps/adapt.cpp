@@ -62,8 +62,11 @@ int main(int argc, char** argv)
                   "vectors, symmetric tensors) carried onto the output, each output vertex by "
                   "P1 interpolation in the input tet of its region (outside the input: the "
                   "nearest tet's, extrapolated); written to OUT less its extension plus "
-                  ".field.sol (.field.solb), in the file's layout; a .vtu output also gets "
-                  "them as point data field1, field2, ...");
+                  ".field.sol (.field.solb), in the file's layout; a .vtu or .msh output also "
+                  "gets them as point data ($NodeData) field1, field2, ... Or a .msh with "
+                  "$NodeData sections on the input's nodes (the input .msh itself, or a view "
+                  "of it): carried under their names into a .msh or .vtu output, and for "
+                  "another output to OUT less its extension plus .field.msh");
         cl.alias("-field", "--field");
         cl.option("--stats", &stats_path, "write the final quality report as JSON");
         cl.flags({
@@ -156,14 +159,23 @@ int main(int argc, char** argv)
             throw cli::UsageError("--keep-surface applies to a surface input");
         if (optim_only && in.is_surface)
             throw cli::UsageError("--optim needs a tet mesh, not a surface");
-        Solutions fields;
+        // the fields by name: a .msh's $NodeData names, field1, field2, ... for a .sol
+        const bool msh_fields = io::lower_extension(field_path) == ".msh";
+        Solutions solutions;
+        std::vector<PointField> fields;
         if (!field_path.empty())
         {
             if (in.is_surface)
                 throw cli::UsageError("--field needs a tet mesh input, not a surface");
-            fields = read_solutions(field_path, in.mesh.num_vertices());
-            for (const Solution& solution : fields.solutions)
-                request.fields.push_back({sol_components(solution.type), solution.values});
+            if (msh_fields)
+                fields = read_point_fields(field_path, in.mesh);
+            else
+                solutions = read_solutions(field_path, in.mesh.num_vertices());
+            for (const Solution& solution : solutions.solutions)
+                fields.push_back({"field" + std::to_string(fields.size() + 1),
+                                  sol_components(solution.type), solution.values});
+            for (PointField& field : fields)  // (the values come back carried)
+                request.fields.push_back({field.components, std::move(field.values)});
         }
         const coupling::AdaptResult result = coupling::run_adapt(std::move(in), request);
 
@@ -177,26 +189,34 @@ int main(int argc, char** argv)
                 std::cout << "output " << output << "\n" << format_quality_table(quality);
             if (!stats_path.empty()) write_quality_json(quality, stats_path);
         }
-        if (!field_path.empty())
+        for (std::size_t k = 0; k < fields.size(); ++k)
+            fields[k].values = result.transfer.fields[k].values;
+        const std::string out_ext = io::lower_extension(output);
+        // in F's format beside OUT, unless OUT is a .msh already holding F's $NodeData
+        if (!field_path.empty() && !(msh_fields && out_ext == ".msh"))
         {
-            // F's layout: its solutions' types in its order, its format (.sol or .solb)
-            Solutions carried;
-            carried.num_vertices = result.mesh.num_vertices();
-            for (std::size_t k = 0; k < fields.solutions.size(); ++k)
-                carried.solutions.push_back(
-                    {fields.solutions[k].type, result.transfer.fields[k].values});
             const std::string field_output =
                 std::filesystem::path(output).replace_extension("").string() + ".field" +
                 io::lower_extension(field_path);
-            write_solutions(carried, field_output);
+            if (msh_fields)
+            {
+                WriteOptions field_options;
+                field_options.point_fields = fields;
+                write_mesh(result.mesh, field_output, field_options);
+            }
+            else
+            {
+                // F's layout: its solutions' types in its order, its format (.sol or .solb)
+                Solutions carried;
+                carried.num_vertices = result.mesh.num_vertices();
+                for (std::size_t k = 0; k < fields.size(); ++k)
+                    carried.solutions.push_back({solutions.solutions[k].type, fields[k].values});
+                write_solutions(carried, field_output);
+            }
             if (verbosity >= 1) std::cout << "fields " << field_output << "\n";
         }
         WriteOptions write_options;
-        if (!field_path.empty() && io::lower_extension(output) == ".vtu")
-            for (std::size_t k = 0; k < result.transfer.fields.size(); ++k)
-                write_options.point_fields.push_back({"field" + std::to_string(k + 1),
-                                                      result.transfer.fields[k].components,
-                                                      result.transfer.fields[k].values});
+        if (out_ext == ".vtu" || out_ext == ".msh") write_options.point_fields = std::move(fields);
         write_mesh(result.mesh, output, write_options);  // last: a failed run leaves no output
         return 0;
     });

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -255,12 +256,40 @@ MessageSink print_messages(int verbose)
     };
 }
 
+/// Fields at the input's vertices, each an (n, k) array (shapes checked in __init__.py).
+std::vector<volume::VertexField> to_fields(const std::vector<Array<double>>& arrays)
+{
+    std::vector<volume::VertexField> fields;
+    for (const Array<double>& a : arrays)
+        fields.push_back({a.ndim() == 2 ? static_cast<int>(a.shape(1)) : 1,
+                          std::vector<double>(a.data(), a.data() + a.size())});
+    return fields;
+}
+
+/// The carried fields as (n, k) arrays at the vertices the mesh keeps once compacted.
+py::list carried_fields(std::vector<volume::VertexField>&& fields, const std::vector<int>& old2new)
+{
+    py::list out;
+    for (volume::VertexField& field : fields)
+    {
+        const std::size_t k = static_cast<std::size_t>(field.components);
+        for (std::size_t v = 0; v < old2new.size(); ++v)  // a vertex only moves down
+            if (old2new[v] >= 0)
+                std::copy_n(field.values.begin() + v * k, k, field.values.begin() + old2new[v] * k);
+        field.values.resize(
+            k * std::count_if(old2new.begin(), old2new.end(), [](int v) { return v >= 0; }));
+        out.append(owning_array<double>(std::move(field.values), k));
+    }
+    return out;
+}
+
 /// adapt(): the app's two pipelines, a tet mesh adapted or a closed surface filled.
 py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>>& sizes,
                const std::string& bench_field, double hmin, double hmax, double hgrad, double hausd,
                int verbose, const py::object& progress, bool nosurf, bool noinsert, bool noswap,
                bool nomove, bool optim, bool no_optimize, bool keep_surface, bool strict,
-               int max_passes, double ridge_angle, bool no_ridges, int threads)
+               int max_passes, double ridge_angle, bool no_ridges, int threads,
+               const std::vector<Array<double>>& fields)
 {
     coupling::AdaptInput input = coupling::adapt_input_from_mesh(to_mesh(m));
     coupling::AdaptRequest request;
@@ -284,12 +313,17 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
     request.verbosity = verbose;
     request.messages = print_messages(verbose);
     request.progress = progress_callback(progress);
+    request.fields = to_fields(fields);
     coupling::AdaptResult result;
     {
         py::gil_scoped_release release;
         result = coupling::run_adapt(std::move(input), request);
     }
-    return from_mesh(std::move(result.mesh));
+    const std::vector<int> old2new = result.mesh.compact().old2new_verts;
+    py::list carried = carried_fields(std::move(result.transfer.fields), old2new);
+    py::dict d = from_mesh(std::move(result.mesh));
+    d["fields"] = carried;
+    return d;
 }
 
 }  // namespace
@@ -322,8 +356,9 @@ PYBIND11_MODULE(_hdimesh, mod)
 
     mod.def(
         "read",
-        [](const std::string& path) {
+        [](const std::string& path, bool fields) {
             TetMesh mesh;
+            std::vector<volume::PointField> point_fields;
             {
                 py::gil_scoped_release release;
                 if (coupling::is_surface_format(path))
@@ -337,23 +372,43 @@ PYBIND11_MODULE(_hdimesh, mod)
                 }
                 else
                     mesh = volume::read_mesh(path);
+                if (fields) point_fields = volume::read_point_fields(path, mesh);
             }
-            return from_mesh(std::move(mesh));
+            if (!fields) return from_mesh(std::move(mesh));
+            std::vector<std::string> names;
+            std::vector<volume::VertexField> values;
+            for (volume::PointField& field : point_fields)
+            {
+                names.push_back(field.name);
+                values.push_back({field.components, std::move(field.values)});
+            }
+            const std::vector<int> old2new = mesh.compact().old2new_verts;
+            py::list arrays = carried_fields(std::move(values), old2new);
+            py::dict d = from_mesh(std::move(mesh));
+            d["fields"] = py::make_tuple(names, arrays);
+            return d;
         },
-        py::arg("path"));
+        py::arg("path"), py::arg("fields") = false);
 
     mod.def(
         "write",
-        [](const py::dict& m, const std::string& path) {
+        [](const py::dict& m, const std::string& path, const std::vector<std::string>& names,
+           const std::vector<Array<double>>& fields) {
             TetMesh mesh = to_mesh(m);
+            volume::WriteOptions options;
+            std::vector<volume::VertexField> values = to_fields(fields);
+            for (std::size_t k = 0; k < values.size() && k < names.size(); ++k)
+                options.point_fields.push_back(
+                    {names[k], values[k].components, std::move(values[k].values)});
             py::gil_scoped_release release;
             if (coupling::is_surface_format(path))
                 surface::write_surface(surface::build_surface(coupling::triangle_soup(mesh), path),
                                        path);
             else
-                volume::write_mesh(mesh, path);
+                volume::write_mesh(mesh, path, options);
         },
-        py::arg("mesh"), py::arg("path"));
+        py::arg("mesh"), py::arg("path"), py::arg("names") = std::vector<std::string>{},
+        py::arg("fields") = std::vector<Array<double>>{});
 
     mod.def("adapt", &adapt, py::arg("mesh"), py::arg("hsiz"), py::arg("sizes"),
             py::arg("bench_field"), py::arg("hmin"), py::arg("hmax"), py::arg("hgrad"),
@@ -361,7 +416,7 @@ PYBIND11_MODULE(_hdimesh, mod)
             py::arg("noinsert"), py::arg("noswap"), py::arg("nomove"), py::arg("optim"),
             py::arg("no_optimize"), py::arg("keep_surface"), py::arg("strict"),
             py::arg("max_passes"), py::arg("ridge_angle"), py::arg("no_ridges"),
-            py::arg("threads") = 0);
+            py::arg("threads") = 0, py::arg("fields") = std::vector<Array<double>>{});
 
     mod.def(
         "remesh_surface",

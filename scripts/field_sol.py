@@ -6,6 +6,8 @@
   field_sol.py check MESH FIELD.sol  the carried solutions against the same functions at MESH's
                                      vertices: prints each one's max error; exits 1 when the
                                      linear ones are off by more than --tolerance (1e-12)
+  field_sol.py check-msh OUT.msh     the same for a Gmsh 4.1 ASCII file's $NodeData field1,
+                                     field2, field3 at its own nodes
 An ASCII .mesh only (Vertices section); no numpy needed.
 """
 import math
@@ -41,6 +43,43 @@ def make(mesh, out):
         f.write('\nEnd\n')
 
 
+def gmsh(path):
+    """A Gmsh 4.1 ASCII file's nodes by tag and its $NodeData by name, rows by node tag."""
+    lines = open(path).read().split('\n')
+    points, data, i = {}, {}, 0
+    while i < len(lines):
+        if lines[i] == '$Nodes':
+            i += 2
+            while lines[i] != '$EndNodes':
+                n = int(lines[i].split()[3])
+                for k in range(n):
+                    points[int(lines[i + 1 + k])] = [float(x) for x in lines[i + 1 + n + k].split()]
+                i += 1 + 2 * n
+        elif lines[i] == '$NodeData':
+            name = lines[i + 2].strip('"') if int(lines[i + 1]) else ''
+            j = i + 2 + int(lines[i + 1])
+            j += 1 + int(lines[j])
+            n = int(lines[j + 3])
+            rows = [lines[j + 1 + int(lines[j]) + k].split() for k in range(n)]
+            data[name] = {int(r[0]): [float(x) for x in r[1:]] for r in rows}
+            i = j
+        i += 1
+    return points, data
+
+
+def check_msh(path, tolerance):
+    points, data = gmsh(path)
+    if sorted(data) != ['field1', 'field2', 'field3'] or any(len(d) != len(points) for d in data.values()):
+        print('layout differs: %d nodes, $NodeData %s' % (len(points), sorted(data)))
+        return 1
+    errors = [max(max(abs(a - b) for a, b in zip(data[name][t], f(p))) for t, p in points.items())
+              for name, f in (('field1', lambda p: [linear(p)]), ('field2', vector),
+                              ('field3', lambda p: [smooth(p)]))]
+    print('nodes %d  linear max error %.3g  vector max error %.3g  smooth max error %.3g'
+          % ((len(points),) + tuple(errors)))
+    return 0 if max(errors[:2]) <= tolerance else 1
+
+
 def check(mesh, sol, tolerance):
     points = vertices(mesh)
     tokens = open(sol).read().split()
@@ -72,5 +111,7 @@ if __name__ == '__main__':
         make(args[1], args[2])
     elif len(args) == 3 and args[0] == 'check':
         sys.exit(check(args[1], args[2], tolerance))
+    elif len(args) == 2 and args[0] == 'check-msh':
+        sys.exit(check_msh(args[1], tolerance))
     else:
         sys.exit(__doc__)

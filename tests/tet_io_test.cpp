@@ -586,3 +586,136 @@ TEST_CASE("atomic writes: a failing writer leaves the old file intact and no tem
                     IoError);
     CHECK_THROWS_AS(write_mesh(fixtures::single_tet(), scratch().file("x.stl")), InputError);
 }
+
+// --- Gmsh $NodeData: fields at the vertices written with the mesh and read back
+
+TEST_CASE("Gmsh $NodeData round trips scalars, vectors and tensors in every variant")
+{
+    const TetMesh mesh = feature_fixture();
+    const int nv = mesh.num_vertices();
+    PointField u{"u", 1, {}}, w{"velocity field", 3, {}}, m{"metric", 6, {}};
+    for (int v = 0; v < nv; ++v)
+    {
+        const Vec3& p = mesh.points[v];
+        u.values.push_back(1 + 2 * p.x() - p.y() + 3 * p.z() + 1e-17 * v);
+        for (int k = 0; k < 3; ++k) w.values.push_back(p[k] * (k + 1) - 0.1);
+        for (int k = 0; k < 6; ++k) m.values.push_back(v + 0.125 * k);
+    }
+    for (const auto& variant : kGmshVariants)
+    {
+        CAPTURE(std::string(variant.version));
+        CAPTURE(variant.binary);
+        const std::string path = scratch().file(std::string("nodedata_") + variant.version +
+                                                (variant.binary ? "b" : "") + ".msh");
+        WriteOptions options;
+        options.gmsh_version = variant.version;
+        options.gmsh_binary = variant.binary;
+        options.point_fields = {u, w, m};
+        write_mesh(mesh, path, options);
+        const TetMesh back = read_mesh(path);  // the mesh reads as before: $NodeData skipped
+        check_same_gmsh_entities(mesh, back, std::string(variant.version) == "2.2");
+        const std::vector<PointField> fields = read_point_fields(path, back);
+        REQUIRE(fields.size() == 3);
+        CHECK(fields[0].name == "u");
+        CHECK(fields[0].values == u.values);  // bitwise: shortest round-trip text or raw
+        CHECK(fields[1].name == "velocity field");
+        CHECK(fields[1].components == 3);
+        CHECK(fields[1].values == w.values);
+        // the symmetric tensor goes out as Gmsh's full 3x3 (m11 m12 m13 m22 m23 m33 -> 9)
+        REQUIRE(fields[2].components == 9);
+        for (int v = 0; v < nv; ++v)
+        {
+            const double* full = &fields[2].values[9 * v];
+            const double* sym = &m.values[6 * v];
+            CHECK(full[1] == sym[1]);
+            CHECK(full[3] == sym[1]);
+            CHECK(full[4] == sym[3]);
+            CHECK(full[7] == sym[4]);
+            CHECK(full[8] == sym[5]);
+        }
+    }
+}
+
+namespace
+{
+
+const char* kSparseNodes =
+    "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+    "$Nodes\n4\n40 0 0 0\n7 1 0 0\n1000 0 1 0\n3 0 0 1\n$EndNodes\n"
+    "$Elements\n1\n11 4 2 9 1 40 7 1000 3\n$EndElements\n";
+
+std::string node_data(const std::string& rows, int count = 4, int components = 1)
+{
+    return "$NodeData\n1\n\"p\"\n1\n0.0\n3\n0\n" + std::to_string(components) + "\n" +
+           std::to_string(count) + "\n" + rows + "$EndNodeData\n";
+}
+
+}  // namespace
+
+TEST_CASE("Gmsh $NodeData: node tags map through $Nodes, or 1..n without them")
+{
+    const std::string mesh_path = scratch().file("nd_sparse.msh");
+    write_text(mesh_path, std::string(kSparseNodes) + node_data("1000 3.5\n40 1\n3 -2\n7 0.25\n"));
+    const TetMesh mesh = read_mesh(mesh_path);
+    const std::vector<PointField> fields = read_point_fields(mesh_path, mesh);
+    REQUIRE(fields.size() == 1);
+    CHECK(fields[0].values == std::vector<double>{1, 0.25, 3.5, -2});
+
+    // only $NodeData (a Gmsh view saved without its mesh): tag k is vertex k
+    const std::string view = scratch().file("nd_view.msh");
+    write_text(view, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n" +
+                         node_data("2 20\n1 10\n4 40\n3 30\n") +
+                         "$NodeData\n0\n0\n3\n0\n3\n4\n1 1 2 3\n2 1 2 3\n3 1 2 3\n4 1 2 3\n"
+                         "$EndNodeData\n");
+    const std::vector<PointField> only = read_point_fields(view, mesh);
+    REQUIRE(only.size() == 2);
+    CHECK(only[0].values == std::vector<double>{10, 20, 30, 40});
+    CHECK(only[1].name == "field2");
+    CHECK(only[1].components == 3);
+}
+
+TEST_CASE("Gmsh $NodeData: bad sections are InputErrors naming the file and line")
+{
+    const TetMesh mesh = [] {
+        write_text(scratch().file("nd_base.msh"), kSparseNodes);
+        return read_mesh(scratch().file("nd_base.msh"));
+    }();
+    struct Bad
+    {
+        const char* name;
+        std::string data;
+        const char* message;
+    };
+    const Bad cases[] = {
+        {"count", node_data("40 1\n7 2\n3 3\n", 3), "nd_count.msh:23: $NodeData 'p' has 3 values"},
+        {"tag", node_data("40 1\n7 2\n8 3\n3 4\n"), "nd_tag.msh:26: $NodeData 'p': node 8 is not"},
+        {"nan", node_data("40 1\n7 nan\n1000 3\n3 4\n"), "nd_nan.msh:25:"},
+        {"twice", node_data("40 1\n7 2\n40 3\n3 4\n"), "node 40 given twice"},
+        {"components", node_data("40 1 1\n", 4, 2), "has 2 components"},
+        {"same name", node_data("40 1\n7 2\n1000 3\n3 4\n") + node_data("40 1\n7 2\n1000 3\n3 4\n"),
+         "a second $NodeData 'p'"},
+        {"none", "", "no $NodeData section"},
+    };
+    for (const Bad& bad : cases)
+    {
+        CAPTURE(bad.name);
+        const std::string path =
+            scratch().file(std::string("nd_") +
+                           (bad.name == std::string("same name") ? "same" : bad.name) + ".msh");
+        write_text(path, kSparseNodes + bad.data);
+        CHECK_THROWS_WITH_AS(read_point_fields(path, mesh), doctest::Contains(bad.message),
+                             InputError);
+    }
+    // another mesh's nodes: the fields would land on the wrong vertices
+    TetMesh moved = mesh;
+    moved.points[2].x() += 0.5;
+    write_text(scratch().file("nd_moved.msh"),
+               kSparseNodes + node_data("40 1\n7 2\n1000 3\n3 4\n"));
+    CHECK_THROWS_WITH_AS(read_point_fields(scratch().file("nd_moved.msh"), moved),
+                         doctest::Contains("node 1000 is not at the mesh's vertex 3"), InputError);
+    // the writer refuses what Gmsh cannot hold
+    WriteOptions options;
+    options.point_fields = {{"two", 2, std::vector<double>(8, 0.0)}};
+    CHECK_THROWS_WITH_AS(write_mesh(mesh, scratch().file("nd_out.msh"), options),
+                         doctest::Contains("cannot be a $NodeData"), InputError);
+}

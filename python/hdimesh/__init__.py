@@ -16,6 +16,7 @@ an invalid mesh, a bad option; messages number elements from 1, as the files do)
 """
 
 import collections
+import collections.abc
 
 import numpy as np
 
@@ -88,6 +89,26 @@ def _ids(name, values, columns, limit=None):
     return a
 
 
+def _fields(fields, n):
+    """Fields at n vertices: a dict name -> array of shape (n,) or (n, ...), finite."""
+    if fields is None:
+        return {}
+    if not isinstance(fields, collections.abc.Mapping):
+        raise TypeError(f"fields must be a dict of name -> array, got {type(fields).__name__}")
+    out = {}
+    for name, values in fields.items():
+        a = np.asarray(values, dtype=np.float64)
+        if a.ndim == 0 or a.shape[0] != n or int(np.prod(a.shape[1:])) < 1:
+            raise ValueError(f"fields[{name!r}] must have shape ({n},) or ({n}, k), one value "
+                             f"or row per vertex, got {a.shape}")
+        bad = ~np.isfinite(a.reshape(n, -1)).all(axis=1)
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise ValueError(f"fields[{name!r}] at vertex {i} is not finite: {a[i]}")
+        out[str(name)] = a
+    return out
+
+
 class TetMesh:
     """A tet mesh, or a surface (triangles and no tets), as numpy arrays.
 
@@ -96,10 +117,13 @@ class TetMesh:
     edges, corners and required_vertices vertex ids, required_triangles and required_tets ids
     into triangles and tets. Tets are positive: det(v1-v0, v2-v0, v3-v0) > 0. The arrays are
     kept as given (no copy) when they already have the right type.
+
+    ``fields``: a dict name -> float64 array at the vertices, (n,) or (n, ...): what
+    :func:`adapt` carried onto this mesh (empty unless asked for).
     """
 
     def __init__(self, points, tets=None, triangles=None, tet_refs=None, triangle_refs=None,
-                 **more):
+                 fields=None, **more):
         unknown = set(more) - {name for name, _, _ in _ARRAYS}
         if unknown:
             raise TypeError(f"TetMesh got unknown arrays {sorted(unknown)}")
@@ -122,6 +146,7 @@ class TetMesh:
         for name, into in (("ridges", "edges"), ("required_edges", "edges"),
                            ("required_triangles", "triangles"), ("required_tets", "tets")):
             _ids(name, getattr(self, name), 1, len(getattr(self, into)))
+        self.fields = _fields(fields, n)
 
     @classmethod
     def _from_native(cls, d):
@@ -144,21 +169,35 @@ Violation = collections.namedtuple("Violation", "kind element message")
 Violation.__str__ = lambda v: f"{v.kind} {v.element + 1}: {v.message}"
 
 
-def read(path):
-    """Reads .mesh/.meshb (Medit), .msh (Gmsh 2.2, 4.1), or a surface (.obj .off .stl .ply)."""
-    return TetMesh._from_native(_hdimesh.read(str(path)))
+def read(path, fields=False):
+    """Reads .mesh/.meshb (Medit), .msh (Gmsh 2.2, 4.1), or a surface (.obj .off .stl .ply).
+
+    With ``fields=True`` (a .msh only), its $NodeData sections become the mesh's ``fields``,
+    by name: (n,) for one component, else (n, k)."""
+    d = _hdimesh.read(str(path), fields=bool(fields))
+    names, arrays = d.pop("fields", ((), ()))
+    mesh = TetMesh._from_native(d)
+    mesh.fields = dict(zip(names, arrays))
+    return mesh
 
 
 def write(mesh, path):
     """Writes by extension: .mesh .meshb .msh .vtu, or the triangles to .obj .off .stl .ply.
 
-    Atomic: a failed write leaves no file."""
-    _hdimesh.write(_as_mesh(mesh)._native(), str(path))
+    The mesh's ``fields`` go into a .msh as $NodeData (1, 3, 6 or 9 values per vertex) and
+    into a .vtu as point data; the other formats hold none. Atomic: a failed write leaves no
+    file."""
+    mesh = _as_mesh(mesh)
+    _hdimesh.write(mesh._native(), str(path), names=list(mesh.fields),
+                   fields=[np.ascontiguousarray(a.reshape(len(a), -1))
+                           for a in mesh.fields.values()])
 
 
 def _as_mesh(mesh):
     if isinstance(mesh, TetMesh):
         return mesh
+    if hasattr(mesh, "cells") and hasattr(mesh, "point_data"):  # a meshio.Mesh
+        return from_meshio(mesh)
     raise TypeError(f"expected an hdimesh.TetMesh, got {type(mesh).__name__}")
 
 
@@ -205,7 +244,7 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
           threads=None, verbose=0, progress=None, bench_field=None, nosurf=False,
           noinsert=False, noswap=False, nomove=False, optim=False, no_optimize=False,
           keep_surface=False, strict=False, max_passes=40, size_rounds=4, ridge_angle=45.0,
-          no_ridges=False):
+          no_ridges=False, fields=None):
     """Adapts a tet mesh and its boundary to a size field; returns a new TetMesh.
 
     Given a surface (a TetMesh with triangles and no tets), remeshes it to the size and fills
@@ -233,8 +272,17 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
 
     ``threads``: threads the run uses (None: the cores present); the output is the same bytes
     for any count (the work is cut into pieces set by the mesh, never by the thread count).
+
+    ``fields``: a dict name -> array at the input's vertices, (n,) or (n, k) (any trailing
+    shape), e.g. a meshio mesh's ``point_data``; carried onto the result (P1 in the input tet
+    of each new vertex's region, extrapolated from the nearest tet outside the input: linear
+    fields are exact) as ``result.fields``, with the same names and trailing shapes. A tet
+    input only. The input may also be a ``meshio.Mesh`` (read by :func:`from_meshio`).
     """
     mesh = _as_mesh(mesh)
+    carried = _fields(fields, len(mesh.points))
+    if carried and mesh.is_surface:
+        raise ValueError("fields need a tet mesh input, not a surface")
     if threads is not None and int(threads) < 1:
         raise ValueError(f"threads must be at least 1, got {threads}")
     if progress is not None and not callable(progress):
@@ -257,18 +305,25 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
                 max_passes=int(max_passes), ridge_angle=float(ridge_angle),
                 no_ridges=bool(no_ridges), threads=int(threads) if threads is not None else 0)
 
-    def once(m, vertex_sizes):
-        return TetMesh._from_native(_hdimesh.adapt(m._native(), sizes=vertex_sizes, **args))
+    def once(m, vertex_sizes, fields):
+        flat = [np.ascontiguousarray(a.reshape(len(a), -1)) for a in fields.values()]
+        d = _hdimesh.adapt(m._native(), sizes=vertex_sizes, fields=flat, **args)
+        out = d.pop("fields")
+        result = TetMesh._from_native(d)
+        result.fields = {name: a.reshape((len(a),) + fields[name].shape[1:])
+                         for name, a in zip(fields, out)}
+        return result
 
     if not callable(sizes):
-        return once(mesh, _vertex_sizes(sizes, mesh.points))
+        return once(mesh, _vertex_sizes(sizes, mesh.points), carried)
     if mesh.is_surface:
         return mesh_volume(mesh.points, mesh.triangles, sizes=sizes, hmin=hmin, hmax=hmax,
                            hgrad=hgrad, hausd=hausd, verbose=verbose, progress=progress,
                            threads=threads)
     current = mesh
     for _ in range(max(1, int(size_rounds))):
-        current = once(current, _vertex_sizes(sizes, current.points))
+        current = once(current, _vertex_sizes(sizes, current.points), carried)
+        carried = current.fields
         if _conformity(current, sizes, hmin_v, hmax_v) >= 0.99:
             break
     return current
@@ -354,9 +409,10 @@ def check(mesh):
     return [Violation(*v) for v in _hdimesh.check(mesh._native())]
 
 
-def from_meshio(m):
+def from_meshio(m, fields=False):
     """A TetMesh from a meshio.Mesh: its tetra and triangle cells, refs from the cell data
-    "medit:ref" or "gmsh:physical" when present."""
+    "medit:ref" or "gmsh:physical" when present; with ``fields=True``, its point data as the
+    mesh's ``fields`` (to carry through :func:`adapt` with ``fields=mesh.fields``)."""
     tets, triangles, tet_refs, triangle_refs = [], [], [], []
     key = next((k for k in ("medit:ref", "gmsh:physical", "ref") if k in m.cell_data), None)
     for i, block in enumerate(m.cells):
@@ -370,11 +426,13 @@ def from_meshio(m):
     cat = (lambda parts, cols: np.concatenate(parts) if parts
            else np.zeros((0, cols) if cols > 1 else (0,), dtype=_INDEX))
     return TetMesh(m.points, tets=cat(tets, 4), triangles=cat(triangles, 3),
-                   tet_refs=cat(tet_refs, 1), triangle_refs=cat(triangle_refs, 1))
+                   tet_refs=cat(tet_refs, 1), triangle_refs=cat(triangle_refs, 1),
+                   fields=dict(m.point_data) if fields else None)
 
 
 def to_meshio(mesh):
-    """A meshio.Mesh with tetra and triangle cells and their refs as "medit:ref"."""
+    """A meshio.Mesh with tetra and triangle cells and their refs as "medit:ref", and the
+    mesh's ``fields`` as point data."""
     import meshio
     mesh = _as_mesh(mesh)
     cells, refs = [], []
@@ -383,4 +441,5 @@ def to_meshio(mesh):
         if len(data):
             cells.append((kind, data))
             refs.append(ref)
-    return meshio.Mesh(mesh.points, cells, cell_data={"medit:ref": refs})
+    return meshio.Mesh(mesh.points, cells, cell_data={"medit:ref": refs},
+                       point_data=dict(mesh.fields))

@@ -53,6 +53,14 @@ if(EXISTS /usr/bin/python3)
     add_test(NAME adapt_app_field_wrong_count
              COMMAND bash -c "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py make ${PROJECT_SOURCE_DIR}/data/icosphere320_tetgen.mesh ${adapt_out}/G.sol && ! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o ${adapt_out}/nofield.mesh --hsiz 0.3 --field ${adapt_out}/G.sol 2> ${adapt_out}/nofield.txt && grep -q 'G.sol:[0-9]*: SolAtVertices has' ${adapt_out}/nofield.txt && test ! -e ${adapt_out}/nofield.mesh && test ! -e ${adapt_out}/nofield.field.sol")
 endif()
+# Gmsh $NodeData: a .sol's fields go into a .msh output as field1..3; that file, given as
+# --field of its own mesh, carries them by name into the next .msh (no side file) or, for a
+# .mesh output, into OUT.field.msh; another mesh's .msh is refused naming its line.
+if(EXISTS /usr/bin/python3)
+    set(check_msh "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py check-msh")
+    add_test(NAME adapt_app_field_msh
+             COMMAND bash -c "set -e; cd ${adapt_out}; rm -f fm_*; /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/field_sol.py make ${PROJECT_SOURCE_DIR}/data/sphere480.mesh Fm.sol && $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o fm_in.msh --hsiz 0.4 --field Fm.sol -v 0 && ${check_msh} fm_in.msh && $<TARGET_FILE:adapt> fm_in.msh -o fm_out.msh --hsiz 0.3 --field fm_in.msh -v 0 && ${check_msh} fm_out.msh && test $(grep -c '^.NodeData' fm_out.msh) = 3 && test ! -e fm_out.field.msh && $<TARGET_FILE:adapt> fm_in.msh -o fm_out.mesh --hsiz 0.3 -field fm_in.msh -v 0 && ${check_msh} fm_out.field.msh && ! $<TARGET_FILE:adapt> ${PROJECT_SOURCE_DIR}/data/sphere480.mesh -o fm_bad.msh --hsiz 0.3 --field fm_out.msh 2> fm_bad.txt && grep -q 'fm_out.msh:[0-9]*: .Nodes holds' fm_bad.txt && test ! -e fm_bad.msh")
+endif()
 # A .vtu output also carries the fields as point data, each with its component count.
 if(EXISTS /usr/bin/python3)
     add_test(NAME adapt_app_field_vtu

@@ -237,3 +237,76 @@ def test_bad_files(tmp_path):
         hdimesh.write(hdimesh.TetMesh(*one_tet()), tmp_path / "no_dir" / "x.mesh")
     with pytest.raises(TypeError):
         hdimesh.adapt({"points": np.zeros((4, 3))}, hsiz=1)
+
+
+# --- fields carried through adapt
+
+def linear(points):
+    return 1 + 2 * points[:, 0] - points[:, 1] + 3 * points[:, 2]
+
+
+def test_adapt_carries_linear_fields_exactly():
+    mesh = hdimesh.read(SPHERE)
+    u = linear(mesh.points)
+    grad = np.stack([u, 2 * u, -u], axis=1)
+    out = hdimesh.adapt(mesh, hsiz=0.3, fields={"u": u, "grad": grad, "t": grad[:, :, None]})
+    assert sorted(out.fields) == ["grad", "t", "u"]
+    n = len(out.points)
+    assert out.fields["u"].shape == (n,)
+    assert out.fields["grad"].shape == (n, 3)
+    assert out.fields["t"].shape == (n, 3, 1)  # the trailing shape as given
+    expected = linear(out.points)
+    assert np.max(np.abs(out.fields["u"] - expected)) <= 1e-12
+    assert np.max(np.abs(out.fields["grad"] - np.stack([expected, 2 * expected, -expected],
+                                                       axis=1))) <= 1e-12
+    # opt-in: without fields, the same mesh and none carried
+    plain = hdimesh.adapt(mesh, hsiz=0.3)
+    assert plain.fields == {}
+    same_mesh(plain, out)
+
+
+def test_meshio_point_data_carried():
+    pytest.importorskip("meshio")
+    m = hdimesh.to_meshio(hdimesh.read(SPHERE))
+    m.point_data["u"] = linear(m.points)
+    assert np.array_equal(hdimesh.from_meshio(m, fields=True).fields["u"], m.point_data["u"])
+    out = hdimesh.adapt(m, hsiz=0.3, fields=m.point_data)  # a meshio.Mesh in, as from_meshio
+    back = hdimesh.to_meshio(out)
+    assert np.max(np.abs(back.point_data["u"] - linear(back.points))) <= 1e-12
+
+
+@pytest.mark.parametrize("fields, pattern", [
+    ({"u": [1.0, 2.0]}, r"fields\['u'\] must have shape \(4,\)"),
+    ({"u": np.zeros((4, 0))}, r"fields\['u'\] must have shape"),
+    ({"u": [1.0, np.nan, 0.0, 0.0]}, r"fields\['u'\] at vertex 1 is not finite"),
+    ({"v": [[0, 0], [0, 0], [np.inf, 0], [0, 0]]}, r"fields\['v'\] at vertex 2 is not finite"),
+])
+def test_bad_fields(fields, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        hdimesh.adapt(hdimesh.TetMesh(*one_tet()), hsiz=0.5, fields=fields)
+
+
+def test_fields_need_a_tet_input():
+    points, _, triangles = one_tet()
+    with pytest.raises(ValueError, match="fields need a tet mesh"):
+        hdimesh.adapt(hdimesh.TetMesh(points, triangles=triangles), hsiz=0.5,
+                      fields={"u": np.zeros(4)})
+    with pytest.raises(TypeError, match="fields must be a dict"):
+        hdimesh.adapt(hdimesh.TetMesh(*one_tet()), hsiz=0.5, fields=[np.zeros(4)])
+
+
+def test_fields_through_gmsh_node_data(tmp_path):
+    mesh = hdimesh.read(SPHERE)
+    u = linear(mesh.points)
+    out = hdimesh.adapt(mesh, hsiz=0.4, fields={"u": u, "v": np.stack([u, u, -u], axis=1)})
+    hdimesh.write(out, tmp_path / "out.msh")
+    back = hdimesh.read(tmp_path / "out.msh", fields=True)
+    assert sorted(back.fields) == ["u", "v"]
+    assert np.array_equal(back.fields["u"], out.fields["u"])
+    assert np.array_equal(back.fields["v"], out.fields["v"])
+    assert hdimesh.read(tmp_path / "out.msh").fields == {}  # opt-in
+    hdimesh.write(mesh, tmp_path / "plain.msh")
+    with pytest.raises(ValueError, match=r"plain.msh:\d+: no \$NodeData section"):
+        hdimesh.read(tmp_path / "plain.msh", fields=True)
+    with pytest.raises(ValueError, match=r"read from a \.msh"):
+        hdimesh.read(SPHERE, fields=True)

@@ -15,6 +15,7 @@
 // rejects any non-positive tet, so a file with another convention cannot slip through).
 
 #include <algorithm>
+#include <cctype>
 #include <climits>
 #include <cstdint>
 #include <limits>
@@ -67,6 +68,22 @@ public:
 
     TetMesh read()
     {
+        read_sections();
+        return std::move(mesh_);
+    }
+
+    /// The $NodeData sections as fields at target's vertices ($Elements skipped).
+    std::vector<PointField> read_fields(const TetMesh& target)
+    {
+        target_ = &target;
+        read_sections();
+        if (fields_.empty()) text_.fail("no $NodeData section: no fields to read");
+        return std::move(fields_);
+    }
+
+private:
+    void read_sections()
+    {
         if (text_.token("$MeshFormat") != "$MeshFormat")
             text_.fail("not a Gmsh file: expected $MeshFormat");
         read_format();
@@ -81,11 +98,15 @@ public:
             else if (section == "$Nodes")
             {
                 if (seen_nodes) text_.fail("second $Nodes section");
+                if (!fields_.empty()) text_.fail("$Nodes after $NodeData");
                 seen_nodes = true;
                 v4_ ? read_nodes_v4() : read_nodes_v2();
+                if (target_) check_target_nodes();
                 index_nodes();
             }
-            else if (section == "$Elements")
+            else if (section == "$NodeData" && target_)
+                read_node_data(seen_nodes);
+            else if (section == "$Elements" && !target_)
             {
                 if (!seen_nodes) text_.fail("$Elements before $Nodes");
                 if (seen_elements) text_.fail("second $Elements section");
@@ -101,12 +122,10 @@ public:
             expect_end(section);
         }
         // Gmsh always writes both; requiring $Elements catches a file cut after $EndNodes
-        if (!seen_nodes || !seen_elements)
+        if (!target_ && (!seen_nodes || !seen_elements))
             text_.fail(seen_nodes ? "no $Elements section (truncated file?)" : "no $Nodes section");
-        return std::move(mesh_);
     }
 
-private:
     // --- structure
 
     void read_format()
@@ -324,6 +343,114 @@ private:
         return index;
     }
 
+    // --- $NodeData (read_fields only)
+
+    /// The nodes must be the target's vertices, in order: the fields are taken by index.
+    void check_target_nodes()
+    {
+        const std::vector<Vec3>& points = target_->points;
+        if (mesh_.points.size() != points.size())
+            text_.fail("$Nodes holds " + std::to_string(mesh_.points.size()) + " nodes, the mesh " +
+                       std::to_string(points.size()) + " vertices");
+        for (std::size_t i = 0; i < points.size(); ++i)
+            if ((mesh_.points[i] - points[i]).norm() > 1e-9 * (1.0 + points[i].norm()))
+                text_.fail("node " + std::to_string(node_tags_[i]) +
+                           " is not at the mesh's vertex " + std::to_string(i + 1) +
+                           ": the fields' nodes must be the mesh's");
+    }
+
+    /// A string tag: "quoted" (spaces allowed) or one token.
+    std::string string_tag()
+    {
+        std::size_t at = text_.position();
+        int line = text_.current_line();
+        while (at < data_.size() && std::isspace(static_cast<unsigned char>(data_[at])))
+            line += data_[at++] == '\n' ? 1 : 0;
+        if (at >= data_.size() || data_[at] != '"') return std::string(text_.token("string tag"));
+        const std::size_t close = data_.find_first_of("\"\n", at + 1);
+        if (close == std::string::npos || data_[close] != '"')
+            text_.fail("string tag without its closing quote");
+        text_.set_position(close + 1, line);
+        return data_.substr(at + 1, close - at - 1);
+    }
+
+    /// Vertex index of a $NodeData node tag: through $Nodes, else tag k is vertex k - 1.
+    int data_vertex(long long tag, bool through_nodes, const std::string& name)
+    {
+        const int nv = target_->num_vertices();
+        int index = -1;
+        if (!through_nodes)
+            index = tag >= 1 && tag <= nv ? static_cast<int>(tag - 1) : -1;
+        else if (dense_)
+            index = tag >= 0 && tag < static_cast<long long>(tag_to_index_.size())
+                        ? tag_to_index_[tag]
+                        : -1;
+        else if (const auto it = sparse_.find(tag); it != sparse_.end())
+            index = it->second - 1;
+        if (index < 0)
+            fail("$NodeData '" + name + "': node " + std::to_string(tag) +
+                 (through_nodes ? " is not in $Nodes"
+                                : " is not a vertex (1 to " + std::to_string(nv) + ")"));
+        return index;
+    }
+
+    void read_node_data(bool through_nodes)
+    {
+        PointField field;
+        const long long strings = text_.integer_in("string tag count", 0, INT_MAX);
+        for (long long k = 0; k < strings; ++k)
+        {
+            std::string tag = string_tag();
+            if (k == 0) field.name = std::move(tag);
+        }
+        if (field.name.empty()) field.name = "field" + std::to_string(fields_.size() + 1);
+        for (const PointField& f : fields_)
+            if (f.name == field.name)
+                text_.fail("a second $NodeData '" + field.name +
+                           "' (several time steps or partitions are not read)");
+        const long long reals = text_.integer_in("real tag count", 0, INT_MAX);
+        for (long long k = 0; k < reals; ++k) text_.real("real tag");
+        const long long ints = text_.integer_in("integer tag count", 3, INT_MAX);
+        long long header[3] = {};  // time step, components, values
+        for (long long k = 0; k < ints; ++k)
+        {
+            const long long v = text_.integer("integer tag");
+            if (k < 3) header[k] = v;
+        }
+        field.components = static_cast<int>(header[1]);
+        if (header[1] != 1 && header[1] != 3 && header[1] != 9)
+            text_.fail("$NodeData '" + field.name + "' has " + std::to_string(header[1]) +
+                       " components (1, 3 or 9 are read)");
+        const int nv = target_->num_vertices();
+        if (header[2] != nv)
+            text_.fail("$NodeData '" + field.name + "' has " + std::to_string(header[2]) +
+                       " values, the mesh " + std::to_string(nv) + " vertices");
+        field.values.assign(static_cast<std::size_t>(nv) * field.components, 0.0);
+        std::vector<char> seen(nv, 0);
+        if (binary_)
+        {
+            start_binary();
+            bin_.require(static_cast<unsigned long long>(nv), 4 + 8 * field.components,
+                         "$NodeData values");
+        }
+        for (int i = 0; i < nv; ++i)
+        {
+            // a binary tag is an int in 4.1 too, as Gmsh writes and reads it (size_t from 4.2)
+            const long long tag = binary_ ? bin_.integer_in<std::int32_t>("node tag", 0, INT_MAX)
+                                          : text_.integer("node tag");
+            const int v = data_vertex(tag, through_nodes, field.name);
+            if (seen[v])
+                fail("$NodeData '" + field.name + "': node " + std::to_string(tag) +
+                     " given twice");
+            seen[v] = 1;
+            for (int c = 0; c < field.components; ++c)
+                field.values[static_cast<std::size_t>(v) * field.components + c] =
+                    text_or_real("$NodeData value");
+        }
+        if (binary_) resume_text();
+        fields_.push_back(std::move(field));
+    }
+
     // --- elements
 
     void add_element(int type, const long long* nodes, int ref, long long element_tag)
@@ -459,6 +586,8 @@ private:
     std::vector<int> tag_to_index_;
     std::unordered_map<long long, int> sparse_;
     TetMesh mesh_;
+    const TetMesh* target_ = nullptr;  ///< read_fields: the mesh the fields are at
+    std::vector<PointField> fields_;
 };
 
 // --- writing
@@ -712,6 +841,37 @@ public:
         w_.flush();
     }
 
+    /// One $NodeData per field, after the mesh (a 6-component symmetric tensor, in Mmg's
+    /// order m11 m12 m13 m22 m23 m33, as Gmsh's 9: Gmsh reads 1, 3 or 9 components).
+    void write_node_data(const std::vector<PointField>& fields)
+    {
+        static constexpr int kFull[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+        const int nv = mesh_.num_vertices();
+        for (const PointField& field : fields)
+        {
+            const int in = field.components, out = in == 6 ? 9 : in;
+            w_.text("$NodeData\n1\n\"").text(field.name).text("\"\n1\n0\n3\n0\n");
+            w_.integer(out).character('\n').integer(nv).character('\n');
+            for (int v = 0; v < nv; ++v)
+            {
+                if (binary_)
+                    w_.raw(static_cast<std::int32_t>(v + 1));  // an int in 2.2 and 4.1 alike
+                else
+                    w_.integer(v + 1);
+                const double* values = field.values.data() + static_cast<std::size_t>(v) * in;
+                for (int c = 0; c < out; ++c)
+                {
+                    const double x = values[in == 6 ? kFull[c] : c];
+                    binary_ ? (void)w_.raw(x) : (void)w_.character(' ').real(x);
+                }
+                if (!binary_) w_.character('\n');
+            }
+            end_binary_line();
+            w_.text("$EndNodeData\n");
+        }
+        w_.flush();
+    }
+
 private:
     void format(const char* version)
     {
@@ -772,6 +932,12 @@ TetMesh read_gmsh(const std::string& path, const std::string& data)
     return GmshReader(path, data).read();
 }
 
+std::vector<PointField> read_gmsh_fields(const std::string& path, const std::string& data,
+                                         const TetMesh& target)
+{
+    return GmshReader(path, data).read_fields(target);
+}
+
 void write_gmsh(const TetMesh& mesh, std::ostream& out, const WriteOptions& options)
 {
     GmshWriter writer(mesh, out, options.gmsh_binary);
@@ -779,6 +945,7 @@ void write_gmsh(const TetMesh& mesh, std::ostream& out, const WriteOptions& opti
         writer.write_v2();
     else
         writer.write_v4();
+    writer.write_node_data(options.point_fields);
 }
 
 }  // namespace hdimesh::volume::io_detail

@@ -156,6 +156,15 @@ TetMesh read_mesh(const std::string& path)
 
 void finish_mesh(TetMesh& mesh, const std::string& source) { io_detail::finish_read(mesh, source); }
 
+std::vector<PointField> read_point_fields(const std::string& path, const TetMesh& mesh)
+{
+    if (mesh_format_from_path(path) != MeshFormat::Gmsh)
+        throw InputError(path + ": point fields are read from a .msh ($NodeData)");
+    const std::string data = io_detail::load_file(path);
+    if (data.empty()) throw InputError(path + ": empty file");
+    return io_detail::read_gmsh_fields(path, data, mesh);
+}
+
 void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions& options)
 {
     const MeshFormat format = mesh_format_from_path(path);
@@ -174,6 +183,15 @@ void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions
                              std::to_string(field.values.size()) + " values for " +
                              std::to_string(mesh.num_vertices()) + " vertices x " +
                              std::to_string(field.components));
+    if (format == MeshFormat::Gmsh)  // $NodeData: a quoted name, Gmsh's component counts
+        for (const PointField& field : options.point_fields)
+            if (field.name.find_first_of("\"\n") != std::string::npos ||
+                (field.components != 1 && field.components != 3 && field.components != 6 &&
+                 field.components != 9))
+                throw InputError(path + ": point field '" + field.name +
+                                 "' cannot be a $NodeData (a quote or newline in its name, or " +
+                                 std::to_string(field.components) +
+                                 " components: 1, 3, 6 or 9 are written)");
     write_file_atomically(path, [&](std::ostream& out) {
         switch (format)
         {

@@ -4,7 +4,9 @@
 //   .mesh   Medit ASCII        read + write  Vertices, Edges, Triangles, Tetrahedra, Ridges,
 //   .meshb  Medit binary       read + write  Corners, Required{Vertices,Edges,Triangles,
 //                                            Tetrahedra}, all refs kept
-//   .msh    Gmsh 2.2 / 4.1     read + write  ASCII and binary; physical tag <-> ref
+//   .msh    Gmsh 2.2 / 4.1     read + write  ASCII and binary; physical tag <-> ref; $NodeData
+//                                            read by read_point_fields, written from
+//                                            WriteOptions::point_fields
 //   .vtu    VTK XML            write         raw appended binary; cell data "ref", "Qe";
 //                                            point data "size" when given (for ParaView)
 //   .sol / .solb  Medit solution, one scalar per vertex: read_sol/write_sol in common/sol_io.h
@@ -75,8 +77,20 @@ struct WriteOptions
     std::vector<double> vertex_sizes;  ///< optional point data "size" for .vtu (and nothing else)
     std::string gmsh_version = "4.1";  ///< "2.2" or "4.1" for .msh
     bool gmsh_binary = false;
-    std::vector<PointField> point_fields;  ///< more point data for .vtu (carried fields)
+    /// More point data: .vtu point data, .msh $NodeData sections (name as the string tag;
+    /// 1, 3 or 9 components there); other formats have none.
+    std::vector<PointField> point_fields;
 };
+
+/// The $NodeData sections of a .msh file (Gmsh 2.2 or 4.1, ASCII or binary) as fields at the
+/// vertices of `mesh`, in the file's order, named by their first string tag ("field<k>" when
+/// none). A file with $Nodes must hold mesh's vertices, in order and at the same places (the
+/// mesh read from it, or from a file written from that mesh): node tags map through it. A file
+/// with only $NodeData numbers nodes 1..n as the vertices. Each section must give every vertex
+/// once, with 1, 3 or 9 finite components; a name may not come twice (several time steps).
+/// InputError "path:line: ..." (binary: "path: byte N: ...") otherwise, IoError when the file
+/// cannot be opened. A .msh read by read_mesh keeps no $NodeData: carrying them is opt-in.
+std::vector<PointField> read_point_fields(const std::string& path, const TetMesh& mesh);
 
 /// Writes by extension: .mesh, .meshb, .msh, .vtu (raw appended binary, cell data "ref" and
 /// "Qe", point data "size" when given). Atomic (temporary file + rename): a failed write

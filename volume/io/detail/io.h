@@ -44,6 +44,8 @@ TetMesh read_medit(const std::string& path, const std::string& data);
 void write_medit_ascii(const TetMesh& mesh, std::ostream& out);
 void write_medit_binary(const TetMesh& mesh, std::ostream& out);
 TetMesh read_gmsh(const std::string& path, const std::string& data);
+std::vector<PointField> read_gmsh_fields(const std::string& path, const std::string& data,
+                                         const TetMesh& target);
 void write_gmsh(const TetMesh& mesh, std::ostream& out, const WriteOptions& options);
 void write_vtu(const TetMesh& mesh, std::ostream& out, const WriteOptions& options);
 
