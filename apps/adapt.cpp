@@ -10,6 +10,7 @@
 #include "size_flags.h"
 #include "volume/check/quality_report.h"
 #include "volume/io/tet_io.h"
+#include "volume/size/metric_fields.h"
 
 using namespace hdimesh;
 using namespace hdimesh::volume;
@@ -21,7 +22,7 @@ int main(int argc, char** argv)
         cli::SizeFlags size;
         coupling::AdaptSwitches switches;
         bool check = false, keep_surface = false, has_hausd = false, strict = false;
-        bool memory_set = false;
+        bool memory_set = false, anisotropic = false;
         double hausd = 0;
         int verbosity = 1, memory_mb = 0, max_passes = 40, threads = default_thread_count();
         // (a named default: GCC 12 warns of the temporary's vectors as maybe uninitialized)
@@ -87,6 +88,9 @@ int main(int argc, char** argv)
              "are still kept)"},
             {"--keep-surface", &keep_surface,
              "surface input: its triangles are the boundary, exactly (no remeshing)"},
+            {"-A", &anisotropic,
+             "anisotropic, as Mmg: a tensor --sol is a metric with or without it; OUT.sol "
+             "gets the metric at the output's vertices (as it does whenever --sol is given)"},
             {"--strict", &strict,
              "refuse a defective input instead of repairing it: a tet input's triangles that "
              "are not the tets' boundary; a surface input's degenerate or duplicated "
@@ -214,6 +218,15 @@ int main(int argc, char** argv)
                 write_solutions(carried, field_output);
             }
             if (verbosity >= 1) std::cout << "fields " << field_output << "\n";
+        }
+        // as Mmg: the field at the output's vertices beside it, where the next round starts
+        if (size.sol_set || anisotropic)
+        {
+            const bool binary = io::lower_extension(size.sol) == ".solb";
+            const std::string sol_output =
+                std::filesystem::path(output).replace_extension(binary ? ".solb" : ".sol").string();
+            write_solutions(volume::field_at_vertices(result.mesh, *result.field), sol_output);
+            if (verbosity >= 1) std::cout << "sizes " << sol_output << "\n";
         }
         WriteOptions write_options;
         if (out_ext == ".vtu" || out_ext == ".msh") write_options.point_fields = std::move(fields);

@@ -327,7 +327,7 @@ void SizeOptions::add_mmg_aliases(CommandLine& cli, bool with_bounds)
 void refuse_mmg_options(CommandLine& cli, MmgTool tool)
 {
     const bool volume = tool == MmgTool::mmg3d;
-    cli.refuse("-A", "anisotropic metric", "hdimesh adapts to isotropic sizes only");
+    if (!volume) cli.refuse("-A", "anisotropic metric", "surfremesh adapts to sizes only");
     cli.refuse("-ls", "level-set discretization");
     cli.refuse("-lssurf", "level-set discretization of the boundary");
     cli.refuse("-isoref", "reference of the level-set boundary");

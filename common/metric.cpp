@@ -129,8 +129,8 @@ double metric_tet_quality(const Metric& m, const Vec3& a, const Vec3& b, const V
     const double volume = (b - a).dot((c - a).cross(d - a)) / 6.0 * std::sqrt(det);
     const double faces = area(b, c, d) + area(a, d, c) + area(a, b, d) + area(a, c, b);
     double longest2 = 0.0;
-    for (const Vec3& e : {Vec3(b - a), Vec3(c - a), Vec3(d - a), Vec3(c - b), Vec3(d - b),
-                          Vec3(d - c)})
+    for (const Vec3& e :
+         {Vec3(b - a), Vec3(c - a), Vec3(d - a), Vec3(c - b), Vec3(d - b), Vec3(d - c)})
         longest2 = std::max(longest2, e.dot(m * e));
     if (faces <= 0.0 || longest2 <= 0.0) return 0.0;
     constexpr double kAlpha = 4.898979485566356;  // 2*sqrt(6), as volume/mesh/geometry.h

@@ -57,9 +57,10 @@ mmg_cli_test(mmg3d_names_and_verbosity adapt
     "$APP in -hsiz 0.3 -hausd 0.05 -v -1 > log.txt; test ! -s log.txt; ${mmg_check} check in.o.mesh --tets; $APP -v -in in.mesh -out res -hsiz 0.3 -hausd 0.05 > /dev/null; ${mmg_check} check res.mesh --tets")
 # refused: one line naming the flag, exit code 2, nothing written
 mmg_cli_test(mmg3d_refused adapt
-    "for f in -A -ls -lssurf -isoref -rmc -lag -opnbdy -nofem -optimLES -octree -rn -nsd -xreg -nosizreq -hgradreq -d -val -default -f; do rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 $f 1 2> err.txt || rc=$?; test $rc -eq 2; test $(wc -l < err.txt) -eq 1; grep -q -- \"^adapt: error: $f (.*) is an Mmg option hdimesh does not support\" err.txt; test ! -e out.mesh; done; rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 -noout 2> err.txt || rc=$?; test $rc -ne 0; grep -q \"unknown option '-noout'\" err.txt; test ! -e out.mesh")
+    "for f in -ls -lssurf -isoref -rmc -lag -opnbdy -nofem -optimLES -octree -rn -nsd -xreg -nosizreq -hgradreq -d -val -default -f; do rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 $f 1 2> err.txt || rc=$?; test $rc -eq 2; test $(wc -l < err.txt) -eq 1; grep -q -- \"^adapt: error: $f (.*) is an Mmg option hdimesh does not support\" err.txt; test ! -e out.mesh; done; rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 -noout 2> err.txt || rc=$?; test $rc -ne 0; grep -q \"unknown option '-noout'\" err.txt; test ! -e out.mesh")
+# a tensor .sol is a metric, as Mmg reads it (-A or not); OUT.sol holds the metric at the output
 mmg_cli_test(mmg3d_anisotropic_sol adapt
-    "${mmg_check} sol in.mesh aniso.sol 0.3 --tensor; rc=0; $APP -in in.mesh -sol aniso.sol -out out.mesh 2> err.txt || rc=$?; test $rc -ne 0; test $(wc -l < err.txt) -eq 1; grep -q '^adapt: error: aniso.sol:[0-9]*: only scalar solutions' err.txt; test ! -e out.mesh")
+    "${mmg_check} sol in.mesh aniso.sol 0.3 --tensor; $APP -in in.mesh -sol aniso.sol -out out.mesh -hgrad -1 -v 0; ${mmg_check} check out.mesh --tets; grep -A2 SolAtVertices out.sol | tail -1 | grep -q '^1 3'; $APP -in in.mesh -sol aniso.sol -out a.mesh -A -v 0; ${mmg_check} check a.mesh --tets")
 mmg_cli_test(mmg3d_parameter_file adapt
     "touch in.mmg3d; rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 2> err.txt || rc=$?; test $rc -ne 0; grep -q 'in.mmg3d: an Mmg parameter file' err.txt; test ! -e out.mesh")
 mmg_cli_test(mmg3d_help adapt
@@ -87,7 +88,7 @@ mmg_cli_test(mmgs_optim surfremesh
 mmg_cli_test(mmgs_noinsert surfremesh
     "$APP -in in.mesh -out out.mesh -hsiz 0.1 -noinsert -v 0; ${mmg_check} check out.mesh --same-vertices-as in.mesh; $APP -in in.mesh -out still.mesh -hsiz 0.1 -noinsert -noswap -nomove -nreg -v 0; ${mmg_check} check still.mesh --same-vertices-as in.mesh --unmoved")
 mmg_cli_test(mmgs_refused surfremesh
-    "for f in -A -ls -lssurf -isoref -rmc -keep-ref -rn -nsd -xreg -nosizreq -hgradreq -d -val -default -f; do rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 $f 2> err.txt || rc=$?; test $rc -eq 2; test $(wc -l < err.txt) -eq 1; grep -q -- \"^surfremesh: error: $f (.*) is an Mmg option hdimesh does not support\" err.txt; test ! -e out.mesh; done; rc=0; $APP -in in.mesh -out out.mesh -nosurf 2> err.txt || rc=$?; test $rc -ne 0; grep -q \"unknown option '-nosurf'\" err.txt; test ! -e out.mesh")
+    "for f in -ls -lssurf -isoref -rmc -keep-ref -rn -nsd -xreg -nosizreq -hgradreq -d -val -default -f; do rc=0; $APP -in in.mesh -out out.mesh -hsiz 0.3 $f 2> err.txt || rc=$?; test $rc -eq 2; test $(wc -l < err.txt) -eq 1; grep -q -- \"^surfremesh: error: $f (.*) is an Mmg option hdimesh does not support\" err.txt; test ! -e out.mesh; done; rc=0; $APP -in in.mesh -out out.mesh -nosurf 2> err.txt || rc=$?; test $rc -ne 0; grep -q \"unknown option '-nosurf'\" err.txt; test ! -e out.mesh")
 mmg_cli_test(mmgs_help surfremesh
     "$APP --help > help.txt; grep -qF -- '--hsiz X | -hsiz X' help.txt; grep -qF -- '--ridge-angle X | -ar X' help.txt; grep -qF -- '--optim | -optim' help.txt; grep -qF -- '--noswap | -noswap' help.txt")
 

@@ -118,8 +118,8 @@ std::vector<Metric> metrics_from_medit(const std::vector<double>& values, int nu
                                        const std::string& source)
 {
     if (values.size() != 6 * static_cast<std::size_t>(num_vertices))
-        throw InputError(source + ": " + std::to_string(values.size()) +
-                         " metric values for " + std::to_string(num_vertices) +
+        throw InputError(source + ": " + std::to_string(values.size()) + " metric values for " +
+                         std::to_string(num_vertices) +
                          " vertices (6 per vertex: m11 m12 m22 m13 m23 m33)");
     std::vector<Metric> metrics(num_vertices);
     for (int v = 0; v < num_vertices; ++v)
@@ -143,8 +143,7 @@ std::vector<Metric> sample_vertex_metrics(const TetMesh& mesh, const SizeField& 
 void grade_vertex_metrics(const TetMesh& mesh, std::vector<Metric>& metrics, double hgrad)
 {
     if (!(std::isfinite(hgrad) && hgrad >= 1.0))
-        throw InputError("gradation: hgrad " + std::to_string(hgrad) +
-                         " must be finite and >= 1");
+        throw InputError("gradation: hgrad " + std::to_string(hgrad) + " must be finite and >= 1");
     if (static_cast<int>(metrics.size()) != mesh.num_vertices())
         throw InputError("gradation: " + std::to_string(metrics.size()) + " metrics for " +
                          std::to_string(mesh.num_vertices()) + " vertices");
@@ -170,12 +169,32 @@ void grade_vertex_metrics(const TetMesh& mesh, std::vector<Metric>& metrics, dou
     }
 }
 
+Solutions field_at_vertices(const TetMesh& mesh, const SizeField& field)
+{
+    Solutions out;
+    out.num_vertices = mesh.num_vertices();
+    Solution one;
+    one.type = field.anisotropic() ? SolType::Tensor : SolType::Scalar;
+    one.values.reserve(static_cast<std::size_t>(mesh.num_vertices()) * sol_components(one.type));
+    for (const Vec3& p : mesh.points)
+    {
+        if (!field.anisotropic())
+        {
+            one.values.push_back(field.size(p));
+            continue;
+        }
+        for (double value : metric_to_medit(field.metric(p))) one.values.push_back(value);
+    }
+    out.solutions.push_back(std::move(one));
+    return out;
+}
+
 double mmg_metric_quality(const Metric& mean, const Vec3& a, const Vec3& b, const Vec3& c,
                           const Vec3& d)
 {
     double sum = 0.0;
-    for (const Vec3& e : {Vec3(b - a), Vec3(c - a), Vec3(d - a), Vec3(c - b), Vec3(d - b),
-                          Vec3(d - c)})
+    for (const Vec3& e :
+         {Vec3(b - a), Vec3(c - a), Vec3(d - a), Vec3(c - b), Vec3(d - b), Vec3(d - c)})
         sum += e.dot(mean * e);
     if (sum <= 0.0) return 0.0;
     const double volume = signed_volume(a, b, c, d) * std::sqrt(mean.determinant());

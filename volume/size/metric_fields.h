@@ -10,6 +10,7 @@
 
 #include "common/metric.h"
 #include "common/size_field.h"
+#include "common/sol_io.h"
 #include "volume/mesh/point_locator.h"
 #include "volume/mesh/tet_mesh.h"
 
@@ -79,6 +80,10 @@ std::vector<Metric> sample_vertex_metrics(const TetMesh& mesh, const SizeField& 
 /// edges until no metric changes (to 1e-6) or 100 sweeps. For h⁻²I metrics this is the scalar
 /// H-correction of grade_vertex_sizes. Throws InputError when hgrad is not finite and >= 1.
 void grade_vertex_metrics(const TetMesh& mesh, std::vector<Metric>& metrics, double hgrad);
+
+/// The field at the mesh's vertices as a solution file holds it, for the next round as Mmg
+/// writes OUT.sol: metrics (a tensor solution, Medit's order) when anisotropic, else sizes.
+Solutions field_at_vertices(const TetMesh& mesh, const SizeField& field);
 
 /// Mmg's quality in a metric: the mean of the four vertex metrics, and
 /// Q = 72√3 · V_M / (Σ ℓ_M²)^{3/2} (1 for a regular tet), reported beside the Qe in it.
