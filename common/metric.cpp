@@ -63,15 +63,24 @@ Metric metric_from_row_major(const double* m9, std::string* problem)
     return 0.5 * (m + m.transpose());
 }
 
+// The closed form: several times faster, and the interpolation's exp and log are as accurate with
+// it (where eigenvalues nearly repeat, any basis of their space gives the same matrix).
+Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> direct_eigen_of(const Metric& m)
+{
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    eigen.computeDirect(m);
+    return eigen;
+}
+
 Metric metric_log(const Metric& m)
 {
-    const auto eigen = eigen_of(m);
+    const auto eigen = direct_eigen_of(m);
     return from_eigen(eigen.eigenvectors(), eigen.eigenvalues().array().log().matrix());
 }
 
 Metric metric_exp(const Metric& log_m)
 {
-    const auto eigen = eigen_of(log_m);
+    const auto eigen = direct_eigen_of(log_m);
     return from_eigen(eigen.eigenvectors(), eigen.eigenvalues().array().exp().matrix());
 }
 
@@ -135,6 +144,18 @@ double metric_tet_quality(const Metric& m, const Vec3& a, const Vec3& b, const V
     if (faces <= 0.0 || longest2 <= 0.0) return 0.0;
     constexpr double kAlpha = 4.898979485566356;  // 2*sqrt(6), as volume/mesh/geometry.h
     return kAlpha * (3.0 * volume / faces) / std::sqrt(longest2);
+}
+
+double mmg_tet_quality(const Metric& mean, const Vec3& a, const Vec3& b, const Vec3& c,
+                       const Vec3& d)
+{
+    double sum = 0.0;
+    for (const Vec3& e :
+         {Vec3(b - a), Vec3(c - a), Vec3(d - a), Vec3(c - b), Vec3(d - b), Vec3(d - c)})
+        sum += e.dot(mean * e);
+    if (sum <= 0.0) return 0.0;
+    const double volume = (b - a).dot((c - a).cross(d - a)) / 6.0 * std::sqrt(mean.determinant());
+    return 72.0 * std::sqrt(3.0) * volume / (sum * std::sqrt(sum));
 }
 
 }  // namespace hdimesh

@@ -56,4 +56,9 @@ double metric_mean_size(const Metric& m);
 double metric_tet_quality(const Metric& m, const Vec3& a, const Vec3& b, const Vec3& c,
                           const Vec3& d);
 
+/// Mmg's quality in a metric (MMG5_caltet_ani), with `mean` the mean of the four vertex
+/// metrics: Q = 72√3 · V_M / (Σ ℓ_M²)^{3/2}, 1 for a regular tet.
+double mmg_tet_quality(const Metric& mean, const Vec3& a, const Vec3& b, const Vec3& c,
+                       const Vec3& d);
+
 }  // namespace hdimesh

@@ -259,6 +259,45 @@ int count_forced(const TetMesh& mesh, const std::vector<int>& below,
 
 }  // namespace
 
+namespace
+{
+
+/// The tets' shapes in the metric: Qe at the centroid's metric, and Mmg's quality.
+void add_metric_quality(const TetMesh& mesh, const SizeField& field, QualityReport& report)
+{
+    std::vector<Metric> at_vertex(mesh.num_vertices(), Metric::Zero());
+    std::vector<char> known(mesh.num_vertices(), 0);
+    double qe_sum = 0.0, mmg_sum = 0.0;
+    double qe_min = std::numeric_limits<double>::infinity(), mmg_min = qe_min;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+    {
+        if (mesh.is_dead(t)) continue;
+        const auto& tv = mesh.tets[t];
+        Metric mean = Metric::Zero();
+        for (int v : tv)
+        {
+            if (!known[v]) at_vertex[v] = field.metric(mesh.points[v]), known[v] = 1;
+            mean += 0.25 * at_vertex[v];
+        }
+        const Vec3 &a = mesh.points[tv[0]], &b = mesh.points[tv[1]], &c = mesh.points[tv[2]],
+                   &d = mesh.points[tv[3]];
+        const double qe = metric_tet_quality(field.metric(0.25 * (a + b + c + d)), a, b, c, d);
+        const double mmg = mmg_tet_quality(mean, a, b, c, d);
+        qe_sum += qe;
+        mmg_sum += mmg;
+        qe_min = std::min(qe_min, qe);
+        mmg_min = std::min(mmg_min, mmg);
+    }
+    report.anisotropic = true;
+    if (report.tets == 0) return;
+    report.min_metric_qe = qe_min;
+    report.mean_metric_qe = qe_sum / report.tets;
+    report.min_mmg_quality = mmg_min;
+    report.mean_mmg_quality = mmg_sum / report.tets;
+}
+
+}  // namespace
+
 QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field,
                                      const QualityReportOptions& options)
 {
@@ -345,7 +384,7 @@ QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field
     double qt_sum = 0.0, ratio_sum = 0.0;
     double min_qt = std::numeric_limits<double>::infinity();
     double min_ratio = std::numeric_limits<double>::infinity(), max_ratio = 0.0;
-    long qt_ok = 0, too_long = 0, too_short = 0;
+    long qt_ok = 0, too_long = 0, too_short = 0, unit = 0;
     for (const auto& e : edges)
     {
         const Vec3 &a = mesh.points[e[0]], &b = mesh.points[e[1]];
@@ -365,6 +404,7 @@ QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field
         too_long += edge.too_long();
         too_short += edge.too_short();
         ++report.length_ratio_histogram[length_ratio_histogram_bin(ratio)];
+        unit += ratio >= std::sqrt(0.5) && ratio <= std::sqrt(2.0);
     }
     report.min_edge_length = min_length;
     report.max_edge_length = max_length;
@@ -378,6 +418,8 @@ QualityReport compute_quality_report(const TetMesh& mesh, const SizeField* field
         report.min_length_ratio = min_ratio;
         report.max_length_ratio = max_ratio;
         report.mean_length_ratio = ratio_sum / report.edges;
+        report.percent_unit_length = percent(unit, report.edges);
+        if (field->anisotropic()) add_metric_quality(mesh, *field, report);
     }
     return report;
 }
@@ -426,6 +468,14 @@ std::string format_quality_table(const QualityReport& r)
             bins += (k ? " " : "") + std::to_string(r.length_ratio_histogram[k]);
         rows.push_back({"L/hth histogram", bins});
         rows.push_back({"  (bins)", "<0.5 0.5-0.66 0.66-0.8 0.8-1 1-1.25 1.25-1.515 1.515-2 >2"});
+        rows.push_back({"L/hth in [0.707, 1.414]", fixed(r.percent_unit_length, 2) + " %"});
+        if (r.anisotropic)
+        {
+            rows.push_back({"metric Qe min / mean",
+                            fixed(r.min_metric_qe, 6) + " / " + fixed(r.mean_metric_qe, 6)});
+            rows.push_back({"metric quality (Mmg) min / mean",
+                            fixed(r.min_mmg_quality, 6) + " / " + fixed(r.mean_mmg_quality, 6)});
+        }
     }
     else
     {
@@ -483,7 +533,16 @@ std::string quality_report_json(const QualityReport& r)
         out << "  \"mean_length_ratio\": " << json_number(r.mean_length_ratio) << ",\n";
         out << "  \"max_length_ratio\": " << json_number(r.max_length_ratio) << ",\n";
         out << "  \"length_ratio_histogram\": " << array(r.length_ratio_histogram) << ",\n";
-        out << "  \"length_ratio_bin_edges\": [0, 0.5, 0.66, 0.8, 1, 1.25, 1.515, 2, null]";
+        out << "  \"length_ratio_bin_edges\": [0, 0.5, 0.66, 0.8, 1, 1.25, 1.515, 2, null],\n";
+        out << "  \"percent_unit_length\": " << json_number(r.percent_unit_length) << ",\n";
+        out << "  \"anisotropic\": " << (r.anisotropic ? "true" : "false");
+        if (r.anisotropic)
+        {
+            out << ",\n  \"min_metric_qe\": " << json_number(r.min_metric_qe) << ",\n";
+            out << "  \"mean_metric_qe\": " << json_number(r.mean_metric_qe) << ",\n";
+            out << "  \"min_mmg_quality\": " << json_number(r.min_mmg_quality) << ",\n";
+            out << "  \"mean_mmg_quality\": " << json_number(r.mean_mmg_quality);
+        }
     }
     out << "\n}\n";
     return out.str();

@@ -50,6 +50,12 @@ struct QualityReport
     double min_qt = 0.0, mean_qt = 0.0;
     double min_length_ratio = 0.0, mean_length_ratio = 0.0, max_length_ratio = 0.0;  ///< L/hth
     std::array<long, 8> length_ratio_histogram{};  ///< bins of kLengthRatioBinEdges
+    double percent_unit_length = 0.0;  ///< edges with 1/√2 <= L/hth <= √2 (Mmg's band)
+    // in a metric (valid when anisotropic): Qe of each tet in the metric at its centroid (as
+    // the operators judge shapes), and Mmg's quality with the mean of its vertices' metrics
+    bool anisotropic = false;
+    double min_metric_qe = 0.0, mean_metric_qe = 0.0;
+    double min_mmg_quality = 0.0, mean_mmg_quality = 0.0;
 };
 
 struct QualityReportOptions

@@ -31,45 +31,55 @@ struct Placement
 struct BallFace
 {
     std::array<Vec3, 3> f;
-    Vec3 e1, e2;               // f1 - f0, f2 - f0
-    double fixed_area = 0;     // triangle_area(f0, f2, f1), the last term of tet_quality's sum
-    double face_longest2 = 0;  // longest squared edge of the face
-    double perimeter = 0;      // |f1 - f0| + |f2 - f1| + |f0 - f2|
-
+    double perimeter = 0;  // |f1 - f0| + |f2 - f1| + |f0 - f2|
     // in an anisotropic field: the metric at the tet's centroid when the move began (held
-    // while the vertex moves, so every candidate is judged by the same measure), its square root
-    // mapping to the space where the metric is the identity, and back
+    // while the vertex moves, so every candidate is judged by the same measure) as its square
+    // root, which maps to the space where the metric is the identity, and back
     bool in_metric = false;
-    Metric m, root, root_inverse;
+    Metric root, root_inverse;
+    // the face where shapes are judged: f, or f mapped by root; and its hoisted parts
+    std::array<Vec3, 3> g;
+    Vec3 e1, e2;               // g1 - g0, g2 - g0
+    double fixed_area = 0;     // triangle_area(g0, g2, g1), the last term of tet_quality's sum
+    double face_longest2 = 0;  // longest squared edge of g
 
     explicit BallFace(const std::array<Vec3, 3>& face) : f(face)
     {
-        e1 = f[1] - f[0];
-        e2 = f[2] - f[0];
-        fixed_area = triangle_area(f[0], f[2], f[1]);
-        face_longest2 = std::max({e1.squaredNorm(), e2.squaredNorm(), (f[2] - f[1]).squaredNorm()});
         perimeter = (f[1] - f[0]).norm() + (f[2] - f[1]).norm() + (f[0] - f[2]).norm();
+        hoist(f);
+    }
+
+    void hoist(const std::array<Vec3, 3>& face)
+    {
+        g = face;
+        e1 = g[1] - g[0];
+        e2 = g[2] - g[0];
+        fixed_area = triangle_area(g[0], g[2], g[1]);
+        face_longest2 = std::max({e1.squaredNorm(), e2.squaredNorm(), (g[2] - g[1]).squaredNorm()});
     }
 
     void set_metric(const Metric& metric)
     {
         in_metric = true;
-        m = metric;
-        const Eigen::SelfAdjointEigenSolver<Metric> eigen(metric);
+        Eigen::SelfAdjointEigenSolver<Metric> eigen;
+        eigen.computeDirect(metric);  // closed form: fast, and a root needs no more accuracy
         const Eigen::Matrix3d& q = eigen.eigenvectors();
         root = q * eigen.eigenvalues().cwiseSqrt().asDiagonal() * q.transpose();
         root_inverse =
             q * eigen.eigenvalues().cwiseSqrt().cwiseInverse().asDiagonal() * q.transpose();
+        hoist({root * f[0], root * f[1], root * f[2]});
     }
+
+    /// p where shapes are judged.
+    Vec3 judged(const Vec3& p) const { return in_metric ? Vec3(root * p) : p; }
 
     double quality(const Vec3& p) const
     {
-        if (in_metric) return metric_tet_quality(m, f[0], f[1], f[2], p);
-        // tet_quality(a, b, c, d) with a, b, c = f0, f1, f2 and d = p
-        const Vec3& a = f[0];
-        const Vec3& b = f[1];
-        const Vec3& c = f[2];
-        const Vec3& d = p;
+        // tet_quality(a, b, c, d) with a, b, c = g0, g1, g2 and d = p (mapped)
+        const Vec3& a = g[0];
+        const Vec3& b = g[1];
+        const Vec3& c = g[2];
+        const Vec3 d = judged(p);
         const double volume = e1.dot(e2.cross(d - a)) / 6.0;
         const double area =
             triangle_area(b, c, d) + triangle_area(a, d, c) + triangle_area(a, b, d) + fixed_area;
@@ -98,11 +108,7 @@ struct MovingBall
         double largest = -1.0;
         for (const BallFace& face : faces)
             largest = std::max(
-                largest,
-                face.in_metric
-                    ? smallest_dihedral_cosine(face.root * face.f[0], face.root * face.f[1],
-                                               face.root * face.f[2], face.root * p)
-                    : smallest_dihedral_cosine(face.f[0], face.f[1], face.f[2], p));
+                largest, smallest_dihedral_cosine(face.g[0], face.g[1], face.g[2], face.judged(p)));
         return std::min(180.0, dihedral_cosine_to_deg(largest));
     }
 
@@ -196,12 +202,6 @@ MovingBall collect_ball(const TetMesh& mesh, const OperatorContext& context, int
     return ball;
 }
 
-/// The face's points mapped by `root`.
-std::array<Vec3, 3> mapped(const Eigen::Matrix3d& root, const std::array<Vec3, 3>& f)
-{
-    return {root * f[0], root * f[1], root * f[2]};
-}
-
 /// The apex over face f that makes a regular tet of the face's mean edge, on the positive side;
 /// false for a flat face.
 bool regular_apex(const std::array<Vec3, 3>& f, Vec3& apex)
@@ -225,7 +225,7 @@ Vec3 nodal_shifting_target(const MovingBall& ball, const Vec3& current)
     {
         const BallFace& face = ball.faces[i];
         Vec3 ideal;
-        if (!regular_apex(face.in_metric ? mapped(face.root, face.f) : face.f, ideal)) continue;
+        if (!regular_apex(face.g, ideal)) continue;
         if (face.in_metric) ideal = face.root_inverse * ideal;
         const double q = std::max(ball.quality_at(i, current), 1e-3);
         const double weight = 1.0 / (q * q);

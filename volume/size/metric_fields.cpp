@@ -189,16 +189,4 @@ Solutions field_at_vertices(const TetMesh& mesh, const SizeField& field)
     return out;
 }
 
-double mmg_metric_quality(const Metric& mean, const Vec3& a, const Vec3& b, const Vec3& c,
-                          const Vec3& d)
-{
-    double sum = 0.0;
-    for (const Vec3& e :
-         {Vec3(b - a), Vec3(c - a), Vec3(d - a), Vec3(c - b), Vec3(d - b), Vec3(d - c)})
-        sum += e.dot(mean * e);
-    if (sum <= 0.0) return 0.0;
-    const double volume = signed_volume(a, b, c, d) * std::sqrt(mean.determinant());
-    return 72.0 * std::sqrt(3.0) * volume / (sum * std::sqrt(sum));
-}
-
 }  // namespace hdimesh::volume

@@ -85,9 +85,4 @@ void grade_vertex_metrics(const TetMesh& mesh, std::vector<Metric>& metrics, dou
 /// writes OUT.sol: metrics (a tensor solution, Medit's order) when anisotropic, else sizes.
 Solutions field_at_vertices(const TetMesh& mesh, const SizeField& field);
 
-/// Mmg's quality in a metric: the mean of the four vertex metrics, and
-/// Q = 72√3 · V_M / (Σ ℓ_M²)^{3/2} (1 for a regular tet), reported beside the Qe in it.
-double mmg_metric_quality(const Metric& mean, const Vec3& a, const Vec3& b, const Vec3& c,
-                          const Vec3& d);
-
 }  // namespace hdimesh::volume
