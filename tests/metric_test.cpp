@@ -2,6 +2,8 @@
 // refusals of what is not a metric, lengths and quality in a metric, gradation, and adapt on a
 // small box to a constant and a varying metric, the checker clean on every output.
 
+#include "common/metric.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <string>
 
 #include "common/errors.h"
-#include "common/metric.h"
 #include "common/sol_io.h"
 #include "coupling/adapt.h"
 #include "fixtures.h"
@@ -42,8 +43,8 @@ std::string write_text(const std::string& name, const std::string& text)
 /// A tensor .sol of n copies of the six values `m6`.
 std::string tensor_sol(const std::string& name, int n, const std::string& m6)
 {
-    std::string text = "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n" +
-                       std::to_string(n) + "\n1 3\n";
+    std::string text =
+        "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n" + std::to_string(n) + "\n1 3\n";
     for (int v = 0; v < n; ++v) text += m6 + "\n";
     return write_text(name, text + "End\n");
 }
@@ -113,7 +114,8 @@ TEST_CASE("metrics: a tensor .sol is read as metrics, and bad ones are refused b
     CHECK(ok.metrics[5] == 10000);
     // the second vertex's is indefinite
     std::string text =
-        "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n2\n1 3\n1 0 1 0 0 1\n1 2 1 0 0 1\nEnd\n";
+        "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n2\n1 3\n1 0 1 0 0 1\n1 2 1 0 0 "
+        "1\nEnd\n";
     CHECK_THROWS_WITH_AS(read_sol_sizing(write_text("indefinite.sol", text), 2),
                          doctest::Contains("the metric at vertex 2 is not positive definite"),
                          InputError);
@@ -141,8 +143,8 @@ TEST_CASE("metrics: lengths and quality; a tet regular in its metric has quality
     CHECK(metric_tet_quality(m, a.cwiseProduct(s), b.cwiseProduct(s), c.cwiseProduct(s),
                              d.cwiseProduct(s)) == doctest::Approx(1.0).epsilon(1e-9));
     CHECK(mmg_metric_quality(m / (edge * edge), a.cwiseProduct(s), b.cwiseProduct(s),
-                             c.cwiseProduct(s), d.cwiseProduct(s)) ==
-          doctest::Approx(1.0).epsilon(1e-9));
+                             c.cwiseProduct(s),
+                             d.cwiseProduct(s)) == doctest::Approx(1.0).epsilon(1e-9));
     CHECK(metric_length(m, Vec3(0, 0, 100)) == doctest::Approx(1.0));
     // the sizes; bounds and intersection act on them direction by direction
     const Metric sized = diagonal(0.1, 0.5, 2.0);
