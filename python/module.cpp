@@ -11,6 +11,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "volume/check/check.h"
 #include "volume/check/quality_report.h"
 #include "volume/io/tet_io.h"
+#include "volume/size/metric_fields.h"
 #include "volume/size/size_fields.h"
 #include "volume/size/size_spec.h"
 
@@ -289,11 +291,13 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
                int verbose, const py::object& progress, bool nosurf, bool noinsert, bool noswap,
                bool nomove, bool optim, bool no_optimize, bool keep_surface, bool strict,
                int max_passes, double ridge_angle, bool no_ridges, int threads,
-               const std::vector<Array<double>>& fields)
+               const std::vector<Array<double>>& fields,
+               const std::optional<Array<double>>& metrics)
 {
     coupling::AdaptInput input = coupling::adapt_input_from_mesh(to_mesh(m));
     coupling::AdaptRequest request;
     request.size = size_spec(hsiz, sizes, bench_field, hmin, hmax, hgrad);
+    request.size.vertex_metrics = to_vector(metrics);  // 6 per vertex, Medit's order
     request.surface_hgrad = request.size.hgrad;
     request.hausd = hausd;
     // as the app: a tet mesh given only bounds or hausd keeps its own sizes within them
@@ -321,8 +325,17 @@ py::dict adapt(const py::dict& m, double hsiz, const std::optional<Array<double>
     }
     const std::vector<int> old2new = result.mesh.compact().old2new_verts;
     py::list carried = carried_fields(std::move(result.transfer.fields), old2new);
+    // as the app's OUT.sol: the metric at the output's vertices, where the next round starts
+    std::optional<Solutions> metric_out;
+    if (!request.size.vertex_metrics.empty() && result.field && result.field->anisotropic())
+    {
+        py::gil_scoped_release release;
+        metric_out = volume::field_at_vertices(result.mesh, *result.field);
+    }
     py::dict d = from_mesh(std::move(result.mesh));
     d["fields"] = carried;
+    if (metric_out)
+        d["metric"] = owning_array<double>(std::move(metric_out->solutions.at(0).values), 6);
     return d;
 }
 
@@ -416,7 +429,8 @@ PYBIND11_MODULE(_hdimesh, mod)
             py::arg("noinsert"), py::arg("noswap"), py::arg("nomove"), py::arg("optim"),
             py::arg("no_optimize"), py::arg("keep_surface"), py::arg("strict"),
             py::arg("max_passes"), py::arg("ridge_angle"), py::arg("no_ridges"),
-            py::arg("threads") = 0, py::arg("fields") = std::vector<Array<double>>{});
+            py::arg("threads") = 0, py::arg("fields") = std::vector<Array<double>>{},
+            py::arg("metrics") = py::none());
 
     mod.def(
         "remesh_surface",

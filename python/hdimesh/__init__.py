@@ -119,7 +119,9 @@ class TetMesh:
     kept as given (no copy) when they already have the right type.
 
     ``fields``: a dict name -> float64 array at the vertices, (n,) or (n, ...): what
-    :func:`adapt` carried onto this mesh (empty unless asked for).
+    :func:`adapt` carried onto this mesh (empty unless asked for). ``metric``: when
+    :func:`adapt` was given a metric, the field at this mesh's vertices, (n, 6) in Medit's
+    order; else None.
     """
 
     def __init__(self, points, tets=None, triangles=None, tet_refs=None, triangle_refs=None,
@@ -147,6 +149,7 @@ class TetMesh:
                            ("required_triangles", "triangles"), ("required_tets", "tets")):
             _ids(name, getattr(self, name), 1, len(getattr(self, into)))
         self.fields = _fields(fields, n)
+        self.metric = None
 
     @classmethod
     def _from_native(cls, d):
@@ -226,12 +229,62 @@ def _vertex_sizes(sizes, points):
     return a
 
 
-def _conformity(mesh, sizes, hmin, hmax):
-    """Share of edges with Qt >= 0.66 against a callable at the edge midpoints (one call)."""
+# Medit's order m11 m12 m22 m13 m23 m33: the lower triangle row by row
+_MEDIT_ROWS, _MEDIT_COLS = [0, 1, 1, 2, 2, 2], [0, 0, 1, 0, 1, 2]
+
+
+def _vertex_metrics(metric, points):
+    """Metrics at `points` as an (n, 6) array in Medit's order: an (n, 6) or (n, 3, 3) array,
+    or a callable evaluated once on all of them. The row count, finiteness and positive
+    definiteness are checked by the library (naming the vertex)."""
+    if metric is None:
+        return None
+    values = metric(np.array(points, dtype=np.float64)) if callable(metric) else metric
+    a = np.asarray(values, dtype=np.float64)
+    if a.ndim == 3 and a.shape[1:] == (3, 3):
+        scale = np.abs(a).max(axis=(1, 2), initial=0.0)
+        # NaN compares False here: the library names it as not finite
+        bad = np.abs(a - a.transpose(0, 2, 1)).max(axis=(1, 2), initial=0.0) > 1e-10 * scale
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise ValueError(f"metric[{i}] (vertex {i + 1}) is not symmetric: {a[i].tolist()}")
+        a = a[:, _MEDIT_ROWS, _MEDIT_COLS]
+    elif a.ndim != 2 or a.shape[1] != 6:
+        raise ValueError(f"metric must have shape (n, 6) (Medit's order m11 m12 m22 m13 m23 "
+                         f"m33) or (n, 3, 3), got {a.shape}")
+    return np.ascontiguousarray(a)
+
+
+def _metric_matrices(m6):
+    """(n, 6) in Medit's order to (n, 3, 3)."""
+    m = np.empty((len(m6), 3, 3))
+    m[:, _MEDIT_ROWS, _MEDIT_COLS] = m6
+    m[:, _MEDIT_COLS, _MEDIT_ROWS] = m6
+    return m
+
+
+def _edges(mesh):
     t = mesh.tets
     edges = np.concatenate([t[:, [a, b]] for a, b in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3),
                                                        (2, 3))])
-    edges = np.unique(np.sort(edges, axis=1), axis=0)
+    return np.unique(np.sort(edges, axis=1), axis=0)
+
+
+def _metric_conformity(mesh, metric, hmin, hmax):
+    """Share of edges whose length in a callable metric (at their midpoints, one call, sizes
+    bounded to [hmin, hmax]) lies in [0.66, 1/0.66]."""
+    edges = _edges(mesh)
+    p, q = mesh.points[edges[:, 0]], mesh.points[edges[:, 1]]
+    lam, vec = np.linalg.eigh(_metric_matrices(_vertex_metrics(metric, (p + q) / 2)))
+    lam = np.clip(lam, 1 / hmax**2 if hmax else 0, 1 / hmin**2 if hmin else np.inf)
+    e = np.einsum("nji,nj->ni", vec, q - p)
+    length = np.sqrt(np.einsum("ni,ni->n", lam * e, e))
+    return float(np.mean(np.minimum(length, 1 / length) >= 0.66))
+
+
+def _conformity(mesh, sizes, hmin, hmax):
+    """Share of edges with Qt >= 0.66 against a callable at the edge midpoints (one call)."""
+    edges = _edges(mesh)
     p, q = mesh.points[edges[:, 0]], mesh.points[edges[:, 1]]
     h = _vertex_sizes(sizes, (p + q) / 2)
     h = np.clip(h, hmin if hmin else 0, hmax if hmax else np.inf)
@@ -244,7 +297,7 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
           threads=None, verbose=0, progress=None, bench_field=None, nosurf=False,
           noinsert=False, noswap=False, nomove=False, optim=False, no_optimize=False,
           keep_surface=False, strict=False, max_passes=40, size_rounds=4, ridge_angle=45.0,
-          no_ridges=False, fields=None):
+          no_ridges=False, fields=None, metric=None):
     """Adapts a tet mesh and its boundary to a size field; returns a new TetMesh.
 
     Given a surface (a TetMesh with triangles and no tets), remeshes it to the size and fills
@@ -259,6 +312,17 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
     callable at their midpoints. ``hausd`` bounds the boundary's distance to the input. As
     with the app, a tet mesh given no size but ``hausd``, ``hmin``, ``hmax`` or ``hgrad`` keeps
     its own sizes within them.
+
+    ``metric`` (instead of a size; a tet input only): an anisotropic field, a symmetric
+    positive definite M per input vertex (an edge e has length sqrt(eᵀ M e) in it, the
+    isotropic size h is h⁻² I): an (n, 6) array in Medit's order (m11 m12 m22 m13 m23 m33),
+    an (n, 3, 3) array (symmetric to a relative 1e-10), or a callable taking an (n, 3) array
+    of points and returning either. It is sampled at the input's vertices and interpolated
+    log-Euclidean between them; a callable is sampled again on the result, as for ``sizes``,
+    until 99 % of the edges have a length in [0.66, 1.5] in it at their midpoints (at most
+    ``size_rounds`` times). ``hmin``/``hmax`` bound its sizes in every direction, ``hgrad``
+    grades it. The result's ``metric`` is then the field at its vertices, (m, 6) in Medit's
+    order (the app's OUT.sol), where the next round can start.
 
     The switches are the app's: ``nosurf`` (keep the boundary, only split and projected),
     ``noinsert`` (no vertex inserted or removed), ``noswap``, ``nomove``, ``optim`` (optimize only, keep the sizes),
@@ -289,6 +353,8 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
         raise TypeError("progress must be callable")
     if sum(x is not None for x in (hsiz, sizes, bench_field)) > 1:
         raise ValueError("give only one of hsiz, sizes and bench_field")
+    if metric is not None and any(x is not None for x in (hsiz, sizes, bench_field)):
+        raise ValueError("give either metric or one of hsiz, sizes and bench_field")
     hmin_v, hmax_v = _number("hmin", hmin), _number("hmax", hmax)
     if not 0 < float(ridge_angle) < 180:
         raise ValueError(f"ridge_angle must lie in (0, 180) degrees, got {ridge_angle!r}")
@@ -305,15 +371,27 @@ def adapt(mesh, hsiz=None, sizes=None, hmin=None, hmax=None, hgrad=None, hausd=N
                 max_passes=int(max_passes), ridge_angle=float(ridge_angle),
                 no_ridges=bool(no_ridges), threads=int(threads) if threads is not None else 0)
 
-    def once(m, vertex_sizes, fields):
+    def once(m, vertex_sizes, fields, metrics=None):
         flat = [np.ascontiguousarray(a.reshape(len(a), -1)) for a in fields.values()]
-        d = _hdimesh.adapt(m._native(), sizes=vertex_sizes, fields=flat, **args)
+        d = _hdimesh.adapt(m._native(), sizes=vertex_sizes, fields=flat, metrics=metrics,
+                           **args)
         out = d.pop("fields")
+        output_metric = d.pop("metric", None)
         result = TetMesh._from_native(d)
         result.fields = {name: a.reshape((len(a),) + fields[name].shape[1:])
                          for name, a in zip(fields, out)}
+        result.metric = output_metric
         return result
 
+    if metric is not None:
+        current = once(mesh, None, carried, _vertex_metrics(metric, mesh.points))
+        rounds = int(size_rounds) if callable(metric) else 1
+        for _ in range(1, max(1, rounds)):
+            if _metric_conformity(current, metric, hmin_v, hmax_v) >= 0.99:
+                break
+            current = once(current, None, current.fields,
+                           _vertex_metrics(metric, current.points))
+        return current
     if not callable(sizes):
         return once(mesh, _vertex_sizes(sizes, mesh.points), carried)
     if mesh.is_surface:

@@ -1,5 +1,5 @@
 # The Python module (python/): pytest on tests/python (the app's case A reproduced, callable
-# sizes, the GIL released, each bad input), the examples/ script, and an install of the
+# sizes, the GIL released, each bad input), the examples/ scripts, and an install of the
 # package (into a scratch DESTDIR) that imports and runs.
 if(TARGET _hdimesh AND TARGET adapt AND EXISTS /usr/bin/python3)
     set(python_env PYTHONPATH=${PROJECT_BINARY_DIR}/python HDIMESH_DATA=${PROJECT_SOURCE_DIR}/data
@@ -12,6 +12,10 @@ if(TARGET _hdimesh AND TARGET adapt AND EXISTS /usr/bin/python3)
                      ${PROJECT_SOURCE_DIR}/data/box_with_ball.msh ${CMAKE_CURRENT_BINARY_DIR}/box_with_ball.vtu --fine 0.08)
     set_tests_properties(python_example PROPERTIES ENVIRONMENT "${python_env}"
                          PASS_REGULAR_EXPRESSION "wrote .*box_with_ball.vtu")
+    add_test(NAME python_example_loop
+             COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/examples/solve_adapt_transfer.py)
+    set_tests_properties(python_example_loop PROPERTIES ENVIRONMENT "${python_env}"
+                         PASS_REGULAR_EXPRESSION "round 3: [0-9]+ tets")
     add_test(NAME python_install
              COMMAND bash -c "rm -rf ${CMAKE_CURRENT_BINARY_DIR}/python_root && DESTDIR=${CMAKE_CURRENT_BINARY_DIR}/python_root cmake --install ${PROJECT_BINARY_DIR} --component python > /dev/null && cd / && PYTHONPATH=${CMAKE_CURRENT_BINARY_DIR}/python_root${HDIMESH_PYTHON_INSTALL_DIR} /usr/bin/python3 -c \"import hdimesh, sys; m = hdimesh.read(sys.argv[1]); print(hdimesh.__file__, len(hdimesh.adapt(m, hsiz=0.3).tets))\" ${PROJECT_SOURCE_DIR}/data/sphere480.mesh")
     set_tests_properties(python_install PROPERTIES PASS_REGULAR_EXPRESSION "python_root.*hdimesh/__init__.py [0-9]+")

@@ -3,6 +3,7 @@
 Environment: PYTHONPATH holds the built package, HDIMESH_DATA the data/ folder, HDIMESH_ADAPT
 the adapt app.
 """
+import itertools
 import os
 import subprocess
 import threading
@@ -310,3 +311,100 @@ def test_fields_through_gmsh_node_data(tmp_path):
         hdimesh.read(tmp_path / "plain.msh", fields=True)
     with pytest.raises(ValueError, match=r"read from a \.msh"):
         hdimesh.read(SPHERE, fields=True)
+
+
+# --- anisotropic metrics
+
+def box(n):
+    """The unit cube cut into n³ cells of 6 tets each (Kuhn), with its boundary triangles."""
+    g = np.linspace(0, 1, n + 1)
+    points = np.stack(np.meshgrid(g, g, g, indexing="ij"), axis=-1).reshape(-1, 3)
+    corner = np.arange((n + 1) ** 3).reshape(n + 1, n + 1, n + 1)[:-1, :-1, :-1].reshape(-1)
+    step = np.array([(n + 1) ** 2, n + 1, 1])
+    tets = np.concatenate([np.stack([corner, corner + step[a], corner + step[a] + step[b],
+                                     corner + step.sum()], axis=1)
+                           for a, b, _ in itertools.permutations(range(3))])
+    p = points[tets]
+    flip = np.linalg.det(p[:, 1:] - p[:, :1]) < 0
+    tets[flip] = tets[flip][:, [1, 0, 2, 3]]
+    faces = np.concatenate([tets[:, [1, 2, 3]], tets[:, [0, 3, 2]], tets[:, [0, 1, 3]],
+                            tets[:, [0, 2, 1]]])
+    _, inverse, count = np.unique(np.sort(faces, axis=1), axis=0, return_inverse=True,
+                                  return_counts=True)
+    return hdimesh.TetMesh(points, tets, faces[count[inverse.reshape(-1)] == 1])
+
+
+LAYER = np.diag([1 / 0.5**2, 1 / 0.5**2, 1 / 0.05**2])
+LAYER6 = LAYER[[0, 1, 1, 2, 2, 2], [0, 0, 1, 0, 1, 2]]  # Medit's order m11 m12 m22 m13 m23 m33
+
+
+def test_metric_forms_give_the_same_mesh():
+    mesh = box(3)
+    n = len(mesh.points)
+    as_rows = hdimesh.adapt(mesh, metric=np.tile(LAYER6, (n, 1)))
+    as_matrices = hdimesh.adapt(mesh, metric=np.tile(LAYER, (n, 1, 1)))
+    calls = []
+    as_callable = hdimesh.adapt(
+        mesh, metric=lambda x: calls.append(len(x)) or np.tile(LAYER, (len(x), 1, 1)),
+        size_rounds=1)
+    assert calls == [n]  # one batch at the input's vertices
+    same_mesh(as_rows, as_matrices)
+    same_mesh(as_rows, as_callable)
+    assert np.array_equal(as_rows.points, as_callable.points)
+    assert not hdimesh.check(as_rows)
+    assert as_rows.metric.shape == (len(as_rows.points), 6)
+    assert np.allclose(as_rows.metric, LAYER6, rtol=1e-9)  # a constant metric stays itself
+    # anisotropic: the tets are flat across z
+    z_extent = [np.ptp(as_rows.points[t][:, 2]) for t in as_rows.tets[:200]]
+    x_extent = [np.ptp(as_rows.points[t][:, 0]) for t in as_rows.tets[:200]]
+    assert np.median(x_extent) > 3 * np.median(z_extent)
+    # the next round starts from result.metric; no metric given: none returned
+    again = hdimesh.adapt(as_rows, metric=as_rows.metric)
+    assert again.metric.shape == (len(again.points), 6)
+    assert hdimesh.adapt(mesh, hsiz=0.5).metric is None
+
+
+def test_callable_metric_is_resampled_on_the_result():
+    calls = []
+    out = hdimesh.adapt(box(3), metric=lambda x: calls.append(len(x)) or np.tile(
+        LAYER6, (len(x), 1)), size_rounds=2)
+    assert len(calls) >= 2 and calls[0] == 64  # the input, then the result (and its edges)
+    assert out.metric.shape == (len(out.points), 6)
+
+
+def test_metric_carries_fields():
+    mesh = box(3)
+    out = hdimesh.adapt(mesh, metric=np.tile(LAYER6, (len(mesh.points), 1)),
+                        fields={"u": linear(mesh.points)})
+    assert np.max(np.abs(out.fields["u"] - linear(out.points))) <= 1e-12
+
+
+def bad_metric(i, value):
+    m = np.tile(LAYER, (64, 1, 1))
+    m[i] = value
+    return m
+
+
+@pytest.mark.parametrize("metric, pattern", [
+    (bad_metric(5, [[4, 1, 0], [0, 4, 0], [0, 0, 400]]),
+     r"metric\[5\] \(vertex 6\) is not symmetric"),
+    (bad_metric(7, np.diag([4, np.nan, 400])), r"metric at vertex 8 is a value is not finite"),
+    (bad_metric(9, np.diag([4, -4, 400])), r"metric at vertex 10 is not positive definite"),
+    (np.tile(LAYER6, (63, 1)), r"378 metric values for 64 vertices"),
+    (np.tile(LAYER6[:5], (64, 1)), r"metric must have shape \(n, 6\)"),
+    (lambda x: np.zeros((len(x), 3)), r"metric must have shape"),
+])
+def test_bad_metric(metric, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        hdimesh.adapt(box(3), metric=metric)
+
+
+def test_metric_refusals():
+    mesh = box(3)
+    m = np.tile(LAYER6, (len(mesh.points), 1))
+    for other in ({"hsiz": 0.3}, {"sizes": np.ones(len(mesh.points))}, {"bench_field": "A"}):
+        with pytest.raises(ValueError, match="either metric or one of"):
+            hdimesh.adapt(mesh, metric=m, **other)
+    surface = hdimesh.TetMesh(mesh.points, triangles=mesh.triangles)
+    with pytest.raises(ValueError, match="anisotropic metrics need a tet mesh input"):
+        hdimesh.adapt(surface, metric=m)
