@@ -41,7 +41,7 @@ std::array<double, 6> metric_to_medit(const Metric& m)
 
 std::string metric_problem(const Metric& m)
 {
-    if (!m.allFinite()) return "a value is not finite";
+    if (!m.allFinite()) return "not finite";
     const Vec3 values = eigen_of(m).eigenvalues();
     if (!(values.minCoeff() > 0.0))
     {
@@ -63,24 +63,15 @@ Metric metric_from_row_major(const double* m9, std::string* problem)
     return 0.5 * (m + m.transpose());
 }
 
-// The closed form: several times faster, and the interpolation's exp and log are as accurate with
-// it (where eigenvalues nearly repeat, any basis of their space gives the same matrix).
-Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> direct_eigen_of(const Metric& m)
-{
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-    eigen.computeDirect(m);
-    return eigen;
-}
-
 Metric metric_log(const Metric& m)
 {
-    const auto eigen = direct_eigen_of(m);
+    const auto eigen = eigen_of(m);
     return from_eigen(eigen.eigenvectors(), eigen.eigenvalues().array().log().matrix());
 }
 
 Metric metric_exp(const Metric& log_m)
 {
-    const auto eigen = direct_eigen_of(log_m);
+    const auto eigen = eigen_of(log_m);
     return from_eigen(eigen.eigenvectors(), eigen.eigenvalues().array().exp().matrix());
 }
 

@@ -23,7 +23,8 @@ Metric metric_from_medit(const double* m6);
 /// The six values of m in Medit's order.
 std::array<double, 6> metric_to_medit(const Metric& m);
 
-/// Why m is not a metric: empty when it is one (finite and positive definite).
+/// Why m is not a metric, to follow "is" ("not finite", "not positive definite (...)"); empty
+/// when it is one.
 std::string metric_problem(const Metric& m);
 /// The metric from Gmsh's nine row-major values; *problem says so when they are not symmetric
 /// (to a relative 1e-10).

@@ -126,6 +126,8 @@ struct AdaptState
         : mesh(mesh), field(field), volume_field(&field), options(options)
     {
         optimizer = options.optimizer;
+        // no surface pass coarsens the boundary in a metric (classify_boundary): the collapses do
+        optimizer.collapse_flat_boundary = field.anisotropic() && options.optimizer.collapse;
         if (!optimizer.messages) optimizer.messages = options.messages;
         if (!optimizer.workers) optimizer.workers = options.workers;
     }

@@ -101,7 +101,7 @@ TEST_CASE("metrics: NaN and indefinite matrices are no metric")
     CHECK(metric_problem(isotropic_metric(0.1)).empty());
     Metric nan = Metric::Identity();
     nan(1, 2) = nan(2, 1) = std::nan("");
-    CHECK(metric_problem(nan) == "a value is not finite");
+    CHECK(metric_problem(nan) == "not finite");
     const double indefinite[6] = {1, 2, 1, 0, 0, 1};  // eigenvalues -1, 1, 3
     CHECK(metric_problem(metric_from_medit(indefinite)).find("not positive definite") == 0);
 }

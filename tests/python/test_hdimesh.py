@@ -388,7 +388,7 @@ def bad_metric(i, value):
 @pytest.mark.parametrize("metric, pattern", [
     (bad_metric(5, [[4, 1, 0], [0, 4, 0], [0, 0, 400]]),
      r"metric\[5\] \(vertex 6\) is not symmetric"),
-    (bad_metric(7, np.diag([4, np.nan, 400])), r"metric at vertex 8 is a value is not finite"),
+    (bad_metric(7, np.diag([4, np.nan, 400])), r"metric at vertex 8 is not finite"),
     (bad_metric(9, np.diag([4, -4, 400])), r"metric at vertex 10 is not positive definite"),
     (np.tile(LAYER6, (63, 1)), r"378 metric values for 64 vertices"),
     (np.tile(LAYER6[:5], (64, 1)), r"metric must have shape \(n, 6\)"),

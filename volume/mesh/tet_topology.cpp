@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 
 #include "volume/mesh/geometry.h"
@@ -166,9 +167,18 @@ std::array<int, 3> sorted_face(const TetMesh& mesh, int t, int f)
 
 MeshConstraints::MeshConstraints(const TetMesh& mesh)
 {
-    faces_.reserve(mesh.triangles.size());
-    for (const auto& tri : mesh.triangles) faces_.push_back(sorted(tri));
-    std::sort(faces_.begin(), faces_.end());
+    std::vector<std::pair<std::array<int, 3>, int>> keyed;
+    keyed.reserve(mesh.triangles.size());
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+        keyed.push_back({sorted(mesh.triangles[i]), static_cast<int>(i)});
+    std::sort(keyed.begin(), keyed.end());
+    faces_.reserve(keyed.size());
+    face_triangle_.reserve(keyed.size());
+    for (const auto& [key, index] : keyed)
+    {
+        faces_.push_back(key);
+        face_triangle_.push_back(index);
+    }
     edges_.reserve(mesh.edges.size());
     for (const auto& e : mesh.edges) edges_.push_back(sorted(e));
     std::sort(edges_.begin(), edges_.end());
@@ -184,6 +194,73 @@ MeshConstraints::MeshConstraints(const TetMesh& mesh)
         for (int v : e) free_vertex_[v] = 0;
     required_tets_ = mesh.required_tets;
     std::sort(required_tets_.begin(), required_tets_.end());
+    surface_vertex_.assign(mesh.num_vertices(), 0);
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+        surface_vertex_[v] = mesh.vertex_classes[v] == VertexClass::Surface;
+    for (int v : mesh.required_vertices) surface_vertex_[v] = 0;
+    for (int v : mesh.corners) surface_vertex_[v] = 0;
+    for (const auto& e : mesh.edges)
+        for (int v : e) surface_vertex_[v] = 0;
+}
+
+int MeshConstraints::listed_triangle(const std::array<int, 3>& face) const
+{
+    const auto key = sorted(face);
+    const auto it = std::lower_bound(faces_.begin(), faces_.end(), key);
+    if (it == faces_.end() || *it != key) return -1;
+    return face_triangle_[it - faces_.begin()];
+}
+
+void MeshConstraints::insert_face(const std::array<int, 3>& key, int triangle)
+{
+    const auto it = std::lower_bound(faces_.begin(), faces_.end(), key);
+    face_triangle_.insert(face_triangle_.begin() + (it - faces_.begin()), triangle);
+    faces_.insert(it, key);
+}
+
+void MeshConstraints::erase_face(const std::array<int, 3>& key)
+{
+    const auto it = std::lower_bound(faces_.begin(), faces_.end(), key);
+    assert(it != faces_.end() && *it == key);
+    face_triangle_.erase(face_triangle_.begin() + (it - faces_.begin()));
+    faces_.erase(it);
+}
+
+void MeshConstraints::collapse_listed_faces(TetMesh& mesh, int from, int to)
+{
+    // the listed faces through `from`: the boundary faces of from's former ball, found by key
+    std::vector<int> through;
+    for (std::size_t i = 0; i < faces_.size(); ++i)
+        if (faces_[i][0] == from || faces_[i][1] == from || faces_[i][2] == from)
+            through.push_back(face_triangle_[i]);
+    std::sort(through.begin(), through.end(), std::greater<int>());  // drops from the back first
+    for (int i : through)
+    {
+        Triangle& tri = mesh.triangles[i];
+        erase_face(sorted(tri));
+        if (tri[0] == to || tri[1] == to || tri[2] == to)
+        {
+            const int last = static_cast<int>(mesh.triangles.size()) - 1;
+            if (i != last)
+            {
+                const auto moved = sorted(mesh.triangles[last]);
+                face_triangle_[std::lower_bound(faces_.begin(), faces_.end(), moved) -
+                               faces_.begin()] = i;
+                mesh.triangles[i] = mesh.triangles[last];
+                if (mesh.triangle_refs.size() > static_cast<std::size_t>(last))
+                    mesh.triangle_refs[i] = mesh.triangle_refs[last];
+                // (a dropped triangle is never required: its vertices would be)
+                for (int& r : mesh.required_triangles)
+                    if (r == last) r = i;
+            }
+            mesh.triangles.pop_back();
+            if (mesh.triangle_refs.size() > mesh.triangles.size()) mesh.triangle_refs.pop_back();
+            continue;
+        }
+        for (int& v : tri)
+            if (v == from) v = to;
+        insert_face(sorted(tri), i);
+    }
 }
 
 bool MeshConstraints::is_constrained_face(const TetMesh& mesh, int t, int f) const
@@ -217,6 +294,8 @@ void MeshConstraints::grow(int num_vertices)
     if (static_cast<int>(free_vertex_.size()) < num_vertices) free_vertex_.resize(num_vertices, 1);
     if (static_cast<int>(on_listed_face_.size()) < num_vertices)
         on_listed_face_.resize(num_vertices, 0);
+    if (static_cast<int>(surface_vertex_.size()) < num_vertices)
+        surface_vertex_.resize(num_vertices, 0);
 }
 
 OperatorContext::OperatorContext(const TetMesh& mesh, const SizeField* size_field)

@@ -65,12 +65,29 @@ public:
     bool is_free_vertex(int v) const { return free_vertex_[v] != 0; }
     /// Tet t may be removed (not required).
     bool is_removable_tet(int t) const;
+    /// Vertex v is on a smooth part of the boundary and nothing else holds it (not required,
+    /// on no feature edge, no corner): a collapse may move it within a flat boundary.
+    bool is_surface_vertex(int v) const
+    {
+        return static_cast<std::size_t>(v) < surface_vertex_.size() && surface_vertex_[v] != 0;
+    }
+    /// Index in mesh.triangles of the listed face with these vertices (any order), or -1.
+    int listed_triangle(const std::array<int, 3>& face) const;
+    /// Keeps the listed faces current after a collapse on the boundary moved `from` onto `to`:
+    /// mesh.triangles through both are dropped (the last moved into their slot), `from` is `to`
+    /// in the others.
+    void collapse_listed_faces(TetMesh& mesh, int from, int to);
 
     /// Keeps the per-vertex flags sized after vertices were added (new ones are interior).
     void grow(int num_vertices);
 
 private:
+    void insert_face(const std::array<int, 3>& key, int triangle);
+    void erase_face(const std::array<int, 3>& key);
+
     std::vector<std::array<int, 3>> faces_;  // sorted triples, sorted
+    std::vector<int> face_triangle_;         // per entry of faces_: its index in mesh.triangles
+    std::vector<char> surface_vertex_;
     std::vector<std::array<int, 2>> edges_;  // sorted pairs, sorted
     std::vector<char> free_vertex_;
     std::vector<char> on_listed_face_;  // per vertex: a vertex of some face in faces_

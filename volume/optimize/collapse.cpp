@@ -59,14 +59,67 @@ bool collect_collapse_configuration(const TetMesh& mesh, OperatorContext& contex
     return true;
 }
 
+/// Layer 1 for a boundary `from`: its boundary faces (open faces of its ball through it) are
+/// listed, share one ref and one plane, `to` is on one of them, and no listed interior face
+/// passes through `from`.
+bool flat_boundary_star(const TetMesh& mesh, const OperatorContext& context, int from, int to)
+{
+    std::vector<int> ball;
+    context.ball(mesh, from, ball);
+    Vec3 normal = Vec3::Zero();
+    double scale = 0.0;
+    int ref = 0;
+    bool first = true, to_on_boundary = false;
+    for (int t : ball)
+        for (int f = 0; f < 4; ++f)
+        {
+            const auto& fv = tet::kFaceVertices[f];
+            const auto& tv = mesh.tets[t];
+            if (tv[f] == from) continue;  // the face opposite `from`
+            const bool open = mesh.neighbors[t][f] == kNoTet;
+            if (!open)
+            {
+                if (context.constraints.is_constrained_face(mesh, t, f)) return false;
+                continue;
+            }
+            const int listed =
+                context.constraints.listed_triangle({tv[fv[0]], tv[fv[1]], tv[fv[2]]});
+            if (listed < 0) return false;
+            const int face_ref = static_cast<std::size_t>(listed) < mesh.triangle_refs.size()
+                                     ? mesh.triangle_refs[listed]
+                                     : 0;
+            const Vec3 n = (mesh.points[tv[fv[1]]] - mesh.points[tv[fv[0]]])
+                               .cross(mesh.points[tv[fv[2]]] - mesh.points[tv[fv[0]]]);
+            if (first)
+            {
+                normal = n;
+                ref = face_ref;
+                scale = n.norm();
+                first = false;
+            }
+            // one plane, one side: the normals parallel to round-off
+            if (face_ref != ref || n.dot(normal) <= 0.0 ||
+                n.cross(normal).norm() > 1e-12 * n.norm() * normal.norm())
+                return false;
+            for (int k : fv) to_on_boundary = to_on_boundary || tv[k] == to;
+        }
+    if (first || !to_on_boundary || !(scale > 0.0)) return false;
+    const Vec3 e = mesh.points[to] - mesh.points[from];
+    return std::abs(e.dot(normal)) <= 1e-12 * e.norm() * normal.norm();
+}
+
 }  // namespace
 
 CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, int to,
                              const CollapseOptions& options)
 {
     CollapseResult result;
-    // layer 1: classes — only a free interior vertex moves, and only onto another vertex
-    if (from == to || !context.constraints.is_free_vertex(from) || context.vertex_tet[from] < 0)
+    // layer 1: classes — a free interior vertex moves onto another vertex, or (when asked) a
+    // vertex of a flat boundary moves within it
+    if (from == to || context.vertex_tet[from] < 0) return result;
+    const bool on_boundary = !context.constraints.is_free_vertex(from);
+    if (on_boundary && !(options.on_flat_boundary && context.constraints.is_surface_vertex(from) &&
+                         flat_boundary_star(mesh, context, from, to)))
         return result;
 
     // layer 2: topology — the edge exists, one ref, nothing required
@@ -83,7 +136,8 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
         return ball_worst;
     };
     std::vector<int> to_ball, to_neighbours;
-    const bool may_move_to = options.allow_midpoint && context.constraints.is_free_vertex(to);
+    const bool may_move_to =
+        options.allow_midpoint && !on_boundary && context.constraints.is_free_vertex(to);
     const Vec3 to_position = mesh.points[to];
     // the places other than `to` itself, and to's ball they need, are built only if `to` fails
     std::vector<Vec3> places = {to_position};
@@ -178,6 +232,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     mesh.points[to] = chosen;
     context.tets_changed(reshaped_by_move);  // their cached qualities are stale now
     replace_tets(mesh, context, config.ball, config.moved, config.ref);
+    if (on_boundary) context.constraints.collapse_listed_faces(mesh, from, to);
     context.vertex_tet[from] = -1;
     result.collapsed = true;
     return result;

@@ -26,6 +26,11 @@ struct CollapseOptions
     /// vertex at the edge's midpoint, then at the centre of the vertices it will see (to's
     /// other tets must then pass the same quality floor and no edge of to become too long).
     bool allow_midpoint = true;
+    /// `from` may also be a surface vertex (MeshConstraints::is_surface_vertex) whose boundary
+    /// faces lie in one plane with one ref, collapsed along a boundary edge in that plane: the
+    /// boundary keeps its shape and mesh.triangles follow (a metric's coarsening of a flat
+    /// boundary, which no surface pass remeshes).
+    bool on_flat_boundary = false;
 };
 
 struct CollapseResult

@@ -97,6 +97,7 @@ public:
         }
         CollapseOptions collapse_options;
         collapse_options.min_quality = options_.collapse_min_quality;
+        collapse_options.on_flat_boundary = options_.collapse_flat_boundary;
         long total = 0;
         // the first pass sees every short edge; later ones only those of tets changed since,
         // as nothing else can have become collapsible
@@ -126,10 +127,8 @@ public:
                     continue;
                 }
                 bool done = false;
-                if (context_.constraints.is_free_vertex(u))
-                    done = attempt_collapse(u, v, collapse_options);
-                if (!done && context_.constraints.is_free_vertex(v))
-                    done = attempt_collapse(v, u, collapse_options);
+                if (collapsible(u)) done = attempt_collapse(u, v, collapse_options);
+                if (!done && collapsible(v)) done = attempt_collapse(v, u, collapse_options);
                 collapsed += done;
                 if (!done)
                 {
@@ -415,9 +414,7 @@ private:
                     const auto& ev = tet::kEdgeVertices[e];
                     if (!listed(t, e)) continue;
                     int u = mesh_.tets[t][ev[0]], v = mesh_.tets[t][ev[1]];
-                    if (!context_.constraints.is_free_vertex(u) &&
-                        !context_.constraints.is_free_vertex(v))
-                        continue;
+                    if (!collapsible(u) && !collapsible(v)) continue;
                     if (u > v) std::swap(u, v);
                     visit(u, v);
                 }
@@ -453,6 +450,13 @@ private:
         }
         std::sort(result.begin(), result.end());
         return result;
+    }
+
+    /// A vertex a too-short edge may be collapsed from: free, or on a flat boundary when asked.
+    bool collapsible(int v) const
+    {
+        return context_.constraints.is_free_vertex(v) ||
+               (options_.collapse_flat_boundary && context_.constraints.is_surface_vertex(v));
     }
 
     bool attempt_collapse(int from, int to, const CollapseOptions& collapse_options)

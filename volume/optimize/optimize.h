@@ -34,6 +34,9 @@ struct OptimizeOptions
     /// blocks.h) are inside the next round's blocks, where those tets are worked; here they
     /// would stay stuck and be retried sweep after sweep.
     bool leave_required_vertex_balls = false;
+    /// Too-short edges may also be collapsed within flat parts of the boundary
+    /// (CollapseOptions::on_flat_boundary): a metric's only coarsening of the boundary.
+    bool collapse_flat_boundary = false;
     int verbosity = 0;  ///< 2: a per-sweep table (operator, attempts, successes, min Qe, %
                         ///< Qe>=0.5, time) to `messages`, as Report lines
     MessageSink messages;
