@@ -127,7 +127,7 @@ struct AdaptState
     {
         optimizer = options.optimizer;
         // no surface pass coarsens the boundary in a metric (classify_boundary): the collapses do
-        optimizer.collapse_flat_boundary = field.anisotropic() && options.optimizer.collapse;
+        optimizer.flat_boundary_moves = field.anisotropic() && options.optimizer.collapse;
         if (!optimizer.messages) optimizer.messages = options.messages;
         if (!optimizer.workers) optimizer.workers = options.workers;
     }
@@ -170,10 +170,6 @@ void classify_boundary(AdaptState& s)
     if (!s.options.surface || !s.options.project) return;
     const StageTimer timer(s.report.seconds_surface, s.report.cpu_seconds_surface);
     s.report.surface_refusal = coupled_surface_refusal(s.mesh);
-    // the surface pass places its points by sizes alone: in a metric the boundary is refined by
-    // the splits, landing on the model, and shaped by the volume's operators
-    if (s.field.anisotropic())
-        s.report.surface_refusal = "a metric: the boundary is split in it, not remeshed";
     if (!s.report.surface_refusal.empty() || s.mesh.num_live_tets() == 0) return;
     s.input = extract_boundary(s.mesh);
     s.settings = surface_settings(s.input->surface, s.field, s.options);
@@ -190,6 +186,7 @@ void build_projector(AdaptState& s)
         std::make_unique<BoundaryModel>(s.mesh, s.options.features, s.options.projection.model);
     ProjectionOptions projection = s.options.projection;
     projection.workers = s.options.workers;
+    projection.keep_flat = s.field.anisotropic();
     s.projector = std::make_unique<BoundaryProjector>(*s.model, projection);
 }
 
@@ -479,7 +476,9 @@ void finish(AdaptState& s)
 /// shapes (the optimizer keeps the boundary fixed), then the tets around them repaired.
 void raise_floor(AdaptState& s)
 {
-    if (!s.model || !s.options.optimize || !s.options.slide_boundary) return;
+    // (in a metric the optimizer moves flat boundary vertices in their planes already)
+    if (!s.model || !s.options.optimize || !s.options.slide_boundary || s.field.anisotropic())
+        return;
     const StageTimer timer(s.report.seconds_optimize, s.report.cpu_seconds_optimize);
     const detail::BoundaryFloorOptions floor;
     OptimizeOptions repair = s.optimizer;
@@ -505,8 +504,16 @@ AdaptReport adapt(TetMesh& mesh, const SizeField& field, const AdaptOptions& opt
     refine_to_field(state, field, options.refine_stages);
     if (options.verbosity >= 1 && !state.report.passes.empty())
         emit(options.messages, MessageKind::Progress, "adapt: surface and final optimization...\n");
+    // the surface pass places its points by sizes alone: in a metric the boundary, classified
+    // all the same, is refined by the splits, landing on the model, and shaped by the volume's
+    // operators
+    const bool surface_pass = state.input && !field.anisotropic();
+    if (state.input && !surface_pass)
+        state.report.surface_refusal = "a metric: the boundary is split in it, not remeshed";
     if (state.input) build_surface_model(state);
-    for (int round = 0; state.input && round < kSurfaceRounds; ++round)
+    // (the splits land on the one model; HDI alone strays on stretched boundary triangles)
+    if (state.input && !surface_pass) state.model->place_on_surface_model();
+    for (int round = 0; surface_pass && round < kSurfaceRounds; ++round)
         if (!surface_round(state)) break;
     optimize(state);
     finish(state);

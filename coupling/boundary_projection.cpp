@@ -39,6 +39,29 @@ double shortest_edge(const TetMesh& mesh, const std::vector<int>& ball, int v)
 
 }  // namespace
 
+/// The boundary faces of v's ball through v lie in at most `planes` planes (normals parallel
+/// to round-off): a flat surface vertex (1), or one on the straight line where two meet (2).
+bool flat_at(const TetMesh& mesh, const std::vector<int>& ball, int v, std::size_t planes)
+{
+    std::vector<Vec3> normals;
+    for (int t : ball)
+        for (int f = 0; f < 4; ++f)
+        {
+            const auto& tv = mesh.tets[t];
+            if (tv[f] == v || mesh.neighbors[t][f] != kNoTet) continue;
+            const auto& fv = tet::kFaceVertices[f];
+            const Vec3 n = (mesh.points[tv[fv[1]]] - mesh.points[tv[fv[0]]])
+                               .cross(mesh.points[tv[fv[2]]] - mesh.points[tv[fv[0]]]);
+            const bool known = std::any_of(normals.begin(), normals.end(), [&](const Vec3& m) {
+                return n.dot(m) > 0.0 && n.cross(m).norm() <= 1e-12 * n.norm() * m.norm();
+            });
+            if (known) continue;
+            normals.push_back(n);
+            if (normals.size() > planes) return false;
+        }
+    return !normals.empty();
+}
+
 ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int>& vertices) const
 {
     ProjectionReport report;
@@ -69,6 +92,7 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
         if (!wanted(v)) continue;
         const VertexClass cls = mesh.vertex_classes[v];
         vertex_ball(mesh, seeds[v], v, ball);
+        if (options_.keep_flat && flat_at(mesh, ball, v, 2)) continue;
         const Vec3 from = mesh.points[v];
         // a vertex listed twice moved since: asked again, as the serial loop did
         const BoundaryFoot foot = from == asked[i] ? feet[i] : model_.project(from, cls);

@@ -26,6 +26,9 @@ struct ProjectionOptions
     /// The model's queries run on these threads (null: one); the moves are made in the list's
     /// order on the calling thread, so the result does not depend on them.
     Workers* workers = nullptr;
+    /// A surface vertex whose boundary faces lie in one plane stays: a flat boundary has no
+    /// curvature for the model to add (in a metric, its stretched triangles make poor fits).
+    bool keep_flat = false;
 };
 
 struct ProjectionReport

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "volume/optimize/vertex_marks.h"
 
@@ -59,32 +60,30 @@ bool collect_collapse_configuration(const TetMesh& mesh, OperatorContext& contex
     return true;
 }
 
-/// Layer 1 for a boundary `from`: its boundary faces (open faces of its ball through it) are
-/// listed, share one ref and one plane, `to` is on one of them, and no listed interior face
-/// passes through `from`.
-bool flat_boundary_star(const TetMesh& mesh, const OperatorContext& context, int from, int to)
+}  // namespace
+
+std::optional<Vec3> flat_boundary_normal(const TetMesh& mesh, const OperatorContext& context, int v,
+                                         int* neighbour)
 {
     std::vector<int> ball;
-    context.ball(mesh, from, ball);
+    context.ball(mesh, v, ball);
     Vec3 normal = Vec3::Zero();
-    double scale = 0.0;
     int ref = 0;
-    bool first = true, to_on_boundary = false;
+    bool first = true, neighbour_on_boundary = neighbour == nullptr;
     for (int t : ball)
         for (int f = 0; f < 4; ++f)
         {
             const auto& fv = tet::kFaceVertices[f];
             const auto& tv = mesh.tets[t];
-            if (tv[f] == from) continue;  // the face opposite `from`
-            const bool open = mesh.neighbors[t][f] == kNoTet;
-            if (!open)
+            if (tv[f] == v) continue;  // the face opposite v
+            if (mesh.neighbors[t][f] != kNoTet)
             {
-                if (context.constraints.is_constrained_face(mesh, t, f)) return false;
+                if (context.constraints.is_constrained_face(mesh, t, f)) return std::nullopt;
                 continue;
             }
             const int listed =
                 context.constraints.listed_triangle({tv[fv[0]], tv[fv[1]], tv[fv[2]]});
-            if (listed < 0) return false;
+            if (listed < 0) return std::nullopt;
             const int face_ref = static_cast<std::size_t>(listed) < mesh.triangle_refs.size()
                                      ? mesh.triangle_refs[listed]
                                      : 0;
@@ -94,18 +93,30 @@ bool flat_boundary_star(const TetMesh& mesh, const OperatorContext& context, int
             {
                 normal = n;
                 ref = face_ref;
-                scale = n.norm();
                 first = false;
             }
             // one plane, one side: the normals parallel to round-off
             if (face_ref != ref || n.dot(normal) <= 0.0 ||
                 n.cross(normal).norm() > 1e-12 * n.norm() * normal.norm())
-                return false;
-            for (int k : fv) to_on_boundary = to_on_boundary || tv[k] == to;
+                return std::nullopt;
+            if (neighbour)
+                for (int k : fv)
+                    neighbour_on_boundary = neighbour_on_boundary || tv[k] == *neighbour;
         }
-    if (first || !to_on_boundary || !(scale > 0.0)) return false;
+    if (first || !neighbour_on_boundary || !(normal.norm() > 0.0)) return std::nullopt;
+    return Vec3(normal.normalized());
+}
+
+namespace
+{
+
+/// Layer 1 for a boundary `from`: a flat boundary star with `to` on it, the edge in its plane.
+bool in_boundary_plane(const TetMesh& mesh, const OperatorContext& context, int from, int to)
+{
+    const std::optional<Vec3> normal = flat_boundary_normal(mesh, context, from, &to);
+    if (!normal) return false;
     const Vec3 e = mesh.points[to] - mesh.points[from];
-    return std::abs(e.dot(normal)) <= 1e-12 * e.norm() * normal.norm();
+    return std::abs(e.dot(*normal)) <= 1e-12 * e.norm();
 }
 
 }  // namespace
@@ -119,7 +130,7 @@ CollapseResult collapse_edge(TetMesh& mesh, OperatorContext& context, int from, 
     if (from == to || context.vertex_tet[from] < 0) return result;
     const bool on_boundary = !context.constraints.is_free_vertex(from);
     if (on_boundary && !(options.on_flat_boundary && context.constraints.is_surface_vertex(from) &&
-                         flat_boundary_star(mesh, context, from, to)))
+                         in_boundary_plane(mesh, context, from, to)))
         return result;
 
     // layer 2: topology — the edge exists, one ref, nothing required

@@ -14,6 +14,8 @@
 // positive with quality >= min(old worst of the ball, options.min_quality), and no new edge
 // is too long for context.field.
 
+#include <optional>
+
 #include "volume/mesh/tet_topology.h"
 
 namespace hdimesh::volume
@@ -41,6 +43,12 @@ struct CollapseResult
     double worst_before = -1;
     double worst_after = 0;  ///< worst Qe of the new tets (when they could be formed)
 };
+
+/// The unit outward normal of boundary vertex v's star when its boundary faces (the open faces
+/// of its ball through it) are listed, share one ref and lie in one plane, and no listed
+/// interior face passes through v; with `neighbour`, it must be a vertex of those faces.
+std::optional<Vec3> flat_boundary_normal(const TetMesh& mesh, const OperatorContext& context, int v,
+                                         int* neighbour = nullptr);
 
 /// Collapses edge (from, to) onto `to` (or, see the options, both onto the midpoint, the
 /// vertex kept being `to`) when legal. `from` must be used by a live tet.

@@ -97,7 +97,7 @@ public:
         }
         CollapseOptions collapse_options;
         collapse_options.min_quality = options_.collapse_min_quality;
-        collapse_options.on_flat_boundary = options_.collapse_flat_boundary;
+        collapse_options.on_flat_boundary = options_.flat_boundary_moves;
         long total = 0;
         // the first pass sees every short edge; later ones only those of tets changed since,
         // as nothing else can have become collapsible
@@ -452,11 +452,11 @@ private:
         return result;
     }
 
-    /// A vertex a too-short edge may be collapsed from: free, or on a flat boundary when asked.
+    /// A vertex that may collapse or move: free, or on a flat boundary when asked.
     bool collapsible(int v) const
     {
         return context_.constraints.is_free_vertex(v) ||
-               (options_.collapse_flat_boundary && context_.constraints.is_surface_vertex(v));
+               (options_.flat_boundary_moves && context_.constraints.is_surface_vertex(v));
     }
 
     bool attempt_collapse(int from, int to, const CollapseOptions& collapse_options)
@@ -506,10 +506,11 @@ private:
             const TetVertices vertices = mesh_.tets[t];
             for (int v : vertices)
             {
-                if (!context_.constraints.is_free_vertex(v)) continue;
+                if (!collapsible(v)) continue;  // free, or on a flat boundary when asked
                 ++report_.operators[kSmoothing].attempts;
                 SmoothOptions smooth_options;
                 smooth_options.good_enough = threshold;
+                smooth_options.in_flat_boundary = options_.flat_boundary_moves;
                 if (smooth_vertex(mesh_, context_, v, smooth_options).moved)
                 {
                     ++report_.operators[kSmoothing].successes;

@@ -34,9 +34,10 @@ struct OptimizeOptions
     /// blocks.h) are inside the next round's blocks, where those tets are worked; here they
     /// would stay stuck and be retried sweep after sweep.
     bool leave_required_vertex_balls = false;
-    /// Too-short edges may also be collapsed within flat parts of the boundary
-    /// (CollapseOptions::on_flat_boundary): a metric's only coarsening of the boundary.
-    bool collapse_flat_boundary = false;
+    /// Surface vertices of flat parts of the boundary may also collapse along it and slide in
+    /// its plane (CollapseOptions::on_flat_boundary, SmoothOptions::in_flat_boundary): in a
+    /// metric, where no surface pass runs, the only coarsening and shaping of the boundary.
+    bool flat_boundary_moves = false;
     int verbosity = 0;  ///< 2: a per-sweep table (operator, attempts, successes, min Qe, %
                         ///< Qe>=0.5, time) to `messages`, as Report lines
     MessageSink messages;

@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "common/metric.h"
 #include "volume/check/quality_report.h"
 #include "volume/mesh/tet_tables.h"
+#include "volume/optimize/collapse.h"
 #include "volume/optimize/vertex_marks.h"
 
 namespace hdimesh::volume
@@ -349,8 +351,12 @@ Vec3 min_norm_in_hull(const std::vector<Vec3>& vectors)
 /// Where the vertex of `ball` should go from `start`: smooth_vertex's two moves (see the
 /// header). Returns the start itself when nothing beats it by options.min_gain.
 Placement best_position(const MovingBall& ball, const OperatorContext& context, const Vec3& start,
-                        const SmoothOptions& options)
+                        const SmoothOptions& options, const Vec3* plane_normal = nullptr)
 {
+    // a vertex of a flat boundary moves within its plane
+    const auto onto_plane = [&](Vec3& p) {
+        if (plane_normal) p -= (p - start).dot(*plane_normal) * *plane_normal;
+    };
     // the index of the current worst tet comes with every full evaluation at the current point
     std::size_t current_worst_index = 0;
     const double worst_start =
@@ -360,6 +366,7 @@ Placement best_position(const MovingBall& ball, const OperatorContext& context, 
     double worst = worst_start;
     const OldEdges old(context, ball, start);
     auto try_point = [&](Vec3 candidate) {
+        onto_plane(candidate);
         const double floor = worst + options.min_gain;
         std::size_t index = 0;
         double w = 0;
@@ -370,6 +377,7 @@ Placement best_position(const MovingBall& ball, const OperatorContext& context, 
             // the size band is still better than staying
             const Vec3 unfitted = candidate;
             if (!fit_size_band(context, ball, old, candidate)) return false;
+            onto_plane(candidate);
             if (candidate != unfitted && !ball.worst_above(candidate, floor, &w, &index))
                 return false;
         }
@@ -440,9 +448,17 @@ SmoothResult smooth_vertex(TetMesh& mesh, OperatorContext& context, int v,
                            const SmoothOptions& options)
 {
     SmoothResult result;
-    if (!context.constraints.is_free_vertex(v) || context.vertex_tet[v] < 0) return result;
+    if (context.vertex_tet[v] < 0) return result;
+    std::optional<Vec3> plane;
+    if (!context.constraints.is_free_vertex(v))
+    {
+        if (!options.in_flat_boundary || !context.constraints.is_surface_vertex(v)) return result;
+        plane = flat_boundary_normal(mesh, context, v);
+        if (!plane) return result;
+    }
     const MovingBall ball = collect_ball(mesh, context, v);
-    const Placement placement = best_position(ball, context, mesh.points[v], options);
+    const Placement placement =
+        best_position(ball, context, mesh.points[v], options, plane ? &*plane : nullptr);
     result.worst_before = placement.worst_start;
     result.worst_after = placement.worst;
     if (placement.worst > placement.worst_start)

@@ -34,6 +34,8 @@ struct SmoothOptions
     double min_gain = 1e-6;       ///< the ball's worst quality must rise by this much
     /// the ball's smallest dihedral angle may fall below its old value only down to this (deg)
     double min_dihedral_deg = 20;
+    /// a surface vertex whose boundary is flat (flat_boundary_normal) moves within its plane
+    bool in_flat_boundary = false;
 };
 
 struct SmoothResult
