@@ -303,7 +303,10 @@ int run(const char* program, const std::function<int()>& body)
 void SizeOptions::add_to(CommandLine& cli, bool with_bounds)
 {
     cli.option("--hsiz", &hsiz, "constant size", &hsiz_set);
-    cli.option("--sol", &sol, "sizes at the input's vertices (Medit .sol/.solb, SolAtVertices)",
+    cli.option("--sol", &sol,
+               "sizes or a metric at the input's vertices: Medit .sol/.solb (SolAtVertices, a "
+               "scalar or, for the tet tools, a tensor m11 m12 m22 m13 m23 m33), or a .msh's one "
+               "$NodeData (1 or 9 components)",
                &sol_set);
     if (!with_bounds) return;
     cli.option("--hmin", &hmin, "smallest size allowed");

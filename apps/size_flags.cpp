@@ -2,6 +2,7 @@
 #include "size_flags.h"
 
 #include "common/sol_io.h"
+#include "volume/io/tet_io.h"
 #include "volume/size/size_spec.h"
 
 namespace hdimesh::cli
@@ -36,7 +37,7 @@ std::shared_ptr<const SizeField> SizeFlags::make(const volume::TetMesh& input) c
     volume::SizeSpec sizes = spec();
     if (sol_set)
     {
-        SolSizing sizing = read_sol_sizing(sol, input.num_vertices());
+        SolSizing sizing = volume::read_vertex_sizing(sol, input);
         sizes.vertex_sizes = std::move(sizing.sizes);
         sizes.vertex_metrics = std::move(sizing.metrics);
     }

@@ -128,7 +128,7 @@ AdaptResult adapt_tets(volume::TetMesh mesh, const AdaptRequest& request, AdaptO
     volume::SizeSpec spec = request.size;
     if (!request.sol.empty())
     {
-        SolSizing sizing = read_sol_sizing(request.sol, mesh.num_vertices());
+        SolSizing sizing = volume::read_vertex_sizing(request.sol, mesh);
         spec.vertex_sizes = std::move(sizing.sizes);
         spec.vertex_metrics = std::move(sizing.metrics);
     }

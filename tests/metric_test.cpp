@@ -15,6 +15,7 @@
 #include "coupling/adapt.h"
 #include "fixtures.h"
 #include "volume/check/check.h"
+#include "volume/io/tet_io.h"
 #include "volume/mesh/geometry.h"
 #include "volume/mesh/tet_tables.h"
 #include "volume/size/metric_fields.h"
@@ -243,4 +244,32 @@ TEST_CASE("metrics: adapt to a layer metric, then OUT's metric is the field at i
     CHECK(out.solutions[0].values.size() == 6u * mesh.num_vertices());
     const Metric first = metric_from_medit(out.solutions[0].values.data());
     CHECK(first.isApprox(field.metric(mesh.points[0]), 1e-12));
+}
+
+TEST_CASE("metrics: a Gmsh $NodeData of 9 components is a metric, row-major and symmetric")
+{
+    const TetMesh mesh = fixtures::box_mesh(1);
+    const int n = mesh.num_vertices();
+    WriteOptions options;
+    PointField metric{"metric", 9, {}};
+    for (int v = 0; v < n; ++v)
+        for (double x : {100.0, 1.0, 2.0, 1.0, 50.0, 3.0, 2.0, 3.0, 400.0})
+            metric.values.push_back(x + v);
+    options.point_fields = {metric};
+    const std::string path = scratch().file("metric.msh");
+    write_mesh(mesh, path, options);
+    const SolSizing sizing = read_vertex_sizing(path, mesh);
+    REQUIRE(sizing.metrics.size() == 6u * n);
+    const Metric last = metric_from_medit(&sizing.metrics[6 * (n - 1)]);
+    CHECK(last(0, 0) == 100.0 + n - 1);
+    CHECK(last(1, 2) == 3.0 + n - 1);
+    CHECK(last(2, 2) == 400.0 + n - 1);
+    metric.values[9 * 2 + 1] += 0.5;  // m12 != m21 at vertex 3
+    options.point_fields = {metric};
+    write_mesh(mesh, path, options);
+    CHECK_THROWS_WITH_AS(read_vertex_sizing(path, mesh),
+                         doctest::Contains("the metric at vertex 3 is not symmetric"), InputError);
+    options.point_fields = {PointField{"vector", 3, std::vector<double>(3 * n, 1.0)}};
+    write_mesh(mesh, path, options);
+    CHECK_THROWS_AS(read_vertex_sizing(path, mesh), InputError);
 }

@@ -12,6 +12,7 @@
 
 #include "common/atomic_file.h"
 #include "common/errors.h"
+#include "common/metric.h"
 #include "volume/io/detail/io.h"
 #include "volume/mesh/tet_tables.h"
 
@@ -201,6 +202,42 @@ void write_mesh(const TetMesh& mesh, const std::string& path, const WriteOptions
             case MeshFormat::Vtu: io_detail::write_vtu(mesh, out, options); break;
         }
     });
+}
+
+SolSizing read_vertex_sizing(const std::string& path, const TetMesh& mesh)
+{
+    if (io_detail::lower_extension(path) != ".msh")
+        return read_sol_sizing(path, mesh.num_vertices());
+    std::vector<PointField> fields = read_point_fields(path, mesh);
+    if (fields.size() != 1)
+        throw InputError(path + ": " + std::to_string(fields.size()) +
+                         " $NodeData, a size field is one (1 component: sizes, 9: a metric)");
+    PointField& field = fields[0];
+    const std::string what = path + ": $NodeData \"" + field.name + "\"";
+    SolSizing sizing;
+    if (field.components == 1)
+    {
+        for (std::size_t v = 0; v < field.values.size(); ++v)
+            if (!(field.values[v] > 0))
+                throw InputError(what + ": size at vertex " + std::to_string(v + 1) +
+                                 " is not positive");
+        sizing.sizes = std::move(field.values);
+        return sizing;
+    }
+    if (field.components != 9)
+        throw InputError(what + ": " + std::to_string(field.components) +
+                         " components, a size field has 1 (sizes) or 9 (a metric)");
+    for (std::size_t v = 0; 9 * v < field.values.size(); ++v)
+    {
+        std::string problem;
+        const Metric m = metric_from_row_major(&field.values[9 * v], &problem);
+        if (problem.empty()) problem = metric_problem(m);
+        if (!problem.empty())
+            throw InputError(what + ": the metric at vertex " + std::to_string(v + 1) + " is " +
+                             problem);
+        for (double x : metric_to_medit(m)) sizing.metrics.push_back(x);
+    }
+    return sizing;
 }
 
 }  // namespace hdimesh::volume

@@ -92,6 +92,12 @@ struct WriteOptions
 /// cannot be opened. A .msh read by read_mesh keeps no $NodeData: carrying them is opt-in.
 std::vector<PointField> read_point_fields(const std::string& path, const TetMesh& mesh);
 
+/// The sizing a file gives at the mesh's vertices, as `-sol` takes it: a Medit .sol/.solb
+/// (read_sol_sizing: sizes, or metrics in Medit's order), or a Gmsh .msh with one $NodeData of
+/// 1 component (sizes) or 9 (a metric, row-major, symmetric). InputError naming the file, the
+/// field and the vertex (from 1) otherwise.
+SolSizing read_vertex_sizing(const std::string& path, const TetMesh& mesh);
+
 /// Writes by extension: .mesh, .meshb, .msh, .vtu (raw appended binary, cell data "ref" and
 /// "Qe", point data "size" when given). Atomic (temporary file + rename): a failed write
 /// leaves no partial file. InputError for a bad option (unknown gmsh_version, vertex_sizes or a
