@@ -37,6 +37,7 @@ constexpr int kFloorRounds = 3;  // boundary slides, each followed by a repair
 constexpr int kBandRings =
     1;  // the second block round: the tets the first left at its cuts and these rings around them
 constexpr double kSurfaceRepeatFraction = 0.01;
+constexpr int kMetricPassSweeps = 2;     // repair sweeps after each refinement pass in a metric
 constexpr int kStallPasses = 3;          // refinement stops when the splits have not decreased
 constexpr double kStallFraction = 1e-3;  // over this many passes and are this few per tet
 
@@ -217,7 +218,12 @@ AdaptPassReport refinement_pass(AdaptState& s, const SizeField& split_field,
     if (s.options.optimize)
     {
         const StageTimer timer(s.report.seconds_optimize, s.report.cpu_seconds_optimize);
-        row.min_quality = improve_bad_elements(s.mesh, target, s.optimizer).min_quality_after;
+        // in a metric the passes' tets are far from its shapes until the sizes are reached:
+        // sweeps to convergence would redo most of the mesh each pass (the final one does)
+        OptimizeOptions repair = s.optimizer;
+        if (target.anisotropic())
+            repair.max_sweeps = std::min(repair.max_sweeps, kMetricPassSweeps);
+        row.min_quality = improve_bad_elements(s.mesh, target, repair).min_quality_after;
     }
     else
     {
