@@ -10,32 +10,13 @@
 #include "common/errors.h"
 #include "volume/mesh/boundary.h"
 #include "volume/mesh/geometry.h"
+#include "volume/size/detail/point_memo.h"
 
 namespace hdimesh::volume
 {
 
 namespace
 {
-
-std::uint64_t next_metric_id()
-{
-    static std::atomic<std::uint64_t> next{1};
-    return next++;
-}
-
-// A point's exact bits, mixed into a table slot.
-std::size_t slot_of(const Vec3& p, std::size_t slots)
-{
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (int i = 0; i < 3; ++i)
-    {
-        std::uint64_t bits;
-        std::memcpy(&bits, &p[i], sizeof bits);
-        h = (h ^ bits) * 0xff51afd7ed558ccdull;
-        h ^= h >> 33;
-    }
-    return static_cast<std::size_t>(h) & (slots - 1);
-}
 
 std::vector<Metric> logs_of(const TetMesh& mesh, const std::vector<Metric>& metrics)
 {
@@ -63,7 +44,7 @@ std::vector<Metric> logs_of(const TetMesh& mesh, const std::vector<Metric>& metr
 }  // namespace
 
 BackgroundMeshMetric::BackgroundMeshMetric(const TetMesh& mesh, const std::vector<Metric>& metrics)
-    : locator_(mesh), logs_(logs_of(mesh, metrics)), id_(next_metric_id())
+    : locator_(mesh), logs_(logs_of(mesh, metrics)), id_(detail::next_field_id())
 {
 }
 
@@ -79,7 +60,7 @@ Metric BackgroundMeshMetric::metric(const Vec3& p) const
     };
     constexpr std::size_t kSlots = 4096;
     thread_local std::vector<Remembered> remembered(kSlots);
-    Remembered& slot = remembered[slot_of(p, kSlots)];
+    Remembered& slot = remembered[detail::point_slot(p, kSlots)];
     if (slot.field == id_ && slot.point == p) return slot.metric;
     slot.field = id_;
     slot.point = p;

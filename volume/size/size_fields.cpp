@@ -16,6 +16,7 @@
 #include "common/errors.h"
 #include "volume/mesh/boundary.h"
 #include "volume/mesh/geometry.h"
+#include "volume/size/detail/point_memo.h"
 
 namespace hdimesh::volume
 {
@@ -94,34 +95,9 @@ double BenchmarkSize::size(const Vec3& p) const
     return h;
 }
 
-namespace
-{
-
-std::uint64_t next_field_id()
-{
-    static std::atomic<std::uint64_t> next{1};
-    return next++;
-}
-
-// A point's exact bits, mixed into a table slot.
-std::size_t point_slot(const Vec3& p, std::size_t slots)
-{
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (int i = 0; i < 3; ++i)
-    {
-        std::uint64_t bits;
-        std::memcpy(&bits, &p[i], sizeof bits);
-        h = (h ^ bits) * 0xff51afd7ed558ccdull;
-        h ^= h >> 33;
-    }
-    return static_cast<std::size_t>(h) & (slots - 1);
-}
-
-}  // namespace
-
 BackgroundMeshSize::BackgroundMeshSize(const TetMesh& mesh, std::vector<double> vertex_sizes)
     : locator_((validate_vertex_sizes(mesh, vertex_sizes), mesh)), sizes_(std::move(vertex_sizes)),
-      id_(next_field_id())
+      id_(detail::next_field_id())
 {
 }
 
@@ -138,7 +114,7 @@ double BackgroundMeshSize::size(const Vec3& p) const
     };
     constexpr std::size_t kSlots = 4096;
     thread_local std::vector<Remembered> remembered(kSlots);
-    Remembered& slot = remembered[point_slot(p, kSlots)];
+    Remembered& slot = remembered[detail::point_slot(p, kSlots)];
     if (slot.field == id_ && slot.point == p) return slot.size;
     slot.field = id_;
     slot.point = p;
