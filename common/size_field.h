@@ -58,10 +58,7 @@ struct EdgeInField
 /// Edge ab measured by `field`.
 inline EdgeInField measure_edge(const SizeField& field, const Vec3& a, const Vec3& b)
 {
-    if (!field.anisotropic()) return {(b - a).norm(), edge_target_size(field, a, b)};
-    const double length = (b - a).norm();
-    const Metric m = field.metric(0.5 * (a + b));
-    return {length, length > 0.0 ? length / metric_length(m, b - a) : metric_mean_size(m)};
+    return {(b - a).norm(), edge_target_size(field, a, b)};
 }
 
 }  // namespace hdimesh

@@ -37,8 +37,6 @@ double shortest_edge(const TetMesh& mesh, const std::vector<int>& ball, int v)
     return shortest;
 }
 
-}  // namespace
-
 /// The boundary faces of v's ball through v lie in at most `planes` planes (normals parallel
 /// to round-off): a flat surface vertex (1), or one on the straight line where two meet (2).
 bool flat_at(const TetMesh& mesh, const std::vector<int>& ball, int v, std::size_t planes)
@@ -61,6 +59,8 @@ bool flat_at(const TetMesh& mesh, const std::vector<int>& ball, int v, std::size
         }
     return !normals.empty();
 }
+
+}  // namespace
 
 ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int>& vertices) const
 {
