@@ -1,0 +1,257 @@
+/* A PETSc program as a user writes it: a DMPlex box from a cell list, labelled faces (the six
+ * sides 1..6, the inner plane x = 0.5 as 7) and cells (x < 0.5: 1, else 2), a DMPlexMetric,
+ * DMAdaptMetric with -dm_adaptor hdimesh (loaded by -dll_append), then PETSc's own checks and
+ * ours: volume kept, labels on the right faces and cells, edges near the metric's sizes.
+ *   adapt_box -dll_append libhdimesh_petsc.so -dm_adaptor hdimesh [-metric iso|aniso|uniform]
+ *             [-n 4] [-h 0.12] */
+#include <petscdmplex.h>
+
+static const char help[] = "Adapts a DMPlex box with -dm_adaptor hdimesh and checks it.\n";
+
+/* The metric's sizes at x: isotropic h (finer towards x = 0), or hx along x and 3 hx across. */
+static void sizes_at(const PetscReal x[3], PetscReal h, PetscBool aniso, PetscReal s[3])
+{
+  const PetscReal hx = h * (0.6 + 0.8 * x[0]);
+  s[0] = hx;
+  s[1] = s[2] = aniso ? 3 * hx : hx;
+}
+
+/* n^3 cubes, 6 tets each (Kuhn's split, conforming between cubes), inward as Plex lists them. */
+static PetscErrorCode CreateBox(PetscInt n, DM *dm)
+{
+  const PetscInt nv = (n + 1) * (n + 1) * (n + 1), nc = 6 * n * n * n;
+  const PetscInt perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  PetscInt      *cells, c = 0;
+  PetscReal     *xyz;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(4 * nc, &cells, 3 * nv, &xyz));
+  for (PetscInt k = 0; k <= n; ++k)
+    for (PetscInt j = 0; j <= n; ++j)
+      for (PetscInt i = 0; i <= n; ++i) {
+        const PetscInt v = i + (n + 1) * (j + (n + 1) * k);
+        xyz[3 * v]         = (PetscReal)i / n;
+        xyz[3 * v + 1]     = (PetscReal)j / n;
+        xyz[3 * v + 2]     = (PetscReal)k / n;
+      }
+  for (PetscInt k = 0; k < n; ++k)
+    for (PetscInt j = 0; j < n; ++j)
+      for (PetscInt i = 0; i < n; ++i)
+        for (PetscInt p = 0; p < 6; ++p) {
+          PetscInt ijk[3] = {i, j, k};
+          for (PetscInt s = 0; s < 4; ++s) {
+            if (s > 0) ++ijk[perms[p][s - 1]];
+            cells[4 * c + s] = ijk[0] + (n + 1) * (ijk[1] + (n + 1) * ijk[2]);
+          }
+          { /* Plex wants the first face to see the fourth vertex on its negative side */
+            const PetscReal *a = &xyz[3 * cells[4 * c]], *b = &xyz[3 * cells[4 * c + 1]];
+            const PetscReal *d = &xyz[3 * cells[4 * c + 2]], *e = &xyz[3 * cells[4 * c + 3]];
+            PetscReal u[3], w[3], z[3], vol;
+            for (PetscInt q = 0; q < 3; ++q) {
+              u[q] = b[q] - a[q];
+              w[q] = d[q] - a[q];
+              z[q] = e[q] - a[q];
+            }
+            vol = u[0] * (w[1] * z[2] - w[2] * z[1]) - u[1] * (w[0] * z[2] - w[2] * z[0]) + u[2] * (w[0] * z[1] - w[1] * z[0]);
+            if (vol > 0) {
+              const PetscInt t = cells[4 * c];
+              cells[4 * c]     = cells[4 * c + 1];
+              cells[4 * c + 1] = t;
+            }
+          }
+          ++c;
+        }
+  PetscCall(DMPlexCreateFromCellListPetsc(PETSC_COMM_WORLD, 3, nc, nv, 4, PETSC_TRUE, cells, 3, xyz, dm));
+  PetscCall(PetscFree2(cells, xyz));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Centroid(DM dm, PetscInt p, PetscReal x[3])
+{
+  PetscReal vol, normal[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexComputeCellGeometryFVM(dm, p, &vol, x, normal));
+  PetscFunctionReturn(0);
+}
+
+/* The side a face lies on (1..6), 7 on the plane x = 0.5, else -1. */
+static PetscInt FaceValue(const PetscReal x[3])
+{
+  for (PetscInt d = 0; d < 3; ++d) {
+    if (PetscAbsReal(x[d]) < 1e-10) return 2 * d + 1;
+    if (PetscAbsReal(x[d] - 1) < 1e-10) return 2 * d + 2;
+  }
+  if (PetscAbsReal(x[0] - 0.5) < 1e-10) return 7;
+  return -1;
+}
+
+static PetscErrorCode Label(DM dm, DMLabel *bd, DMLabel *rg)
+{
+  PetscInt cStart, cEnd, fStart, fEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateLabel(dm, "boundary"));
+  PetscCall(DMGetLabel(dm, "boundary", bd));
+  PetscCall(DMCreateLabel(dm, "regions"));
+  PetscCall(DMGetLabel(dm, "regions", rg));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  for (PetscInt f = fStart; f < fEnd; ++f) {
+    PetscReal x[3];
+    PetscInt  value;
+    PetscCall(Centroid(dm, f, x));
+    value = FaceValue(x);
+    if (value > 0) PetscCall(DMLabelSetValue(*bd, f, value));
+  }
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscReal x[3];
+    PetscCall(Centroid(dm, c, x));
+    PetscCall(DMLabelSetValue(*rg, c, x[0] < 0.5 ? 1 : 2));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateMetric(DM dm, PetscReal h, PetscBool aniso, PetscBool uniform, Vec *metric)
+{
+  PetscInt           vStart, vEnd;
+  PetscSection       cs, ms;
+  Vec                coords;
+  const PetscScalar *x;
+  PetscScalar       *m;
+  DM                 mdm;
+
+  PetscFunctionBeginUser;
+  if (uniform) {
+    PetscCall(DMPlexMetricCreateUniform(dm, 0, 1 / (h * h), metric));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(DMPlexMetricSetIsotropic(dm, aniso ? PETSC_FALSE : PETSC_TRUE));
+  PetscCall(DMPlexMetricCreate(dm, 0, metric));
+  PetscCall(VecGetDM(*metric, &mdm));
+  PetscCall(DMGetLocalSection(mdm, &ms));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(VecGetArrayRead(coords, &x));
+  PetscCall(VecGetArray(*metric, &m));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt  xo, mo;
+    PetscReal p[3], s[3];
+    PetscCall(PetscSectionGetOffset(cs, v, &xo));
+    PetscCall(PetscSectionGetOffset(ms, v, &mo));
+    for (PetscInt d = 0; d < 3; ++d) p[d] = PetscRealPart(x[xo + d]);
+    sizes_at(p, h, aniso, s);
+    if (!aniso) m[mo] = 1 / (s[0] * s[0]);
+    else
+      for (PetscInt i = 0; i < 3; ++i)
+        for (PetscInt j = 0; j < 3; ++j) m[mo + 3 * i + j] = i == j ? 1 / (s[i] * s[i]) : 0;
+  }
+  PetscCall(VecRestoreArray(*metric, &m));
+  PetscCall(VecRestoreArrayRead(coords, &x));
+  PetscFunctionReturn(0);
+}
+
+/* Labels where they belong, the volume kept, and the share of edges within [1/sqrt2, sqrt2] of
+ * the metric's size. */
+static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBool uniform)
+{
+  PetscInt  cStart, cEnd, fStart, fEnd, eStart, eEnd, bad = 0, in_range = 0, seen[8] = {0};
+  PetscReal volume = 0;
+  DMLabel   bd, rg, outer;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexCheck(dm));
+  PetscCall(DMGetLabel(dm, "boundary", &bd));
+  PetscCall(DMGetLabel(dm, "regions", &rg));
+  PetscCheck(bd && rg, PETSC_COMM_SELF, PETSC_ERR_PLIB, "labels lost");
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 1, &eStart, &eEnd));
+  PetscCall(DMLabelCreate(PETSC_COMM_SELF, "outer", &outer));
+  PetscCall(DMPlexMarkBoundaryFaces(dm, 1, outer));
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscReal x[3], vol, normal[3];
+    PetscInt  value;
+    PetscCall(DMPlexComputeCellGeometryFVM(dm, c, &vol, x, normal));
+    volume += vol;
+    PetscCall(DMLabelGetValue(rg, c, &value));
+    if (value != (x[0] < 0.5 ? 1 : 2)) ++bad;
+  }
+  PetscCheck(bad == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " cells in the wrong region", bad);
+  PetscCheck(PetscAbsReal(volume - 1) < 1e-10, PETSC_COMM_SELF, PETSC_ERR_PLIB, "volume %g, not 1", (double)volume);
+  for (PetscInt f = fStart; f < fEnd; ++f) {
+    PetscReal x[3];
+    PetscInt  value, on_boundary, expect;
+    PetscCall(Centroid(dm, f, x));
+    PetscCall(DMLabelGetValue(bd, f, &value));
+    PetscCall(DMLabelGetValue(outer, f, &on_boundary));
+    expect = FaceValue(x);
+    if (value != expect || (on_boundary == 1 && expect < 0)) ++bad;
+    if (value > 0) seen[value] = 1;
+  }
+  PetscCheck(bad == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " faces labelled wrongly", bad);
+  for (PetscInt v = 1; v <= 7; ++v) PetscCheck(seen[v], PETSC_COMM_SELF, PETSC_ERR_PLIB, "no face keeps value %" PetscInt_FMT, v);
+  for (PetscInt e = eStart; e < eEnd; ++e) {
+    PetscReal x[3], len = 0, s[3], lm = 0, a[3], b[3];
+    PetscInt *closure = NULL, n, k = 0;
+    PetscCall(Centroid(dm, e, x));
+    PetscCall(DMPlexGetTransitiveClosure(dm, e, PETSC_TRUE, &n, &closure));
+    { /* the edge's two vertices: its closure's last two points */
+      Vec                coords;
+      PetscSection       cs;
+      const PetscScalar *xyz;
+      PetscInt           off;
+      PetscCall(DMGetCoordinatesLocal(dm, &coords));
+      PetscCall(DMGetCoordinateSection(dm, &cs));
+      PetscCall(VecGetArrayRead(coords, &xyz));
+      PetscCall(PetscSectionGetOffset(cs, closure[2], &off));
+      for (k = 0; k < 3; ++k) a[k] = PetscRealPart(xyz[off + k]);
+      PetscCall(PetscSectionGetOffset(cs, closure[4], &off));
+      for (k = 0; k < 3; ++k) b[k] = PetscRealPart(xyz[off + k]);
+      PetscCall(VecRestoreArrayRead(coords, &xyz));
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, e, PETSC_TRUE, &n, &closure));
+    sizes_at(x, h, aniso, s);
+    if (uniform) s[0] = s[1] = s[2] = h;
+    for (k = 0; k < 3; ++k) {
+      len += (b[k] - a[k]) * (b[k] - a[k]);
+      lm += (b[k] - a[k]) * (b[k] - a[k]) / (s[k] * s[k]);
+    }
+    lm = PetscSqrtReal(lm);
+    if (lm >= 1 / PetscSqrtReal(2.0) && lm <= PetscSqrtReal(2.0)) ++in_range;
+  }
+  PetscCall(DMLabelDestroy(&outer));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapted: %" PetscInt_FMT " tets, %.1f %% of %" PetscInt_FMT " edges in [1/sqrt2, sqrt2]\n", cEnd - cStart, 100.0 * in_range / (eEnd - eStart), eEnd - eStart));
+  PetscCheck(in_range >= 0.75 * (eEnd - eStart), PETSC_COMM_SELF, PETSC_ERR_PLIB, "too few edges in range");
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  DM          dm, adapted;
+  DMLabel     bd, rg;
+  Vec         metric;
+  PetscInt    n = 4;
+  PetscReal   h = 0.12;
+  char        kind[16] = "iso";
+  PetscBool   aniso, uniform;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-n", &n, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-h", &h, NULL));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-metric", kind, sizeof kind, NULL));
+  PetscCall(PetscStrcmp(kind, "aniso", &aniso));
+  PetscCall(PetscStrcmp(kind, "uniform", &uniform));
+  PetscCall(CreateBox(n, &dm));
+  PetscCall(DMPlexCheck(dm));
+  PetscCall(Label(dm, &bd, &rg));
+  PetscCall(CreateMetric(dm, h, aniso, uniform, &metric));
+  PetscCall(DMAdaptMetric(dm, metric, bd, rg, &adapted));
+  PetscCall(CheckAdapted(adapted, h, aniso, uniform));
+  PetscCall(VecDestroy(&metric));
+  PetscCall(DMDestroy(&adapted));
+  PetscCall(DMDestroy(&dm));
+  PetscCall(PetscFinalize());
+  return 0;
+}
