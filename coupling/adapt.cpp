@@ -183,8 +183,9 @@ void build_projector(AdaptState& s)
 {
     if (!s.options.project) return;
     const StageTimer timer(s.report.seconds_project, s.report.cpu_seconds_project);
+    const TetMesh& boundary = s.options.geometry ? *s.options.geometry : s.mesh;
     s.model =
-        std::make_unique<BoundaryModel>(s.mesh, s.options.features, s.options.projection.model);
+        std::make_unique<BoundaryModel>(boundary, s.options.features, s.options.projection.model);
     ProjectionOptions projection = s.options.projection;
     projection.workers = s.options.workers;
     projection.keep_flat = s.field.anisotropic();

@@ -17,6 +17,7 @@
 //   project_all        (no surface pass) finish the moves that were shortened, improve again
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,10 @@ struct AdaptOptions
     /// pass's (surface_settings.features is set from it).
     hdi::FeatureOptions features;
     MirrorOptions mirror;
+    /// The boundary the HDI model is fitted to (its triangles, refs, ridges and corners) when
+    /// the mesh is a piece of the domain (a rank's part) whose own boundary has cuts; null:
+    /// the mesh's boundary.
+    std::shared_ptr<const volume::TetMesh> geometry;
     volume::OptimizeOptions optimizer;
     ProjectionOptions projection;
     /// 0 silent; 1 a progress line per pass; 2 also a table row per pass as the passes run

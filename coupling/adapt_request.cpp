@@ -28,6 +28,7 @@ AdaptOptions adapt_options(const AdaptRequest& request)
     options.max_passes = request.max_passes;
     options.progress = request.progress;
     options.messages = request.messages;
+    options.geometry = request.geometry;
     return options;
 }
 

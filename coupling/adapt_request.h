@@ -71,6 +71,8 @@ struct AdaptRequest
     /// Fields at the input's vertices (a tet input) carried onto the output
     /// (volume::transfer_fields: P1 in the input tet of each output vertex's own region).
     std::vector<volume::VertexField> fields;
+    /// The domain's boundary when the mesh is a piece of it (AdaptOptions::geometry).
+    std::shared_ptr<const volume::TetMesh> geometry;
 };
 
 struct AdaptResult

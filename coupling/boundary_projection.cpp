@@ -133,10 +133,16 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
 
 ProjectionReport BoundaryProjector::project_all(TetMesh& mesh) const
 {
+    // required vertices and those of required triangles stay where they are (Mmg's rule; a
+    // rank's cut lies inside the domain, far from the model)
+    std::vector<char> held(mesh.num_vertices(), 0);
+    for (int v : mesh.required_vertices) held[v] = 1;
+    for (int i : mesh.required_triangles)
+        for (int v : mesh.triangles[i]) held[v] = 1;
     std::vector<int> boundary;
     for (int v = 0; v < mesh.num_vertices(); ++v)
-        if (mesh.vertex_classes[v] == VertexClass::Surface ||
-            mesh.vertex_classes[v] == VertexClass::Ridge)
+        if (!held[v] && (mesh.vertex_classes[v] == VertexClass::Surface ||
+                         mesh.vertex_classes[v] == VertexClass::Ridge))
             boundary.push_back(v);
     return project(mesh, boundary);
 }

@@ -11,36 +11,15 @@
 
 #include "common/errors.h"
 #include "coupling/adapt_request.h"
+#include "plex_convert.h"
 #include "volume/io/tet_io.h"
 #include "volume/mesh/tet_mesh.h"
 
-namespace
+namespace hdimesh_petsc
 {
 
 using hdimesh::volume::TetMesh;
 using hdimesh::volume::Vec3;
-
-const char* const kBoundaryName = "_boundary_";
-const char* const kRegionsName = "_regions_";
-
-/// A label's values as refs 1..k in increasing order; ref 0 is "no value".
-struct LabelRefs
-{
-    std::vector<PetscInt> values;
-
-    int ref(PetscInt value) const
-    {
-        const auto it = std::lower_bound(values.begin(), values.end(), value);
-        return it != values.end() && *it == value ? static_cast<int>(it - values.begin()) + 1 : 0;
-    }
-    /// The value of ref r; false for ref 0 or a ref the adaptation made up.
-    bool value(int r, PetscInt& out) const
-    {
-        if (r < 1 || r > static_cast<int>(values.size())) return false;
-        out = values[r - 1];
-        return true;
-    }
-};
 
 /// The values label gives points [pStart, pEnd), sorted and without the default (-1).
 PetscErrorCode label_refs(DMLabel label, PetscInt pStart, PetscInt pEnd, LabelRefs& refs)
@@ -83,13 +62,6 @@ double signed_volume(const TetMesh& m, const std::array<int, 4>& t)
     const Vec3 c = m.points[t[3]] - m.points[t[0]];
     return a.dot(b.cross(c));
 }
-
-/// What the adaptor reads off the DM: the tets and their faces, with the labels as refs.
-struct PlexInput
-{
-    TetMesh mesh;
-    LabelRefs face_refs, cell_refs;
-};
 
 /// dm's tets (positive), its coordinates, every boundary face and every face bdLabel marks as
 /// triangles (refs from bdLabel; 0 for an unmarked boundary face) and rgLabel's cell refs.
@@ -180,7 +152,8 @@ PetscErrorCode read_metric(DM dm, Vec metric, int nv, hdimesh::volume::SizeSpec&
     PetscCall(VecGetLocalSize(metric, &n));
     const PetscInt expected = uniform ? 1 : isotropic ? nv : 9 * static_cast<PetscInt>(nv);
     PetscCheck(n >= expected, comm, PETSC_ERR_ARG_SIZ,
-               "hdimesh: the metric holds %" PetscInt_FMT " values for %d vertices; give the "
+               "hdimesh: the metric holds %" PetscInt_FMT
+               " values for %d vertices; give the "
                "local vector of DMPlexMetricCreate (%" PetscInt_FMT " values)",
                n, nv, expected);
     const PetscScalar* m;
@@ -226,7 +199,8 @@ PetscErrorCode read_options(DM dm, hdimesh::coupling::AdaptRequest& request)
     PetscCall(DMPlexMetricNoSurf(dm, &nosurf));
     PetscCall(DMPlexMetricGetVerbosity(dm, &verbosity));
     // one thread per rank unless asked: ranks already share the cores
-    PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-dm_adaptor_hdimesh_threads", &threads, nullptr));
+    PetscCall(
+        PetscOptionsGetInt(nullptr, nullptr, "-dm_adaptor_hdimesh_threads", &threads, nullptr));
     // PETSc's defaults (1e-30, 1e30) mean "no bound"
     if (hmin > 1e-29) request.size.hmin = hmin;
     if (hmax < 1e29) request.size.hmax = hmax;
@@ -242,8 +216,8 @@ PetscErrorCode read_options(DM dm, hdimesh::coupling::AdaptRequest& request)
 }
 
 /// A new DMPlex from the adapted mesh, with the labels rebuilt under their names.
-PetscErrorCode write_plex(MPI_Comm comm, TetMesh& mesh, const PlexInput& in,
-                          const char* bd_name, const char* rg_name, DM* dmNew)
+PetscErrorCode write_plex(MPI_Comm comm, TetMesh& mesh, const PlexInput& in, const char* bd_name,
+                          const char* rg_name, DM* dmNew)
 {
     PetscFunctionBeginUser;
     mesh.compact();
@@ -294,6 +268,14 @@ PetscErrorCode write_plex(MPI_Comm comm, TetMesh& mesh, const PlexInput& in,
     PetscFunctionReturn(0);
 }
 
+}  // namespace hdimesh_petsc
+
+namespace
+{
+
+const char* const kBoundaryName = "_boundary_";
+const char* const kRegionsName = "_regions_";
+
 PetscErrorCode forget_registration(void);
 PetscBool registered = PETSC_FALSE;
 
@@ -331,15 +313,20 @@ PetscErrorCode DMAdaptMetric_Hdimesh_Plex(DM dm, Vec metric, DMLabel bdLabel, DM
     PetscInt dim, depth;
     PetscCall(DMGetDimension(dm, &dim));
     PetscCall(DMPlexGetDepth(dm, &depth));
-    PetscCheck(dim == 3, comm, PETSC_ERR_SUP, "hdimesh adapts 3-D meshes, this DM is %" PetscInt_FMT "-D",
-               dim);
+    PetscCheck(dim == 3, comm, PETSC_ERR_SUP,
+               "hdimesh adapts 3-D meshes, this DM is %" PetscInt_FMT "-D", dim);
     PetscCheck(depth == dim, comm, PETSC_ERR_ARG_WRONG,
                "hdimesh: the DM has no faces; interpolate it first (DMPlexInterpolate)");
     PetscMPIInt ranks;
     PetscCallMPI(MPI_Comm_size(comm, &ranks));
-    PetscCheck(ranks == 1, comm, PETSC_ERR_SUP, "hdimesh: one rank only for now");
+    if (ranks > 1)
+    {
+        PetscCall(hdimesh_petsc::adapt_distributed(dm, metric, bdLabel, rgLabel, bd_name, rg_name,
+                                                   dmNew));
+        PetscFunctionReturn(0);
+    }
 
-    PlexInput in;
+    hdimesh_petsc::PlexInput in;
     // without bdLabel every boundary face is marked 1, as "_boundary_" will be
     DMLabel marked = bdLabel;
     if (!bdLabel)
@@ -347,13 +334,13 @@ PetscErrorCode DMAdaptMetric_Hdimesh_Plex(DM dm, Vec metric, DMLabel bdLabel, DM
         PetscCall(DMLabelCreate(PETSC_COMM_SELF, kBoundaryName, &marked));
         PetscCall(DMPlexMarkBoundaryFaces(dm, 1, marked));
     }
-    PetscErrorCode read = read_plex(dm, marked, rgLabel, in);
+    PetscErrorCode read = hdimesh_petsc::read_plex(dm, marked, rgLabel, in);
     if (!bdLabel) PetscCall(DMLabelDestroy(&marked));
     PetscCall(read);
 
     hdimesh::coupling::AdaptRequest request;
-    PetscCall(read_metric(dm, metric, in.mesh.num_vertices(), request.size));
-    PetscCall(read_options(dm, request));
+    PetscCall(hdimesh_petsc::read_metric(dm, metric, in.mesh.num_vertices(), request.size));
+    PetscCall(hdimesh_petsc::read_options(dm, request));
     request.source = "DMPlex";
     if (request.verbosity > 0)
         request.messages = [](hdimesh::MessageKind kind, const std::string& text) {
@@ -373,7 +360,7 @@ PetscErrorCode DMAdaptMetric_Hdimesh_Plex(DM dm, Vec metric, DMLabel bdLabel, DM
     {
         SETERRQ(comm, PETSC_ERR_LIB, "hdimesh: %s", e.what());
     }
-    PetscCall(write_plex(comm, result.mesh, in, bd_name, rg_name, dmNew));
+    PetscCall(hdimesh_petsc::write_plex(comm, result.mesh, in, bd_name, rg_name, dmNew));
     PetscFunctionReturn(0);
 }
 

@@ -16,10 +16,12 @@ static void sizes_at(const PetscReal x[3], PetscReal h, PetscBool aniso, PetscRe
   s[1] = s[2] = aniso ? 3 * hx : hx;
 }
 
-/* n^3 cubes, 6 tets each (Kuhn's split, conforming between cubes), inward as Plex lists them. */
+/* n^3 cubes, 6 tets each (Kuhn's split, conforming between cubes), inward as Plex lists them;
+ * rank 0 gives them all. */
 static PetscErrorCode CreateBox(PetscInt n, DM *dm)
 {
-  const PetscInt nv = (n + 1) * (n + 1) * (n + 1), nc = 6 * n * n * n;
+  PetscMPIInt    rank;
+  PetscInt       nv = (n + 1) * (n + 1) * (n + 1), nc = 6 * n * n * n;
   const PetscInt perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   PetscInt      *cells, c = 0;
   PetscReal     *xyz;
@@ -61,6 +63,8 @@ static PetscErrorCode CreateBox(PetscInt n, DM *dm)
           }
           ++c;
         }
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (rank > 0) nc = nv = 0;
   PetscCall(DMPlexCreateFromCellListPetsc(PETSC_COMM_WORLD, 3, nc, nv, 4, PETSC_TRUE, cells, 3, xyz, dm));
   PetscCall(PetscFree2(cells, xyz));
   PetscFunctionReturn(0);
@@ -154,13 +158,47 @@ static PetscErrorCode CreateMetric(DM dm, PetscReal h, PetscBool aniso, PetscBoo
 
 /* Labels where they belong, the volume kept, and the share of edges within [1/sqrt2, sqrt2] of
  * the metric's size. */
+/* Qe = 2 sqrt(6) inradius / longest edge (1 for a regular tet) */
+static PetscReal ShapeQuality(const PetscScalar *x)
+{
+  PetscReal area = 0, longest = 0, e[6][3], vol;
+  const PetscInt pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  const PetscInt faces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  for (PetscInt k = 0; k < 6; ++k) {
+    PetscReal l = 0;
+    for (PetscInt d = 0; d < 3; ++d) {
+      e[k][d] = PetscRealPart(x[3 * pairs[k][1] + d] - x[3 * pairs[k][0] + d]);
+      l += e[k][d] * e[k][d];
+    }
+    longest = PetscMax(longest, PetscSqrtReal(l));
+  }
+  vol = PetscAbsReal(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6;
+  for (PetscInt f = 0; f < 4; ++f) {
+    PetscReal u[3], w[3], c[3];
+    for (PetscInt d = 0; d < 3; ++d) {
+      u[d] = PetscRealPart(x[3 * faces[f][1] + d] - x[3 * faces[f][0] + d]);
+      w[d] = PetscRealPart(x[3 * faces[f][2] + d] - x[3 * faces[f][0] + d]);
+    }
+    c[0] = u[1] * w[2] - u[2] * w[1];
+    c[1] = u[2] * w[0] - u[0] * w[2];
+    c[2] = u[0] * w[1] - u[1] * w[0];
+    area += 0.5 * PetscSqrtReal(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  }
+  return 2 * PetscSqrtReal(6.0) * (3 * vol / area) / longest;
+}
+
 static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBool uniform)
 {
-  PetscInt  cStart, cEnd, fStart, fEnd, eStart, eEnd, bad = 0, in_range = 0, seen[8] = {0};
-  PetscReal volume = 0;
+  PetscInt  cStart, cEnd, fStart, fEnd, eStart, eEnd, bad = 0, in_range = 0, seen[8] = {0}, counts[3];
+  PetscReal volume = 0, min_qe = 1, digest = 0;
   DMLabel   bd, rg, outer;
+  DM        cdm;
+  Vec       coords;
+  PetscSection cs;
+  PetscMPIInt  size;
 
   PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCall(DMPlexCheck(dm));
   PetscCall(DMGetLabel(dm, "boundary", &bd));
   PetscCall(DMGetLabel(dm, "regions", &rg));
@@ -170,15 +208,26 @@ static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBoo
   PetscCall(DMPlexGetDepthStratum(dm, 1, &eStart, &eEnd));
   PetscCall(DMLabelCreate(PETSC_COMM_SELF, "outer", &outer));
   PetscCall(DMPlexMarkBoundaryFaces(dm, 1, outer));
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(DMGetLocalSection(cdm, &cs));
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    PetscReal x[3], vol, normal[3];
-    PetscInt  value;
+    PetscReal    x[3], vol, normal[3];
+    PetscInt     value, nx = 0;
+    PetscScalar *cx = NULL;
+    PetscCall(DMPlexVecGetClosure(cdm, cs, coords, c, &nx, &cx));
+    min_qe = PetscMin(min_qe, ShapeQuality(cx));
+    PetscCall(DMPlexVecRestoreClosure(cdm, cs, coords, c, &nx, &cx));
     PetscCall(DMPlexComputeCellGeometryFVM(dm, c, &vol, x, normal));
     volume += vol;
+    digest += x[0] + 2 * x[1] + 3 * x[2];
     PetscCall(DMLabelGetValue(rg, c, &value));
     if (value != (x[0] < 0.5 ? 1 : 2)) ++bad;
   }
   PetscCheck(bad == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " cells in the wrong region", bad);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &digest, 1, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &min_qe, 1, MPIU_REAL, MPI_MIN, PETSC_COMM_WORLD));
   PetscCheck(PetscAbsReal(volume - 1) < 1e-10, PETSC_COMM_SELF, PETSC_ERR_PLIB, "volume %g, not 1", (double)volume);
   for (PetscInt f = fStart; f < fEnd; ++f) {
     PetscReal x[3];
@@ -187,10 +236,15 @@ static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBoo
     PetscCall(DMLabelGetValue(bd, f, &value));
     PetscCall(DMLabelGetValue(outer, f, &on_boundary));
     expect = FaceValue(x);
-    if (value != expect || (on_boundary == 1 && expect < 0)) ++bad;
+    /* on several ranks 3.18 marks a face on a rank's cut as boundary too */
+    if (value != expect || (on_boundary == 1 && expect < 0 && size == 1)) {
+      if (bad < 5) PetscCall(PetscPrintf(PETSC_COMM_SELF, "face at (%g %g %g): value %d, expected %d, marked boundary %d\n", (double)x[0], (double)x[1], (double)x[2], (int)value, (int)expect, (int)on_boundary));
+      ++bad;
+    }
     if (value > 0) seen[value] = 1;
   }
   PetscCheck(bad == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " faces labelled wrongly", bad);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, seen, 8, MPIU_INT, MPI_MAX, PETSC_COMM_WORLD));
   for (PetscInt v = 1; v <= 7; ++v) PetscCheck(seen[v], PETSC_COMM_SELF, PETSC_ERR_PLIB, "no face keeps value %" PetscInt_FMT, v);
   for (PetscInt e = eStart; e < eEnd; ++e) {
     PetscReal x[3], len = 0, s[3], lm = 0, a[3], b[3];
@@ -222,8 +276,12 @@ static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBoo
     if (lm >= 1 / PetscSqrtReal(2.0) && lm <= PetscSqrtReal(2.0)) ++in_range;
   }
   PetscCall(DMLabelDestroy(&outer));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapted: %" PetscInt_FMT " tets, %.1f %% of %" PetscInt_FMT " edges in [1/sqrt2, sqrt2]\n", cEnd - cStart, 100.0 * in_range / (eEnd - eStart), eEnd - eStart));
-  PetscCheck(in_range >= 0.75 * (eEnd - eStart), PETSC_COMM_SELF, PETSC_ERR_PLIB, "too few edges in range");
+  counts[0] = cEnd - cStart;
+  counts[1] = in_range;
+  counts[2] = eEnd - eStart; /* edges on a cut are counted on each rank */
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 3, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapted: %" PetscInt_FMT " tets, min Qe %.6f, %.1f %% of %" PetscInt_FMT " edges in [1/sqrt2, sqrt2], digest %.17g\n", counts[0], (double)min_qe, 100.0 * counts[1] / counts[2], counts[2], (double)digest));
+  PetscCheck(counts[1] >= 0.75 * counts[2], PETSC_COMM_SELF, PETSC_ERR_PLIB, "too few edges in range");
   PetscFunctionReturn(0);
 }
 
@@ -246,6 +304,16 @@ int main(int argc, char **argv)
   PetscCall(CreateBox(n, &dm));
   PetscCall(DMPlexCheck(dm));
   PetscCall(Label(dm, &bd, &rg));
+  { /* on several ranks, PETSc's partitioner shares the box out (labels go with it) */
+    DM dist = NULL;
+    PetscCall(DMPlexDistribute(dm, 0, NULL, &dist));
+    if (dist) {
+      PetscCall(DMDestroy(&dm));
+      dm = dist;
+      PetscCall(DMGetLabel(dm, "boundary", &bd));
+      PetscCall(DMGetLabel(dm, "regions", &rg));
+    }
+  }
   PetscCall(CreateMetric(dm, h, aniso, uniform, &metric));
   PetscCall(DMAdaptMetric(dm, metric, bd, rg, &adapted));
   PetscCall(CheckAdapted(adapted, h, aniso, uniform));

@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "volume/mesh/blocks.h"
 #include "volume/mesh/boundary.h"
 #include "volume/mesh/tet_tables.h"
 
@@ -305,10 +306,15 @@ private:
         };
         std::vector<DirectedEdge> edges;
         std::vector<int> boundary;  // indices of the triangles taking part
+        // a frozen cut between pieces (blocks, ranks) closes the piece's boundary, but two
+        // parts of one piece may touch there at an edge or a vertex
+        std::vector<char> on_cut(mesh_.num_vertices(), 0);
         for (std::size_t i = 0; i < mesh_.triangles.size(); ++i)
         {
             const auto& tri = mesh_.triangles[i];
             if (!boundary_triangle_[i] || !usable_triangle(tri)) continue;
+            if (is_cut(static_cast<int>(i)))
+                for (int v : tri) on_cut[v] = 1;
             boundary.push_back(static_cast<int>(i));
             for (int k = 0; k < 3; ++k)
             {
@@ -332,6 +338,10 @@ private:
                         where + " is in only one boundary triangle (" +
                             std::to_string(edges[i].triangle) + ")");
             }
+            else if (std::any_of(edges.begin() + i, edges.begin() + j,
+                                 [&](const DirectedEdge& e) { return is_cut(e.triangle); }))
+            {
+            }
             else if (j - i > 2)
             {
                 add("nonmanifold_boundary_edge", edges[i].triangle,
@@ -345,13 +355,19 @@ private:
             }
             i = j;
         }
-        check_vertex_links(boundary);
+        check_vertex_links(boundary, on_cut);
+    }
+
+    bool is_cut(int triangle) const
+    {
+        return static_cast<std::size_t>(triangle) < mesh_.triangle_refs.size() &&
+               mesh_.triangle_refs[triangle] == kFrozenFaceRef;
     }
 
     /// The link of a vertex v is the cycle of edges opposite v in its triangles: (a, b, c) at a
     /// gives b -> c. Several cycles mean the surface is pinched at v. Links broken at an edge
     /// (already reported) are skipped.
-    void check_vertex_links(const std::vector<int>& boundary)
+    void check_vertex_links(const std::vector<int>& boundary, const std::vector<char>& skip)
     {
         const int nv = mesh_.num_vertices();
         std::vector<int> start(nv + 1, 0);
@@ -368,7 +384,7 @@ private:
         for (int v = 0; v < nv; ++v)
         {
             const int n = start[v + 1] - start[v];
-            if (n == 0) continue;
+            if (n == 0 || skip[v]) continue;
             auto first = link.begin() + start[v], last = link.begin() + start[v + 1];
             std::sort(first, last);
             bool well_defined = true;
