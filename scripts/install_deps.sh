@@ -8,12 +8,15 @@ packages=(g++ cmake make libopenmesh-dev libeigen3-dev libflann-dev doctest-dev)
 # the Python module (python/): pybind11 and the interpreter's headers; numpy at run time,
 # meshio for its example
 packages+=(pybind11-dev python3-dev python3-numpy python3-meshio)
+# `pip install .` builds the module through setup.py with Debian's setuptools and wheel
+packages+=(python3-setuptools python3-wheel)
 if [[ "${1:-}" == "--tests" ]]; then
     # meshio and gmsh read our outputs back as independent third-party readers;
     # numpy/scipy serve the independent checker scripts.
     # clang-format checks the tree against .clang-format.
-    # pytest runs the Python module's tests.
+    # pytest runs the Python module's tests; venv and pip the `pip install .` test (pip_install_venv).
     packages+=(python3 python3-numpy python3-scipy python3-meshio python3-pytest gmsh clang-format)
+    packages+=(python3-venv python3-pip)
 fi
 
 missing=()
