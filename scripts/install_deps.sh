@@ -17,6 +17,8 @@ if [[ "${1:-}" == "--tests" ]]; then
     # pytest runs the Python module's tests; venv and pip the `pip install .` test (pip_install_venv).
     packages+=(python3 python3-numpy python3-scipy python3-meshio python3-pytest gmsh clang-format)
     packages+=(python3-venv python3-pip)
+    # the PETSc adaptor (apps/petsc) and its C and petsc4py tests; OpenMPI comes with it
+    packages+=(petsc-dev python3-petsc4py)
 fi
 
 missing=()

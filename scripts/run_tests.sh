@@ -20,7 +20,8 @@ scripts/check_format.sh
 stage "Release build and tests"
 # every switch a stage needs is set, not taken from a cache: scripts/run_example.sh shares build/
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$unity" -DHDIMESH_BUILD_TESTS=ON \
-    -DHDIMESH_BUILD_APPS=ON -DHDIMESH_BUILD_BENCH=ON -DHDIMESH_BUILD_PYTHON=ON > /dev/null
+    -DHDIMESH_BUILD_APPS=ON -DHDIMESH_BUILD_BENCH=ON -DHDIMESH_BUILD_PYTHON=ON \
+    -DHDIMESH_BUILD_PETSC=ON > /dev/null
 cmake --build build -j"$jobs"
 stage "Release tests"
 ctest --no-tests=error --test-dir build --output-on-failure -j"$jobs"
@@ -28,7 +29,7 @@ ctest --no-tests=error --test-dir build --output-on-failure -j"$jobs"
 stage "Release build with assertions, and tests"
 cmake -S . -B build-assert -DCMAKE_BUILD_TYPE=Release -DHDIMESH_ASSERTS=ON "$unity" \
     -DHDIMESH_BUILD_TESTS=ON -DHDIMESH_BUILD_APPS=ON \
-    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF > /dev/null
+    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF -DHDIMESH_BUILD_PETSC=OFF > /dev/null
 cmake --build build-assert -j"$jobs"
 stage "assertions tests"
 ctest --no-tests=error --test-dir build-assert --output-on-failure -j"$jobs"
@@ -39,7 +40,7 @@ stage "ASan+UBSan build and tests"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHDIMESH_SANITIZE=ON "$unity" \
     -DHDIMESH_BUILD_TESTS=ON -DHDIMESH_BUILD_APPS=ON \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF > /dev/null
+    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF -DHDIMESH_BUILD_PETSC=OFF > /dev/null
 cmake --build build-asan -j"$jobs"
 stage "ASan+UBSan tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -50,7 +51,7 @@ stage "ThreadSanitizer build and the threads tests"
 cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHDIMESH_TSAN=ON "$unity" \
     -DHDIMESH_BUILD_TESTS=ON -DHDIMESH_BUILD_APPS=ON \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF > /dev/null
+    -DHDIMESH_BUILD_BENCH=OFF -DHDIMESH_BUILD_PYTHON=OFF -DHDIMESH_BUILD_PETSC=OFF > /dev/null
 cmake --build build-tsan -j"$jobs" --target parallel_test adapt
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
     ctest --no-tests=error --test-dir build-tsan --output-on-failure -j"$jobs" -R '^(parallel_test|threads_)'
