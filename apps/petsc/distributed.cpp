@@ -36,12 +36,12 @@ using Key = std::array<PetscInt, 3>;
 /// A rank's cells between rounds.
 struct Part
 {
-    TetMesh mesh;                 ///< tets (positive), labelled and boundary triangles
-    std::vector<PetscInt> gid;    ///< global id per vertex
-    std::vector<double> metric;   ///< per vertex: a size, or 6 values in Medit's order
-    int components = 1;           ///< 1 or 6
-    std::vector<char> owned;      ///< after number(): this rank gives the vertex to PETSc
-    PetscInt first_owned = 0;     ///< the global id of the first owned vertex
+    TetMesh mesh;                ///< tets (positive), labelled and boundary triangles
+    std::vector<PetscInt> gid;   ///< global id per vertex
+    std::vector<double> metric;  ///< per vertex: a size, or 6 values in Medit's order
+    int components = 1;          ///< 1 or 6
+    std::vector<char> owned;     ///< after number(): this rank gives the vertex to PETSc
+    PetscInt first_owned = 0;    ///< the global id of the first owned vertex
 };
 
 /// Every rank's `mine`, in rank order; counts[r] items came from rank r.
@@ -55,8 +55,8 @@ std::vector<T> allgather(MPI_Comm comm, const std::vector<T>& mine, std::vector<
     MPI_Allgather(&bytes, 1, MPI_INT, sizes.data(), 1, MPI_INT, comm);
     for (int r = 1; r < ranks; ++r) offsets[r] = offsets[r - 1] + sizes[r - 1];
     std::vector<T> all((offsets[ranks - 1] + sizes[ranks - 1]) / sizeof(T));
-    MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, all.data(), sizes.data(), offsets.data(),
-                   MPI_BYTE, comm);
+    MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, all.data(), sizes.data(), offsets.data(), MPI_BYTE,
+                   comm);
     if (counts)
     {
         counts->resize(ranks);
@@ -138,7 +138,8 @@ PetscErrorCode read_part(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgLabel, Pa
     {
         const PetscInt p = leaves ? leaves[i] : i;
         PetscCheck(p < cStart || p >= cEnd, comm, PETSC_ERR_ARG_WRONG,
-                   "hdimesh: cell %" PetscInt_FMT " is another rank's (an overlap): distribute "
+                   "hdimesh: cell %" PetscInt_FMT
+                   " is another rank's (an overlap): distribute "
                    "the DM with overlap 0",
                    p);
     }
@@ -429,8 +430,7 @@ std::vector<int> morton_ranks(MPI_Comm comm, const Part& p, int round)
     }
     MPI_Allreduce(MPI_IN_PLACE, low, 3, MPI_DOUBLE, MPI_MIN, comm);
     MPI_Allreduce(MPI_IN_PLACE, high, 3, MPI_DOUBLE, MPI_MAX, comm);
-    const double extent =
-        std::max({high[0] - low[0], high[1] - low[1], high[2] - low[2], 1e-300});
+    const double extent = std::max({high[0] - low[0], high[1] - low[1], high[2] - low[2], 1e-300});
     // a part spans about extent / cbrt(ranks); the shift moves the cuts by a part of that
     const double shift = round * 0.381966 * extent / std::cbrt(static_cast<double>(ranks));
     const double scale = static_cast<double>(hdimesh::kMortonCellMax) / (extent + shift);
@@ -440,7 +440,10 @@ std::vector<int> morton_ranks(MPI_Comm comm, const Part& p, int round)
         std::uint64_t cell[3];
         for (int k = 0; k < 3; ++k)
             cell[k] = static_cast<std::uint64_t>((centroids[t][k] - low[k] + shift) * scale);
-        keys[t] = hdimesh::morton_key(cell[0], cell[1], cell[2]);
+        // the axes turn each round too: with few ranks the top-level cut is a plane normal to
+        // another axis, so the faces frozen in one round lie inside a part in the next
+        keys[t] =
+            hdimesh::morton_key(cell[round % 3], cell[(round + 1) % 3], cell[(round + 2) % 3]);
     }
     std::vector<int> counts;
     const std::vector<std::uint64_t> all = allgather(comm, keys, &counts);
@@ -449,14 +452,18 @@ std::vector<int> morton_ranks(MPI_Comm comm, const Part& p, int round)
     order.reserve(all.size());
     for (int r = 0, at = 0; r < ranks; at += counts[r], ++r)
         for (int i = 0; i < counts[r]; ++i)
-            order.push_back({all[at + i], static_cast<std::uint64_t>(r),
-                             static_cast<std::uint64_t>(i)});
+            order.push_back(
+                {all[at + i], static_cast<std::uint64_t>(r), static_cast<std::uint64_t>(i)});
     std::sort(order.begin(), order.end());
+    // the runs start elsewhere on the curve each round (a cyclic shift by a golden fraction):
+    // with median cuts every round's cut would pass through the same middle
     std::vector<int> target(nt, rank);
     const long long n = static_cast<long long>(order.size());
+    const double phase = round * 0.381966 - std::floor(round * 0.381966);
+    const long long offset = static_cast<long long>(phase * static_cast<double>(n));
     for (long long i = 0; i < n; ++i)
         if (order[i][1] == static_cast<std::uint64_t>(rank))
-            target[order[i][2]] = static_cast<int>(i * ranks / n);
+            target[order[i][2]] = static_cast<int>((i + offset) % n * ranks / n);
     return target;
 }
 
@@ -487,8 +494,8 @@ void migrate(MPI_Comm comm, Part& p, const std::vector<int>& target)
             for (int f = 0; f < 4; ++f)
             {
                 const auto& fv = hdimesh::volume::tet::kFaceVertices[f];
-                const auto it = triangle_of.find(face_key(
-                    p, {mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]]}));
+                const auto it = triangle_of.find(
+                    face_key(p, {mesh.tets[t][fv[0]], mesh.tets[t][fv[1]], mesh.tets[t][fv[2]]}));
                 if (it != triangle_of.end()) triangles.push_back(it->second);
             }
         }
@@ -532,8 +539,9 @@ void migrate(MPI_Comm comm, Part& p, const std::vector<int>& target)
         const PetscInt* t = &in[at + 3];
         for (PetscInt i = 0; i < nt; ++i, t += 5) tets.push_back({t[0], t[1], t[2], t[3], t[4]});
         for (PetscInt i = 0; i < nv; ++i, real_at += 3 + nc)
-            vertex_data.emplace(in[at + 3 + 5 * nt + i],
-                                std::vector<double>(&in_reals[real_at], &in_reals[real_at] + 3 + nc));
+            vertex_data.emplace(
+                in[at + 3 + 5 * nt + i],
+                std::vector<double>(&in_reals[real_at], &in_reals[real_at] + 3 + nc));
         const PetscInt* f = &in[at + 3 + 5 * nt + nv];
         for (PetscInt i = 0; i < ntri; ++i, f += 4) triangles.push_back({f[0], f[1], f[2], f[3]});
         at += 3 + 5 * nt + nv + 4 * ntri;
@@ -617,11 +625,12 @@ PetscErrorCode write_distributed(MPI_Comm comm, const Part& p, const LabelRefs& 
     std::vector<PetscInt> ids = cells;
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    PetscCheck(static_cast<PetscInt>(ids.size()) == vEnd - vStart, PETSC_COMM_SELF,
-               PETSC_ERR_PLIB, "hdimesh: the new DM has %" PetscInt_FMT " vertices here, not %zu",
-               vEnd - vStart, ids.size());
+    PetscCheck(static_cast<PetscInt>(ids.size()) == vEnd - vStart, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "hdimesh: the new DM has %" PetscInt_FMT " vertices here, not %zu", vEnd - vStart,
+               ids.size());
     std::map<PetscInt, PetscInt> point_of;
-    for (std::size_t i = 0; i < ids.size(); ++i) point_of[ids[i]] = vStart + static_cast<PetscInt>(i);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        point_of[ids[i]] = vStart + static_cast<PetscInt>(i);
     Vec coordinates;
     PetscSection section;
     const PetscScalar* x;
@@ -695,8 +704,11 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
     PetscInt rounds;
     PetscCall(DMPlexMetricGetNumIterations(dm, &rounds));
     rounds = std::max<PetscInt>(rounds, 1);
-    for (PetscInt round = 0; round < rounds; ++round)
+    // one more round, swaps and smoothing only, around the last round's cut
+    const PetscInt all_rounds = rounds + 1;
+    for (PetscInt round = 0; round < all_rounds; ++round)
     {
+        if (round == rounds) request.switches.optim = true;
         const Cut cut = freeze_cut(comm, part, bdLabel ? 0 : face_refs.ref(1));
         if (round == 0) request.geometry = gather_boundary(comm, part, cut);
         request.size.vertex_sizes.clear();
@@ -724,7 +736,7 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
                    static_cast<int>(round));
         part = adapted_part(result, cut, part.components);
         number(comm, part);
-        if (round + 1 < rounds) migrate(comm, part, morton_ranks(comm, part, round + 1));
+        if (round + 1 < all_rounds) migrate(comm, part, morton_ranks(comm, part, round + 1));
     }
     PetscCall(write_distributed(comm, part, face_refs, cell_refs, bd_name, rg_name, dmNew));
     PetscFunctionReturn(0);

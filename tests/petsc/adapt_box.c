@@ -216,7 +216,10 @@ static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBoo
     PetscInt     value, nx = 0;
     PetscScalar *cx = NULL;
     PetscCall(DMPlexVecGetClosure(cdm, cs, coords, c, &nx, &cx));
-    min_qe = PetscMin(min_qe, ShapeQuality(cx));
+    if (ShapeQuality(cx) < min_qe) {
+      min_qe = ShapeQuality(cx);
+      if (getenv("ADAPT_BOX_WORST")) PetscCall(PetscPrintf(PETSC_COMM_SELF, "worse: %g at %g %g %g\n", (double)min_qe, (double)PetscRealPart(cx[0]), (double)PetscRealPart(cx[1]), (double)PetscRealPart(cx[2])));
+    }
     PetscCall(DMPlexVecRestoreClosure(cdm, cs, coords, c, &nx, &cx));
     PetscCall(DMPlexComputeCellGeometryFVM(dm, c, &vol, x, normal));
     volume += vol;

@@ -8,6 +8,7 @@
 
 #include "common/errors.h"
 #include "common/stage_timer.h"
+#include "volume/mesh/blocks.h"
 #include "volume/mesh/tet_tables.h"
 #include "volume/refine/detail/child_build.h"
 #include "volume/refine/detail/edge_table.h"
@@ -237,13 +238,14 @@ private:
     RefinePassResult result_;
 };
 
-/// The edges a split may not cut: those of required triangles and the required feature edges,
-/// each as {low, high}, sorted.
-std::vector<Edge> locked_edges(const TetMesh& mesh)
+/// The edges a split may not cut: those of required triangles (but the frozen cuts' unless
+/// with_cuts) and the required feature edges, each as {low, high}, sorted.
+std::vector<Edge> locked_edges(const TetMesh& mesh, bool with_cuts = true)
 {
     std::vector<Edge> locked;
     for (int i : mesh.required_triangles)
     {
+        if (!with_cuts && mesh.triangle_refs[i] == kFrozenFaceRef) continue;
         const Triangle& tri = mesh.triangles[i];
         for (int k = 0; k < 3; ++k)
             locked.push_back(
@@ -266,12 +268,15 @@ int RefinePass::mark_edges(const EdgeTable& edges)
     // At a vertex of a locked edge the size is no finer than its locked edges' mean length, as
     // Mmg sets it: a tet on a coarse required triangle always has an edge as long as its
     // circumradius, and splitting it would only flatten the tets on the triangle, pass after pass.
+    // A frozen cut between pieces (blocks, ranks) is no user's requirement: its sizes are not
+    // kept (ParMmg's nosizreq on its groups), or a coarse cut stays coarse for a whole round.
     std::vector<double> locked_size;
+    const std::vector<Edge> sized = locked_edges(mesh_, false);
     if (!locked.empty())
     {
         locked_size.assign(nv, 0.0);
         std::vector<int> count(nv, 0);
-        for (const Edge& e : locked)
+        for (const Edge& e : sized)
         {
             const double length = (mesh_.points[e[1]] - mesh_.points[e[0]]).norm();
             for (int v : e) locked_size[v] += length, ++count[v];
