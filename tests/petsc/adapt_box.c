@@ -18,7 +18,7 @@ static void sizes_at(const PetscReal x[3], PetscReal h, PetscBool aniso, PetscRe
 
 /* n^3 cubes, 6 tets each (Kuhn's split, conforming between cubes), inward as Plex lists them;
  * rank 0 gives them all. */
-static PetscErrorCode CreateBox(PetscInt n, DM *dm)
+static PetscErrorCode CreateBox(PetscInt n, PetscReal jitter, DM *dm)
 {
   PetscMPIInt    rank;
   PetscInt       nv = (n + 1) * (n + 1) * (n + 1), nc = 6 * n * n * n;
@@ -35,6 +35,10 @@ static PetscErrorCode CreateBox(PetscInt n, DM *dm)
         xyz[3 * v]         = (PetscReal)i / n;
         xyz[3 * v + 1]     = (PetscReal)j / n;
         xyz[3 * v + 2]     = (PetscReal)k / n;
+        /* -jitter moves inner vertices by a fixed pseudo-random offset: an input that is no lattice */
+        if (i > 0 && i < n && j > 0 && j < n && k > 0 && k < n)
+          for (PetscInt d = 0; d < 3; ++d)
+            if (d > 0 || 2 * i != n) xyz[3 * v + d] += jitter / n * (((v * 7919 + d * 104729) % 1000) / 500.0 - 1); /* the plane x = 0.5 stays */
       }
   for (PetscInt k = 0; k < n; ++k)
     for (PetscInt j = 0; j < n; ++j)
@@ -294,7 +298,7 @@ int main(int argc, char **argv)
   DMLabel     bd, rg;
   Vec         metric;
   PetscInt    n = 4;
-  PetscReal   h = 0.12;
+  PetscReal   h = 0.12, jitter = 0;
   char        kind[16] = "iso";
   PetscBool   aniso, uniform;
 
@@ -304,7 +308,8 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetString(NULL, NULL, "-metric", kind, sizeof kind, NULL));
   PetscCall(PetscStrcmp(kind, "aniso", &aniso));
   PetscCall(PetscStrcmp(kind, "uniform", &uniform));
-  PetscCall(CreateBox(n, &dm));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-jitter", &jitter, NULL));
+  PetscCall(CreateBox(n, jitter, &dm));
   PetscCall(DMPlexCheck(dm));
   PetscCall(Label(dm, &bd, &rg));
   { /* on several ranks, PETSc's partitioner shares the box out (labels go with it) */
