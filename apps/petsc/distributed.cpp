@@ -616,9 +616,7 @@ PetscErrorCode write_distributed(MPI_Comm comm, const Part& p, const LabelRefs& 
     PetscCall(DMPlexCreateFromCellListParallelPetsc(comm, 3, nc, n_owned, PETSC_DECIDE, 4,
                                                     PETSC_TRUE, cells.data(), 3, xyz.data(),
                                                     nullptr, nullptr, dmNew));
-    PetscInt cStart, cEnd, fStart, fEnd, vStart, vEnd;
-    PetscCall(DMPlexGetHeightStratum(*dmNew, 0, &cStart, &cEnd));
-    PetscCall(DMPlexGetHeightStratum(*dmNew, 1, &fStart, &fEnd));
+    PetscInt vStart, vEnd;
     PetscCall(DMPlexGetDepthStratum(*dmNew, 0, &vStart, &vEnd));
     // PETSc numbers a rank's vertices in the order of their global ids: checked on the
     // coordinates it fetched
@@ -648,31 +646,9 @@ PetscErrorCode write_distributed(MPI_Comm comm, const Part& p, const LabelRefs& 
     PetscCheck(misplaced == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
                "hdimesh: the new DM's vertices are not in the order of their global ids");
 
-    DMLabel bd, rg;
-    PetscCall(DMCreateLabel(*dmNew, bd_name));
-    PetscCall(DMGetLabel(*dmNew, bd_name, &bd));
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    {
-        PetscInt value;
-        if (!face_refs.value(mesh.triangle_refs[i], value)) continue;
-        PetscInt points[3];
-        for (int k = 0; k < 3; ++k) points[k] = point_of.at(p.gid[mesh.triangles[i][k]]);
-        PetscInt n;
-        const PetscInt* join;
-        PetscCall(DMPlexGetFullJoin(*dmNew, 3, points, &n, &join));
-        PetscCheck(n == 1 && join[0] >= fStart && join[0] < fEnd, PETSC_COMM_SELF, PETSC_ERR_PLIB,
-                   "hdimesh: output triangle %zu is not a face of the new DM", i);
-        PetscCall(DMLabelSetValue(bd, join[0], value));
-        PetscCall(DMPlexRestoreJoin(*dmNew, 3, points, &n, &join));
-    }
-    PetscCall(DMCreateLabel(*dmNew, rg_name));
-    PetscCall(DMGetLabel(*dmNew, rg_name, &rg));
-    for (PetscInt c = cStart; c < cEnd; ++c)
-    {
-        PetscInt value;
-        if (cell_refs.value(mesh.tet_refs[c - cStart], value))
-            PetscCall(DMLabelSetValue(rg, c, value));
-    }
+    std::vector<PetscInt> point(mesh.num_vertices());
+    for (int v = 0; v < mesh.num_vertices(); ++v) point[v] = point_of.at(p.gid[v]);
+    PetscCall(attach_labels(*dmNew, mesh, point, face_refs, cell_refs, bd_name, rg_name));
     PetscFunctionReturn(0);
 }
 

@@ -216,6 +216,42 @@ PetscErrorCode read_options(DM dm, hdimesh::coupling::AdaptRequest& request)
 }
 
 /// A new DMPlex from the adapted mesh, with the labels rebuilt under their names.
+PetscErrorCode attach_labels(DM dm, const TetMesh& mesh, const std::vector<PetscInt>& point,
+                             const LabelRefs& face_refs, const LabelRefs& cell_refs,
+                             const char* bd_name, const char* rg_name)
+{
+    PetscFunctionBeginUser;
+    PetscInt cStart, cEnd, fStart, fEnd;
+    PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+    PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+    DMLabel bd, rg;
+    PetscCall(DMCreateLabel(dm, bd_name));
+    PetscCall(DMGetLabel(dm, bd_name, &bd));
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    {
+        PetscInt value;
+        if (!face_refs.value(mesh.triangle_refs[i], value)) continue;
+        PetscInt points[3];
+        for (int k = 0; k < 3; ++k) points[k] = point[mesh.triangles[i][k]];
+        PetscInt n;
+        const PetscInt* join;
+        PetscCall(DMPlexGetFullJoin(dm, 3, points, &n, &join));
+        PetscCheck(n == 1 && join[0] >= fStart && join[0] < fEnd, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+                   "hdimesh: output triangle %zu is not a face of the new DM", i);
+        PetscCall(DMLabelSetValue(bd, join[0], value));
+        PetscCall(DMPlexRestoreJoin(dm, 3, points, &n, &join));
+    }
+    PetscCall(DMCreateLabel(dm, rg_name));
+    PetscCall(DMGetLabel(dm, rg_name, &rg));
+    for (PetscInt c = cStart; c < cEnd; ++c)
+    {
+        PetscInt value;
+        if (cell_refs.value(mesh.tet_refs[c - cStart], value))
+            PetscCall(DMLabelSetValue(rg, c, value));
+    }
+    PetscFunctionReturn(0);
+}
+
 PetscErrorCode write_plex(MPI_Comm comm, TetMesh& mesh, const PlexInput& in, const char* bd_name,
                           const char* rg_name, DM* dmNew)
 {
@@ -236,35 +272,11 @@ PetscErrorCode write_plex(MPI_Comm comm, TetMesh& mesh, const PlexInput& in, con
     PetscCall(DMPlexCreateFromCellListPetsc(comm, 3, nc, nv, 4, PETSC_TRUE, cells.data(), 3,
                                             xyz.data(), dmNew));
 
-    PetscInt cStart, cEnd, fStart, fEnd, vStart, vEnd;
-    PetscCall(DMPlexGetHeightStratum(*dmNew, 0, &cStart, &cEnd));
-    PetscCall(DMPlexGetHeightStratum(*dmNew, 1, &fStart, &fEnd));
+    PetscInt vStart, vEnd;
     PetscCall(DMPlexGetDepthStratum(*dmNew, 0, &vStart, &vEnd));
-    DMLabel bd, rg;
-    PetscCall(DMCreateLabel(*dmNew, bd_name));
-    PetscCall(DMGetLabel(*dmNew, bd_name, &bd));
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    {
-        PetscInt value;
-        if (!in.face_refs.value(mesh.triangle_refs[i], value)) continue;
-        PetscInt points[3];
-        for (int k = 0; k < 3; ++k) points[k] = mesh.triangles[i][k] + vStart;
-        PetscInt n;
-        const PetscInt* join;
-        PetscCall(DMPlexGetFullJoin(*dmNew, 3, points, &n, &join));
-        PetscCheck(n == 1 && join[0] >= fStart && join[0] < fEnd, comm, PETSC_ERR_PLIB,
-                   "hdimesh: output triangle %zu is not a face of the new DM", i);
-        PetscCall(DMLabelSetValue(bd, join[0], value));
-        PetscCall(DMPlexRestoreJoin(*dmNew, 3, points, &n, &join));
-    }
-    PetscCall(DMCreateLabel(*dmNew, rg_name));
-    PetscCall(DMGetLabel(*dmNew, rg_name, &rg));
-    for (PetscInt c = cStart; c < cEnd; ++c)
-    {
-        PetscInt value;
-        if (in.cell_refs.value(mesh.tet_refs[c - cStart], value))
-            PetscCall(DMLabelSetValue(rg, c, value));
-    }
+    std::vector<PetscInt> point(mesh.num_vertices());
+    for (int v = 0; v < mesh.num_vertices(); ++v) point[v] = vStart + v;
+    PetscCall(attach_labels(*dmNew, mesh, point, in.face_refs, in.cell_refs, bd_name, rg_name));
     PetscFunctionReturn(0);
 }
 

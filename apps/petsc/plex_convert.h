@@ -61,6 +61,12 @@ PetscErrorCode read_metric(DM dm, Vec metric, int nv, hdimesh::volume::SizeSpec&
 /// PETSc's metric options that have a meaning here, as Mmg's switches.
 PetscErrorCode read_options(DM dm, hdimesh::coupling::AdaptRequest& request);
 
+/// The labels rebuilt on dm (the mesh's vertex v is dm's point[v]): triangles' refs as face
+/// values, tets' refs as cell values (tet c is dm's cell c), under their names.
+PetscErrorCode attach_labels(DM dm, const hdimesh::volume::TetMesh& mesh,
+                             const std::vector<PetscInt>& point, const LabelRefs& face_refs,
+                             const LabelRefs& cell_refs, const char* bd_name, const char* rg_name);
+
 /// The adapted mesh as a new DM on comm's one rank, the labels rebuilt under their names.
 PetscErrorCode write_plex(MPI_Comm comm, hdimesh::volume::TetMesh& mesh, const PlexInput& in,
                           const char* bd_name, const char* rg_name, DM* dmNew);
