@@ -238,14 +238,13 @@ private:
     RefinePassResult result_;
 };
 
-/// The edges a split may not cut: those of required triangles (but the frozen cuts' unless
-/// with_cuts) and the required feature edges, each as {low, high}, sorted.
-std::vector<Edge> locked_edges(const TetMesh& mesh, bool with_cuts = true)
+/// The edges a split may not cut: those of required triangles and the required feature edges,
+/// each as {low, high}, sorted.
+std::vector<Edge> locked_edges(const TetMesh& mesh)
 {
     std::vector<Edge> locked;
     for (int i : mesh.required_triangles)
     {
-        if (!with_cuts && mesh.triangle_refs[i] == kFrozenFaceRef) continue;
         const Triangle& tri = mesh.triangles[i];
         for (int k = 0; k < 3; ++k)
             locked.push_back(
@@ -258,6 +257,37 @@ std::vector<Edge> locked_edges(const TetMesh& mesh, bool with_cuts = true)
     return locked;
 }
 
+void add_triangle_edges(const Triangle& tri, std::vector<Edge>& out)
+{
+    for (int k = 0; k < 3; ++k)
+        out.push_back({std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
+}
+
+/// The locked edges whose lengths hold the sizes at their ends. A frozen cut between pieces
+/// (blocks, ranks) is no user's requirement: its edges inside the volume hold no size (ParMmg's
+/// nosizreq on its groups; a tet flattened there is mended once the cut moves), but a cut
+/// edge on a boundary or interface triangle that is itself too long does: the splinters of
+/// that triangle no later round could mend.
+std::vector<Edge> sized_edges(const TetMesh& mesh, const SizeField& field,
+                              const std::vector<Edge>& locked)
+{
+    std::vector<Edge> cut, surface;
+    for (int i : mesh.required_triangles)
+        if (mesh.triangle_refs[i] == kFrozenFaceRef) add_triangle_edges(mesh.triangles[i], cut);
+    if (cut.empty()) return locked;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+        if (mesh.triangle_refs[i] != kFrozenFaceRef) add_triangle_edges(mesh.triangles[i], surface);
+    std::sort(cut.begin(), cut.end());
+    std::sort(surface.begin(), surface.end());
+    std::vector<Edge> sized;
+    for (const Edge& e : locked)
+        if (!std::binary_search(cut.begin(), cut.end(), e) ||
+            (std::binary_search(surface.begin(), surface.end(), e) &&
+             measure_edge(field, mesh.points[e[0]], mesh.points[e[1]]).too_long()))
+            sized.push_back(e);
+    return sized;
+}
+
 int RefinePass::mark_edges(const EdgeTable& edges)
 {
     midpoint_.assign(edges.num_edges(), -1);
@@ -268,10 +298,8 @@ int RefinePass::mark_edges(const EdgeTable& edges)
     // At a vertex of a locked edge the size is no finer than its locked edges' mean length, as
     // Mmg sets it: a tet on a coarse required triangle always has an edge as long as its
     // circumradius, and splitting it would only flatten the tets on the triangle, pass after pass.
-    // A frozen cut between pieces (blocks, ranks) is no user's requirement: its sizes are not
-    // kept (ParMmg's nosizreq on its groups), or a coarse cut stays coarse for a whole round.
     std::vector<double> locked_size;
-    const std::vector<Edge> sized = locked_edges(mesh_, false);
+    const std::vector<Edge> sized = sized_edges(mesh_, field_, locked);
     if (!locked.empty())
     {
         locked_size.assign(nv, 0.0);
