@@ -137,7 +137,7 @@ PetscErrorCode read_part(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgLabel, Pa
     for (PetscInt i = 0; i < num_leaves; ++i)
     {
         const PetscInt p = leaves ? leaves[i] : i;
-        PetscCheck(p < cStart || p >= cEnd, comm, PETSC_ERR_ARG_WRONG,
+        PetscCheck(p < cStart || p >= cEnd, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
                    "hdimesh: cell %" PetscInt_FMT
                    " is another rank's (an overlap): distribute "
                    "the DM with overlap 0",
@@ -662,7 +662,13 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
     PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
     Part part;
     LabelRefs face_refs, cell_refs;
-    PetscCall(read_part(dm, metric, bdLabel, rgLabel, part, face_refs, cell_refs));
+    // a rank that refuses its part (an overlap, a bad metric) tells the others, who would
+    // otherwise wait for it in the first exchange
+    const PetscErrorCode read = read_part(dm, metric, bdLabel, rgLabel, part, face_refs, cell_refs);
+    int refused = read != 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &refused, 1, MPI_INT, MPI_MAX, comm));
+    PetscCall(read);
+    PetscCheck(!refused, comm, PETSC_ERR_ARG_WRONG, "hdimesh: another rank refused its part");
     hdimesh::coupling::AdaptRequest request;
     PetscCall(read_options(dm, request));
     request.source = "DMPlex";

@@ -68,8 +68,6 @@ double signed_volume(const TetMesh& m, const std::array<int, 4>& t)
 PetscErrorCode read_plex(DM dm, DMLabel bdLabel, DMLabel rgLabel, PlexInput& in)
 {
     PetscFunctionBeginUser;
-    MPI_Comm comm;
-    PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
     PetscInt cStart, cEnd, fStart, fEnd, vStart, vEnd;
     PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
     PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
@@ -97,7 +95,7 @@ PetscErrorCode read_plex(DM dm, DMLabel bdLabel, DMLabel rgLabel, PlexInput& in)
     {
         DMPolytopeType type;
         PetscCall(DMPlexGetCellType(dm, c, &type));
-        PetscCheck(type == DM_POLYTOPE_TETRAHEDRON, comm, PETSC_ERR_SUP,
+        PetscCheck(type == DM_POLYTOPE_TETRAHEDRON, PETSC_COMM_SELF, PETSC_ERR_SUP,
                    "hdimesh adapts tetrahedra; cell %" PetscInt_FMT " is a %s", c,
                    DMPolytopeTypes[type]);
         PetscCall(closure_vertices(dm, c, vStart, vEnd, vs));
@@ -143,15 +141,13 @@ PetscErrorCode read_plex(DM dm, DMLabel bdLabel, DMLabel rgLabel, PlexInput& in)
 PetscErrorCode read_metric(DM dm, Vec metric, int nv, hdimesh::volume::SizeSpec& size)
 {
     PetscFunctionBeginUser;
-    MPI_Comm comm;
-    PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
     PetscBool isotropic, uniform;
     PetscCall(DMPlexMetricIsIsotropic(dm, &isotropic));
     PetscCall(DMPlexMetricIsUniform(dm, &uniform));
     PetscInt n;
     PetscCall(VecGetLocalSize(metric, &n));
     const PetscInt expected = uniform ? 1 : isotropic ? nv : 9 * static_cast<PetscInt>(nv);
-    PetscCheck(n >= expected, comm, PETSC_ERR_ARG_SIZ,
+    PetscCheck(n >= expected, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
                "hdimesh: the metric holds %" PetscInt_FMT
                " values for %d vertices; give the "
                "local vector of DMPlexMetricCreate (%" PetscInt_FMT " values)",
@@ -164,7 +160,8 @@ PetscErrorCode read_metric(DM dm, Vec metric, int nv, hdimesh::volume::SizeSpec&
         for (int v = 0; v < nv; ++v)
         {
             const double lambda = PetscRealPart(m[uniform ? 0 : v]);
-            PetscCheck(lambda > 0 && std::isfinite(lambda), comm, PETSC_ERR_ARG_OUTOFRANGE,
+            PetscCheck(lambda > 0 && std::isfinite(lambda), PETSC_COMM_SELF,
+                       PETSC_ERR_ARG_OUTOFRANGE,
                        "hdimesh: the metric at vertex %d is %g, not positive", v, lambda);
             size.vertex_sizes[v] = 1.0 / std::sqrt(lambda);
         }
