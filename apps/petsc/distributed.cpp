@@ -89,11 +89,16 @@ std::vector<T> alltoall(MPI_Comm comm, const std::vector<std::vector<T>>& send,
     return in;
 }
 
-Key face_key(const Part& p, const hdimesh::volume::Triangle& t)
+Key sorted_key(PetscInt a, PetscInt b, PetscInt c)
 {
-    Key k{p.gid[t[0]], p.gid[t[1]], p.gid[t[2]]};
+    Key k{a, b, c};
     std::sort(k.begin(), k.end());
     return k;
+}
+
+Key face_key(const Part& p, const hdimesh::volume::Triangle& t)
+{
+    return sorted_key(p.gid[t[0]], p.gid[t[1]], p.gid[t[2]]);
 }
 
 std::array<double, 3> position(const Vec3& x) { return {x[0], x[1], x[2]}; }
@@ -159,16 +164,14 @@ PetscErrorCode read_part(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgLabel, Pa
         r = in.face_refs.value(r, value) ? face_refs.ref(value) : 0;
     }
     // read_plex added the faces on the rank's cut as boundary: they are found again each round
-    std::vector<int> keep_triangles;
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-        if (mesh.triangle_refs[i] != 0) keep_triangles.push_back(static_cast<int>(i));
     std::vector<hdimesh::volume::Triangle> triangles;
     std::vector<int> triangle_refs;
-    for (int i : keep_triangles)
-    {
-        triangles.push_back(mesh.triangles[i]);
-        triangle_refs.push_back(mesh.triangle_refs[i]);
-    }
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+        if (mesh.triangle_refs[i] != 0)
+        {
+            triangles.push_back(mesh.triangles[i]);
+            triangle_refs.push_back(mesh.triangle_refs[i]);
+        }
     mesh.triangles = std::move(triangles);
     mesh.triangle_refs = std::move(triangle_refs);
 
@@ -261,6 +264,18 @@ Cut freeze_cut(MPI_Comm comm, Part& p, int boundary_ref)
     return cut_faces;
 }
 
+/// Triangle i's ref on the domain: its own, or a labelled cut face's label; false for a cut
+/// face no label marks.
+bool domain_ref(const Part& p, const Cut& cut, std::size_t i, int& ref)
+{
+    ref = p.mesh.triangle_refs[i];
+    if (ref != hdimesh::volume::kFrozenFaceRef) return true;
+    const auto it = cut.labelled.find(face_key(p, p.mesh.triangles[i]));
+    if (it == cut.labelled.end()) return false;
+    ref = it->second;
+    return true;
+}
+
 /// The domain's boundary, every rank's piece of it once (a labelled face on a cut too), with
 /// the curves where regions meet: the geometry every round's model is fitted to.
 std::shared_ptr<const TetMesh> gather_boundary(MPI_Comm comm, const Part& p, const Cut& cut)
@@ -270,14 +285,8 @@ std::shared_ptr<const TetMesh> gather_boundary(MPI_Comm comm, const Part& p, con
     std::vector<std::array<double, 9>> corners;  // their positions
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
     {
-        int ref = mesh.triangle_refs[i];
-        const Key key = face_key(p, mesh.triangles[i]);
-        if (ref == hdimesh::volume::kFrozenFaceRef)
-        {
-            const auto it = cut.labelled.find(key);
-            if (it == cut.labelled.end()) continue;
-            ref = it->second;
-        }
+        int ref;
+        if (!domain_ref(p, cut, i, ref)) continue;
         const auto& t = mesh.triangles[i];
         faces.push_back({p.gid[t[0]], p.gid[t[1]], p.gid[t[2]], ref});
         std::array<double, 9> x;
@@ -293,9 +302,7 @@ std::shared_ptr<const TetMesh> gather_boundary(MPI_Comm comm, const Part& p, con
     for (std::size_t i = 0; i < all_faces.size(); ++i)
     {
         const auto& f = all_faces[i];
-        Key key{f[0], f[1], f[2]};
-        std::sort(key.begin(), key.end());
-        if (!seen.emplace(key, 1).second) continue;
+        if (!seen.emplace(sorted_key(f[0], f[1], f[2]), 1).second) continue;
         hdimesh::volume::Triangle t;
         for (int k = 0; k < 3; ++k)
         {
@@ -335,25 +342,16 @@ Part adapted_part(hdimesh::coupling::AdaptResult& result, const Cut& cut, int co
     std::vector<int> refs;
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
     {
-        int ref = mesh.triangle_refs[i];
-        if (ref == hdimesh::volume::kFrozenFaceRef)
-        {
-            const auto it = cut.labelled.find(face_key(p, mesh.triangles[i]));
-            if (it == cut.labelled.end()) continue;
-            ref = it->second;
-        }
+        int ref;
+        if (!domain_ref(p, cut, i, ref)) continue;
         triangles.push_back(mesh.triangles[i]);
         refs.push_back(ref);
     }
     mesh.triangles = std::move(triangles);
     mesh.triangle_refs = std::move(refs);
+    // the cut's requirements go with it (the next round's cut is found again)
     mesh.required_triangles.clear();
     mesh.required_vertices.clear();
-    mesh.edges.clear();
-    mesh.edge_refs.clear();
-    mesh.ridges.clear();
-    mesh.corners.clear();
-    mesh.required_edges.clear();
     return p;
 }
 
@@ -385,7 +383,6 @@ void number(MPI_Comm comm, Part& p)
     PetscInt first = 0;
     MPI_Exscan(&n_owned, &first, 1, MPIU_INT, MPI_SUM, comm);
     if (rank == 0) first = 0;
-    p.first_owned = first;
     std::vector<std::array<PetscInt, 2>> renamed;  // (old, new) of owned frozen vertices
     std::vector<PetscInt> gid(nv, -1);
     for (int v = 0, next = 0; v < nv; ++v)
@@ -582,9 +579,8 @@ void migrate(MPI_Comm comm, Part& p, const std::vector<int>& target)
     std::map<Key, char> seen;
     for (const auto& f : local_triangles)
     {
-        Key k{f[0], f[1], f[2]};
-        std::sort(k.begin(), k.end());
-        if (seen.emplace(k, 1).second) next.mesh.add_triangle({f[0], f[1], f[2]}, f[3]);
+        if (seen.emplace(sorted_key(f[0], f[1], f[2]), 1).second)
+            next.mesh.add_triangle({f[0], f[1], f[2]}, f[3]);
     }
     p = std::move(next);
 }
@@ -671,15 +667,9 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
     PetscCheck(!refused, comm, PETSC_ERR_ARG_WRONG, "hdimesh: another rank refused its part");
     hdimesh::coupling::AdaptRequest request;
     PetscCall(read_options(dm, request));
-    request.source = "DMPlex";
     // a piece's boundary has cuts: no surface pass there, and no sliding of boundary vertices,
     // whose classes on the piece do not know the domain's sharp edges
     request.switches.nosurf = true;
-    if (request.verbosity > 0)
-        request.messages = [](hdimesh::MessageKind kind, const std::string& text) {
-            if (kind != hdimesh::MessageKind::Progress)
-                PetscPrintf(PETSC_COMM_SELF, "%s", text.c_str());
-        };
     // the first decomposition is ours too: the result depends on the rank count, not on how
     // the DM was distributed
     migrate(comm, part, morton_ranks(comm, part, 0));
@@ -698,17 +688,7 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
         (part.components == 1 ? request.size.vertex_sizes : request.size.vertex_metrics) =
             part.metric;
         hdimesh::coupling::AdaptResult result;
-        std::string failure;
-        try
-        {
-            hdimesh::volume::finish_mesh(part.mesh, request.source);
-            result = hdimesh::coupling::run_adapt(
-                hdimesh::coupling::adapt_input_from_mesh(std::move(part.mesh)), request);
-        }
-        catch (const std::exception& e)
-        {
-            failure = e.what();
-        }
+        const std::string failure = run_request(std::move(part.mesh), request, result);
         // every rank learns of a failure, so none waits in the next exchange
         int failed = failure.empty() ? 0 : 1;
         PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));

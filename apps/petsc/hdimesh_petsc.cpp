@@ -179,7 +179,8 @@ PetscErrorCode read_metric(DM dm, Vec metric, int nv, hdimesh::volume::SizeSpec&
     PetscFunctionReturn(0);
 }
 
-/// PETSc's metric options that have a meaning here, as Mmg's switches.
+/// PETSc's metric options that have a meaning here, as Mmg's switches; the report to PETSc's
+/// output when verbose.
 PetscErrorCode read_options(DM dm, hdimesh::coupling::AdaptRequest& request)
 {
     PetscFunctionBeginUser;
@@ -209,10 +210,32 @@ PetscErrorCode read_options(DM dm, hdimesh::coupling::AdaptRequest& request)
     request.switches.nosurf = nosurf;
     request.verbosity = std::clamp<int>(static_cast<int>(verbosity), 0, 2);
     request.threads = static_cast<int>(threads);
+    request.source = "DMPlex";
+    if (request.verbosity > 0)
+        request.messages = [](hdimesh::MessageKind kind, const std::string& text) {
+            // a log, not a terminal: no status lines that overwrite each other
+            if (kind != hdimesh::MessageKind::Progress)
+                PetscPrintf(PETSC_COMM_SELF, "%s", text.c_str());
+        };
     PetscFunctionReturn(0);
 }
 
-/// A new DMPlex from the adapted mesh, with the labels rebuilt under their names.
+std::string run_request(TetMesh mesh, const hdimesh::coupling::AdaptRequest& request,
+                        hdimesh::coupling::AdaptResult& result)
+{
+    try
+    {
+        // the checks a file read makes (positive tets, no face in three tets), naming the tet
+        hdimesh::volume::finish_mesh(mesh, request.source);
+        result = hdimesh::coupling::run_adapt(
+            hdimesh::coupling::adapt_input_from_mesh(std::move(mesh)), request);
+    }
+    catch (const std::exception& e)
+    {
+        return e.what();
+    }
+    return {};
+}
 PetscErrorCode attach_labels(DM dm, const TetMesh& mesh, const std::vector<PetscInt>& point,
                              const LabelRefs& face_refs, const LabelRefs& cell_refs,
                              const char* bd_name, const char* rg_name)
@@ -350,25 +373,9 @@ PetscErrorCode DMAdaptMetric_Hdimesh_Plex(DM dm, Vec metric, DMLabel bdLabel, DM
     hdimesh::coupling::AdaptRequest request;
     PetscCall(hdimesh_petsc::read_metric(dm, metric, in.mesh.num_vertices(), request.size));
     PetscCall(hdimesh_petsc::read_options(dm, request));
-    request.source = "DMPlex";
-    if (request.verbosity > 0)
-        request.messages = [](hdimesh::MessageKind kind, const std::string& text) {
-            // a log, not a terminal: no status lines that overwrite each other
-            if (kind != hdimesh::MessageKind::Progress)
-                PetscPrintf(PETSC_COMM_SELF, "%s", text.c_str());
-        };
     hdimesh::coupling::AdaptResult result;
-    try
-    {
-        // the checks a file read makes (positive tets, no face in three tets), naming the tet
-        hdimesh::volume::finish_mesh(in.mesh, request.source);
-        result = hdimesh::coupling::run_adapt(
-            hdimesh::coupling::adapt_input_from_mesh(std::move(in.mesh)), request);
-    }
-    catch (const std::exception& e)
-    {
-        SETERRQ(comm, PETSC_ERR_LIB, "hdimesh: %s", e.what());
-    }
+    const std::string failure = hdimesh_petsc::run_request(std::move(in.mesh), request, result);
+    PetscCheck(failure.empty(), comm, PETSC_ERR_LIB, "hdimesh: %s", failure.c_str());
     PetscCall(hdimesh_petsc::write_plex(comm, result.mesh, in, bd_name, rg_name, dmNew));
     PetscFunctionReturn(0);
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 #include <vector>
 
 #include "coupling/adapt_request.h"
@@ -58,8 +59,14 @@ PetscErrorCode read_plex(DM dm, DMLabel bdLabel, DMLabel rgLabel, PlexInput& in)
 /// at the DM's nv local vertices, checked.
 PetscErrorCode read_metric(DM dm, Vec metric, int nv, hdimesh::volume::SizeSpec& size);
 
-/// PETSc's metric options that have a meaning here, as Mmg's switches.
+/// PETSc's metric options that have a meaning here, as Mmg's switches; the report to PETSc's
+/// output when verbose.
 PetscErrorCode read_options(DM dm, hdimesh::coupling::AdaptRequest& request);
+
+/// The checks a file read makes, then run_adapt: the error's text, empty when it ran.
+std::string run_request(hdimesh::volume::TetMesh mesh,
+                        const hdimesh::coupling::AdaptRequest& request,
+                        hdimesh::coupling::AdaptResult& result);
 
 /// The labels rebuilt on dm (the mesh's vertex v is dm's point[v]): triangles' refs as face
 /// values, tets' refs as cell values (tet c is dm's cell c), under their names.

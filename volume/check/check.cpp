@@ -331,6 +331,10 @@ private:
                 ++j;
             const std::string where = "boundary edge (" + std::to_string(edges[i].low) + ", " +
                                       std::to_string(edges[i].high) + ")";
+            // closed by a cut, where two parts of one piece may meet: not the surface's edge
+            const bool at_cut =
+                std::any_of(edges.begin() + i, edges.begin() + j,
+                            [&](const DirectedEdge& e) { return is_cut(e.triangle); });
             if (j - i == 1)
             {
                 if (options_.require_closed_boundary)
@@ -338,16 +342,12 @@ private:
                         where + " is in only one boundary triangle (" +
                             std::to_string(edges[i].triangle) + ")");
             }
-            else if (std::any_of(edges.begin() + i, edges.begin() + j,
-                                 [&](const DirectedEdge& e) { return is_cut(e.triangle); }))
-            {
-            }
-            else if (j - i > 2)
+            else if (!at_cut && j - i > 2)
             {
                 add("nonmanifold_boundary_edge", edges[i].triangle,
                     where + " is in " + std::to_string(j - i) + " boundary triangles");
             }
-            else if (edges[i].forward == edges[i + 1].forward)
+            else if (!at_cut && edges[i].forward == edges[i + 1].forward)
             {
                 add("boundary_edge_same_direction", edges[i + 1].triangle,
                     where + ": triangles " + std::to_string(edges[i].triangle) + " and " +

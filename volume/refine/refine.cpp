@@ -238,29 +238,24 @@ private:
     RefinePassResult result_;
 };
 
+/// The edges of tri as {low, high}, appended to out.
+void add_triangle_edges(const Triangle& tri, std::vector<Edge>& out)
+{
+    for (int k = 0; k < 3; ++k)
+        out.push_back({std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
+}
+
 /// The edges a split may not cut: those of required triangles and the required feature edges,
 /// each as {low, high}, sorted.
 std::vector<Edge> locked_edges(const TetMesh& mesh)
 {
     std::vector<Edge> locked;
-    for (int i : mesh.required_triangles)
-    {
-        const Triangle& tri = mesh.triangles[i];
-        for (int k = 0; k < 3; ++k)
-            locked.push_back(
-                {std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
-    }
+    for (int i : mesh.required_triangles) add_triangle_edges(mesh.triangles[i], locked);
     for (int i : mesh.required_edges)
         locked.push_back({std::min(mesh.edges[i][0], mesh.edges[i][1]),
                           std::max(mesh.edges[i][0], mesh.edges[i][1])});
     std::sort(locked.begin(), locked.end());
     return locked;
-}
-
-void add_triangle_edges(const Triangle& tri, std::vector<Edge>& out)
-{
-    for (int k = 0; k < 3; ++k)
-        out.push_back({std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
 }
 
 /// The locked edges whose lengths hold the sizes at their ends. A frozen cut between pieces
