@@ -60,6 +60,17 @@ bool flat_at(const TetMesh& mesh, const std::vector<int>& ball, int v, std::size
     return !normals.empty();
 }
 
+/// Required vertices and those of required triangles stay where they are (Mmg's rule; a rank's
+/// cut lies inside the domain, far from the model, and its two sides must agree on it).
+std::vector<char> held_vertices(const TetMesh& mesh)
+{
+    std::vector<char> held(mesh.num_vertices(), 0);
+    for (int v : mesh.required_vertices) held[v] = 1;
+    for (int i : mesh.required_triangles)
+        for (int v : mesh.triangles[i]) held[v] = 1;
+    return held;
+}
+
 }  // namespace
 
 ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int>& vertices) const
@@ -67,10 +78,12 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
     ProjectionReport report;
     if (!mesh.has_adjacency()) mesh.build_adjacency();
     const std::vector<int> seeds = vertex_to_tet(mesh);
+    const std::vector<char> held = held_vertices(mesh);
     const auto wanted = [&](int v) {
         const VertexClass cls = mesh.vertex_classes[v];
         // (a vertex no tet uses has nothing to keep valid)
-        return (cls == VertexClass::Surface || cls == VertexClass::Ridge) && seeds[v] >= 0;
+        return (cls == VertexClass::Surface || cls == VertexClass::Ridge) && seeds[v] >= 0 &&
+               !held[v];
     };
     // the model's queries (read-only) in parallel at the positions before any move; the moves
     // below stay serial, in the list's order
@@ -133,16 +146,10 @@ ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int
 
 ProjectionReport BoundaryProjector::project_all(TetMesh& mesh) const
 {
-    // required vertices and those of required triangles stay where they are (Mmg's rule; a
-    // rank's cut lies inside the domain, far from the model)
-    std::vector<char> held(mesh.num_vertices(), 0);
-    for (int v : mesh.required_vertices) held[v] = 1;
-    for (int i : mesh.required_triangles)
-        for (int v : mesh.triangles[i]) held[v] = 1;
     std::vector<int> boundary;
     for (int v = 0; v < mesh.num_vertices(); ++v)
-        if (!held[v] && (mesh.vertex_classes[v] == VertexClass::Surface ||
-                         mesh.vertex_classes[v] == VertexClass::Ridge))
+        if (mesh.vertex_classes[v] == VertexClass::Surface ||
+            mesh.vertex_classes[v] == VertexClass::Ridge)
             boundary.push_back(v);
     return project(mesh, boundary);
 }

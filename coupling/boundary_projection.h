@@ -50,7 +50,8 @@ public:
     }
 
     /// Moves each listed Surface/Ridge vertex onto the model (Ridge vertices onto the ridge
-    /// fit; Corner and Interior vertices are left alone). Vertex balls are walked over the
+    /// fit; Corner and Interior vertices, required ones and those of required triangles are
+    /// left alone). Vertex balls are walked over the
     /// adjacency (built here if missing); positions change, topology does not.
     ProjectionReport project(volume::TetMesh& mesh, const std::vector<int>& vertices) const;
 

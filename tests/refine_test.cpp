@@ -16,6 +16,7 @@
 #include "fixtures.h"
 #include "volume/check/check.h"
 #include "volume/io/tet_io.h"
+#include "volume/mesh/blocks.h"
 #include "volume/mesh/tet_tables.h"
 #include "volume/refine/refine_patterns.h"
 #include "volume/size/size_fields.h"
@@ -132,6 +133,12 @@ int refine_checked(TetMesh& mesh, const SizeField& field, int max_passes = 40)
 TEST_CASE("refine: the face rule is a pure function of the face, ties go to the smaller id")
 {
     const TetMesh regular = fixtures::regular_tet();
+    // on a rank's cut ties go to the lexicographically first position instead
+    auto first = [&](int a, int b) {
+        const Vec3 &pa = regular.points[a], &pb = regular.points[b];
+        return std::lexicographical_compare(pb.data(), pb.data() + 3, pa.data(), pa.data() + 3) ? b
+                                                                                                : a;
+    };
     for (int c = 0; c < 4; ++c)
         for (int a = 0; a < 4; ++a)
             for (int b = 0; b < 4; ++b)
@@ -141,6 +148,8 @@ TEST_CASE("refine: the face rule is a pure function of the face, ties go to the 
                       quad_diagonal_start(regular.points, c, b, a));
                 CHECK(quad_diagonal_start(regular.points, c, a, b) ==
                       std::min(a, b));  // equilateral: tie
+                CHECK(quad_diagonal_start_by_position(regular.points, c, a, b) == first(a, b));
+                CHECK(quad_diagonal_start_by_position(regular.points, c, b, a) == first(a, b));
             }
 
     //      2
@@ -472,4 +481,97 @@ TEST_CASE("refine: a tet flat in doubles defers its edges to a later pass instea
     }
     CHECK(tried > 0);
     CHECK(deferred > 0);  // the search met the case
+}
+
+namespace
+{
+
+/// The tets of `mesh` on one side of the plane x = 0.5 (by centroid) as a mesh of their own,
+/// the left side's vertices numbered in reverse (the sides number them apart), the faces it shares
+/// with the other side listed as a rank's cut (required triangles of kRankCutRef), the others
+/// as boundary (ref 1).
+TetMesh side_of_cut(const TetMesh& mesh, bool left)
+{
+    auto on_side = [&](int t) {
+        Vec3 c = Vec3::Zero();
+        for (int v : mesh.tets[t]) c += 0.25 * mesh.points[v];
+        return (c[0] < 0.5) == left;
+    };
+    const int nv = mesh.num_vertices();
+    auto id = [&](int v) { return left ? nv - 1 - v : v; };
+    std::vector<Vec3> points(nv);
+    for (int v = 0; v < nv; ++v) points[id(v)] = mesh.points[v];
+    std::vector<TetVertices> tets;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        if (on_side(t))
+        {
+            TetVertices tv = mesh.tets[t];
+            for (int& v : tv) v = id(v);
+            tets.push_back(tv);
+        }
+    TetMesh side = fixtures::mesh_from_tets(points, tets);
+    std::set<std::array<int, 3>> cut;
+    for (int t = 0; t < mesh.num_tet_slots(); ++t)
+        for (int f = 0; f < 4; ++f)
+        {
+            const int n = mesh.neighbors[t][f];
+            if (!on_side(t) || n == kNoTet || on_side(n)) continue;
+            std::array<int, 3> key;
+            for (int k = 0; k < 3; ++k) key[k] = id(mesh.tets[t][tet::kFaceVertices[f][k]]);
+            std::sort(key.begin(), key.end());
+            cut.insert(key);
+        }
+    for (std::size_t i = 0; i < side.triangles.size(); ++i)
+    {
+        std::array<int, 3> key = side.triangles[i];
+        std::sort(key.begin(), key.end());
+        if (!cut.count(key)) continue;
+        side.triangle_refs[i] = kRankCutRef;
+        side.required_triangles.push_back(static_cast<int>(i));
+    }
+    return side;
+}
+
+/// The cut's triangles as sorted position triples.
+std::set<std::array<std::array<double, 3>, 3>> cut_triangles(const TetMesh& mesh)
+{
+    std::set<std::array<std::array<double, 3>, 3>> out;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    {
+        if (mesh.triangle_refs[i] != kRankCutRef) continue;
+        std::array<std::array<double, 3>, 3> key;
+        for (int k = 0; k < 3; ++k)
+        {
+            const Vec3& p = mesh.points[mesh.triangles[i][k]];
+            key[k] = {p[0], p[1], p[2]};
+        }
+        std::sort(key.begin(), key.end());
+        out.insert(key);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("refine: the two sides of a rank's cut, numbered apart, split it alike")
+{
+    for (double jitter : {0.0, 0.2})
+    {
+        CAPTURE(jitter);
+        TetMesh box = fixtures::box_mesh(4, jitter);
+        box.build_adjacency();
+        TetMesh left = side_of_cut(box, true), right = side_of_cut(box, false);
+        const std::size_t before = cut_triangles(left).size();
+        REQUIRE(before > 0);
+        REQUIRE(cut_triangles(right).size() == before);
+        const RadialSize field(Vec3(0.5, 0.3, 0.2), 0.2, 0.2);
+        REQUIRE(refine(left, field).converged);
+        REQUIRE(refine(right, field).converged);
+        const auto split = cut_triangles(left);
+        CHECK(split.size() > 4 * before);  // refined, not kept as given
+        CHECK(split == cut_triangles(right));
+        CHECK(left.required_triangles.size() == split.size());
+        require_valid(left);
+        require_valid(right);
+    }
 }

@@ -14,6 +14,7 @@
 #include "fixtures.h"
 #include "volume/check/check.h"
 #include "volume/check/quality_report.h"
+#include "volume/mesh/blocks.h"
 #include "volume/mesh/tet_tables.h"
 #include "volume/mesh/tet_topology.h"
 #include "volume/optimize/collapse.h"
@@ -845,4 +846,33 @@ TEST_CASE("edge removal: the pruned program removes the same edges as the exact 
     CHECK(exact.neighbors == pruned.neighbors);
     require_valid(pruned);
     CHECK(live_worst(pruned) >= worst_before);
+}
+
+TEST_CASE("constraints: a required triangle's vertices neither move nor slide, a rank's cut too")
+{
+    TetMesh mesh = fixtures::box_mesh(2);
+    mesh.build_adjacency();
+    std::vector<int> listed;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+        if (mesh.points[mesh.triangles[i][0]][2] == 0.0 &&
+            mesh.points[mesh.triangles[i][1]][2] == 0.0 &&
+            mesh.points[mesh.triangles[i][2]][2] == 0.0)
+            listed.push_back(static_cast<int>(i));
+    REQUIRE(listed.size() == 8);
+    const MeshConstraints before(mesh);
+    // (the middle of the bottom face is a flat surface vertex: a collapse may slide it)
+    int middle = -1;
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+        if (mesh.points[v] == Vec3(0.5, 0.5, 0.0)) middle = v;
+    REQUIRE(middle >= 0);
+    CHECK(before.is_surface_vertex(middle));
+    for (int i : listed) mesh.triangle_refs[i] = kRankCutRef;
+    mesh.required_triangles = listed;
+    const MeshConstraints after(mesh);
+    for (int i : listed)
+        for (int v : mesh.triangles[i])
+        {
+            CHECK_FALSE(after.is_free_vertex(v));
+            CHECK_FALSE(after.is_surface_vertex(v));
+        }
 }

@@ -1,8 +1,9 @@
 // The adaptor on several ranks, ParMmg's scheme on our own decomposition: each rank adapts
-// its cells with the faces it shares with another rank frozen (required triangles, as the
-// threads' blocks freeze theirs), the vertices are numbered again, and the cells move to the
-// ranks of a Morton decomposition whose cuts lie elsewhere (blocks.h's shifted rounds), so the
-// faces frozen in one round are adapted in the next. After the last round PETSc builds the
+// its cells with the faces it shares with another rank frozen (required triangles of
+// kRankCutRef: the refinement splits them, both sides alike, nothing else changes them), the
+// vertices are numbered again (a cut's by position), and the cells move to the ranks of a
+// Morton decomposition whose cuts lie elsewhere (blocks.h's shifted rounds), so the faces
+// frozen in one round are adapted in the next. After the last round PETSc builds the
 // new DM from the ranks' cells (DMPlexCreateFromCellListParallelPetsc), labels attached.
 // Deterministic for a given rank count: every rank runs one thread and every exchange is
 // ordered by rank.
@@ -41,7 +42,8 @@ struct Part
     std::vector<double> metric;  ///< per vertex: a size, or 6 values in Medit's order
     int components = 1;          ///< 1 or 6
     std::vector<char> owned;     ///< after number(): this rank gives the vertex to PETSc
-    PetscInt first_owned = 0;    ///< the global id of the first owned vertex
+    std::vector<char> shared;    ///< after a round: on its cut, numbered by position
+    std::vector<hdimesh::volume::Triangle> cut;  ///< after a round: its cut's faces
 };
 
 /// Every rank's `mine`, in rank order; counts[r] items came from rank r.
@@ -192,19 +194,13 @@ PetscErrorCode read_part(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgLabel, Pa
     PetscFunctionReturn(0);
 }
 
-/// What a round keeps of the cut: the frozen vertices' global ids by position, and the refs of
-/// the labelled faces on it (by their vertices' global ids).
-struct Cut
+/// Freezes the faces this rank shares with another (required triangles of kRankCutRef, plus
+/// the domain's ref of a labelled one; their vertices required: the refinement splits them,
+/// both sides alike, nothing else changes them) and adds the boundary faces no label marks
+/// (boundary_ref).
+void freeze_cut(MPI_Comm comm, Part& p, int boundary_ref)
 {
-    std::map<std::array<double, 3>, PetscInt> vertices;
-    std::map<Key, int> labelled;
-};
-
-/// Freezes the faces this rank shares with another (required triangles of kFrozenFaceRef, a
-/// labelled one's ref kept aside; their vertices required) and adds the boundary faces no
-/// label marks (boundary_ref).
-Cut freeze_cut(MPI_Comm comm, Part& p, int boundary_ref)
-{
+    using hdimesh::volume::kRankCutRef;
     TetMesh& mesh = p.mesh;
     mesh.build_adjacency();
     struct Open
@@ -239,46 +235,36 @@ Cut freeze_cut(MPI_Comm comm, Part& p, int boundary_ref)
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
         triangle_of.emplace(face_key(p, mesh.triangles[i]), static_cast<int>(i));
     std::vector<char> frozen(mesh.num_vertices(), 0);
-    Cut cut_faces;
     for (const Open& o : open)
     {
         const bool cut = std::binary_search(others.begin(), others.end(), o.key);
         const auto it = triangle_of.find(o.key);
         int index = it != triangle_of.end() ? it->second : -1;
-        if (index < 0)
-            index = mesh.add_triangle(o.face, cut ? hdimesh::volume::kFrozenFaceRef : boundary_ref);
+        if (index < 0) index = mesh.add_triangle(o.face, cut ? kRankCutRef : boundary_ref);
         if (!cut) continue;
-        // the cut is checked and modelled as a cut, whatever its label
-        if (mesh.triangle_refs[index] != hdimesh::volume::kFrozenFaceRef)
-            cut_faces.labelled.emplace(o.key, mesh.triangle_refs[index]);
-        mesh.triangle_refs[index] = hdimesh::volume::kFrozenFaceRef;
+        // the cut is checked and modelled as a cut, a label on it kept in its ref
+        int& ref = mesh.triangle_refs[index];
+        if (!hdimesh::volume::is_rank_cut_ref(ref)) ref = kRankCutRef + std::max(ref, 0);
         mesh.required_triangles.push_back(index);
         for (int v : o.face) frozen[v] = 1;
     }
     for (int v = 0; v < mesh.num_vertices(); ++v)
-        if (frozen[v])
-        {
-            mesh.required_vertices.push_back(v);
-            cut_faces.vertices.emplace(position(mesh.points[v]), p.gid[v]);
-        }
-    return cut_faces;
+        if (frozen[v]) mesh.required_vertices.push_back(v);
 }
 
 /// Triangle i's ref on the domain: its own, or a labelled cut face's label; false for a cut
 /// face no label marks.
-bool domain_ref(const Part& p, const Cut& cut, std::size_t i, int& ref)
+bool domain_ref(const TetMesh& mesh, std::size_t i, int& ref)
 {
-    ref = p.mesh.triangle_refs[i];
-    if (ref != hdimesh::volume::kFrozenFaceRef) return true;
-    const auto it = cut.labelled.find(face_key(p, p.mesh.triangles[i]));
-    if (it == cut.labelled.end()) return false;
-    ref = it->second;
-    return true;
+    ref = mesh.triangle_refs[i];
+    if (!hdimesh::volume::is_rank_cut_ref(ref)) return true;
+    ref -= hdimesh::volume::kRankCutRef;
+    return ref > 0;
 }
 
 /// The domain's boundary, every rank's piece of it once (a labelled face on a cut too), with
 /// the curves where regions meet: the geometry every round's model is fitted to.
-std::shared_ptr<const TetMesh> gather_boundary(MPI_Comm comm, const Part& p, const Cut& cut)
+std::shared_ptr<const TetMesh> gather_boundary(MPI_Comm comm, const Part& p)
 {
     const TetMesh& mesh = p.mesh;
     std::vector<std::array<PetscInt, 4>> faces;  // global ids, ref
@@ -286,7 +272,7 @@ std::shared_ptr<const TetMesh> gather_boundary(MPI_Comm comm, const Part& p, con
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
     {
         int ref;
-        if (!domain_ref(p, cut, i, ref)) continue;
+        if (!domain_ref(mesh, i, ref)) continue;
         const auto& t = mesh.triangles[i];
         faces.push_back({p.gid[t[0]], p.gid[t[1]], p.gid[t[2]], ref});
         std::array<double, 9> x;
@@ -321,20 +307,17 @@ std::shared_ptr<const TetMesh> gather_boundary(MPI_Comm comm, const Part& p, con
     return geometry;
 }
 
-/// The adapted cells as the next round's part: frozen vertices keep their ids (-1: new), the
-/// metric is the field's at the new vertices, the cut's faces are dropped but labelled ones.
-Part adapted_part(hdimesh::coupling::AdaptResult& result, const Cut& cut, int components)
+/// The adapted cells as the next round's part, to be numbered: the cut's vertices shared (the
+/// old ones and the midpoints both sides added), the metric the field's at the vertices, the
+/// cut's faces kept aside and dropped but labelled ones.
+Part adapted_part(hdimesh::coupling::AdaptResult& result, int components)
 {
     Part p;
     p.mesh = std::move(result.mesh);
     p.mesh.compact();
     TetMesh& mesh = p.mesh;
     p.gid.assign(mesh.num_vertices(), -1);
-    for (int v = 0; v < mesh.num_vertices(); ++v)
-    {
-        const auto it = cut.vertices.find(position(mesh.points[v]));
-        if (it != cut.vertices.end()) p.gid[v] = it->second;
-    }
+    p.shared.assign(mesh.num_vertices(), 0);
     p.components = components;
     hdimesh::Solutions at = hdimesh::volume::field_at_vertices(mesh, *result.field);
     p.metric = std::move(at.solutions.at(0).values);
@@ -342,8 +325,13 @@ Part adapted_part(hdimesh::coupling::AdaptResult& result, const Cut& cut, int co
     std::vector<int> refs;
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
     {
+        if (hdimesh::volume::is_rank_cut_ref(mesh.triangle_refs[i]))
+        {
+            p.cut.push_back(mesh.triangles[i]);
+            for (int v : mesh.triangles[i]) p.shared[v] = 1;
+        }
         int ref;
-        if (!domain_ref(p, cut, i, ref)) continue;
+        if (!domain_ref(mesh, i, ref)) continue;
         triangles.push_back(mesh.triangles[i]);
         refs.push_back(ref);
     }
@@ -355,52 +343,87 @@ Part adapted_part(hdimesh::coupling::AdaptResult& result, const Cut& cut, int co
     return p;
 }
 
-/// New global ids, owned ones contiguous per rank: a frozen vertex belongs to the lowest rank
-/// that holds it, every new vertex to its rank.
+using Point = std::array<double, 3>;
+
+/// A shared vertex's position and its new global id.
+struct Named
+{
+    Point x;
+    PetscInt gid;
+    bool operator<(const Named& o) const { return x < o.x || (x == o.x && gid < o.gid); }
+};
+
+/// New global ids, owned ones contiguous per rank: a vertex on the cut (found on the other
+/// side by its exact position: both sides made the same midpoints) belongs to the lowest rank
+/// that holds it, every other vertex to its rank.
 void number(MPI_Comm comm, Part& p)
 {
     int rank;
     MPI_Comm_rank(comm, &rank);
-    std::vector<PetscInt> frozen;
-    for (PetscInt g : p.gid)
-        if (g >= 0) frozen.push_back(g);
-    std::sort(frozen.begin(), frozen.end());
+    const int nv = p.mesh.num_vertices();
+    std::vector<Point> mine;
+    for (int v = 0; v < nv; ++v)
+        if (p.shared[v]) mine.push_back(position(p.mesh.points[v]));
+    std::sort(mine.begin(), mine.end());
     std::vector<int> counts;
-    const std::vector<PetscInt> all = allgather(comm, frozen, &counts);
-    std::vector<PetscInt> lower;  // frozen ids a lower rank holds
+    const std::vector<Point> all = allgather(comm, mine, &counts);
+    std::vector<Point> lower;  // shared positions a lower rank holds
     for (int r = 0, at = 0; r < rank; at += counts[r], ++r)
         lower.insert(lower.end(), all.begin() + at, all.begin() + at + counts[r]);
     std::sort(lower.begin(), lower.end());
-    const int nv = p.mesh.num_vertices();
     p.owned.assign(nv, 1);
     PetscInt n_owned = 0;
     for (int v = 0; v < nv; ++v)
     {
-        if (p.gid[v] >= 0 && std::binary_search(lower.begin(), lower.end(), p.gid[v]))
+        if (p.shared[v] &&
+            std::binary_search(lower.begin(), lower.end(), position(p.mesh.points[v])))
             p.owned[v] = 0;
         n_owned += p.owned[v];
     }
     PetscInt first = 0;
     MPI_Exscan(&n_owned, &first, 1, MPIU_INT, MPI_SUM, comm);
     if (rank == 0) first = 0;
-    std::vector<std::array<PetscInt, 2>> renamed;  // (old, new) of owned frozen vertices
-    std::vector<PetscInt> gid(nv, -1);
+    std::vector<Named> named;  // the owned shared vertices
     for (int v = 0, next = 0; v < nv; ++v)
         if (p.owned[v])
         {
-            gid[v] = first + next++;
-            if (p.gid[v] >= 0) renamed.push_back({p.gid[v], gid[v]});
+            p.gid[v] = first + next++;
+            if (p.shared[v]) named.push_back({position(p.mesh.points[v]), p.gid[v]});
         }
-    std::vector<std::array<PetscInt, 2>> every = allgather(comm, renamed, nullptr);
+    std::vector<Named> every = allgather(comm, named, nullptr);
     std::sort(every.begin(), every.end());
     for (int v = 0; v < nv; ++v)
         if (!p.owned[v])
         {
-            const auto it = std::lower_bound(every.begin(), every.end(),
-                                             std::array<PetscInt, 2>{p.gid[v], PETSC_MIN_INT});
-            gid[v] = it->at(1);
+            const Point x = position(p.mesh.points[v]);
+            const auto it = std::lower_bound(every.begin(), every.end(), Named{x, PETSC_MIN_INT});
+            // (the lowest rank holding x owns it and named it)
+            p.gid[v] = it->gid;
         }
-    p.gid = std::move(gid);
+}
+
+/// Every face of the ranks' cuts came back from both sides, split alike; else the refinement
+/// marked an edge of the cut on one side only (a deferred split, a stalled pass).
+PetscErrorCode check_cut(MPI_Comm comm, const Part& p, PetscInt round)
+{
+    PetscFunctionBeginUser;
+    std::vector<Key> mine;
+    for (const auto& t : p.cut) mine.push_back(face_key(p, t));
+    std::sort(mine.begin(), mine.end());
+    std::vector<Key> all = allgather(comm, mine, nullptr);
+    std::sort(all.begin(), all.end());
+    int unmatched = 0;
+    for (const Key& k : mine)
+    {
+        const auto range = std::equal_range(all.begin(), all.end(), k);
+        unmatched += range.second - range.first != 2;
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unmatched, 1, MPI_INT, MPI_SUM, comm));
+    PetscCheck(unmatched == 0, comm, PETSC_ERR_PLIB,
+               "hdimesh: round %" PetscInt_FMT
+               ": %d faces between ranks came back split on one side only",
+               round, unmatched);
+    PetscFunctionReturn(0);
 }
 
 /// The rank of each tet on a Morton curve of the centroids over every rank's tets, in equal
@@ -681,8 +704,8 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
     for (PetscInt round = 0; round < all_rounds; ++round)
     {
         if (round == rounds) request.switches.optim = true;
-        const Cut cut = freeze_cut(comm, part, bdLabel ? 0 : face_refs.ref(1));
-        if (round == 0) request.geometry = gather_boundary(comm, part, cut);
+        freeze_cut(comm, part, bdLabel ? 0 : face_refs.ref(1));
+        if (round == 0) request.geometry = gather_boundary(comm, part);
         request.size.vertex_sizes.clear();
         request.size.vertex_metrics.clear();
         (part.components == 1 ? request.size.vertex_sizes : request.size.vertex_metrics) =
@@ -696,8 +719,9 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
                    static_cast<int>(round), failure.c_str());
         PetscCheck(!failed, comm, PETSC_ERR_LIB, "hdimesh: another rank failed in round %d",
                    static_cast<int>(round));
-        part = adapted_part(result, cut, part.components);
+        part = adapted_part(result, part.components);
         number(comm, part);
+        PetscCall(check_cut(comm, part, round));
         if (round + 1 < all_rounds) migrate(comm, part, morton_ranks(comm, part, round + 1));
     }
     PetscCall(write_distributed(comm, part, face_refs, cell_refs, bd_name, rg_name, dmNew));

@@ -1,9 +1,11 @@
 /* A PETSc program as a user writes it: a DMPlex box from a cell list, labelled faces (the six
  * sides 1..6, the inner plane x = 0.5 as 7) and cells (x < 0.5: 1, else 2), a DMPlexMetric,
  * DMAdaptMetric with -dm_adaptor hdimesh (loaded by -dll_append), then PETSc's own checks and
- * ours: volume kept, labels on the right faces and cells, edges near the metric's sizes.
+ * ours: volume kept, labels on the right faces and cells, edges near the metric's sizes. It
+ * prints the tets, min Qe and min Qe in the metric (the shape the adaptation works on; the
+ * cells that lower it, as found, with ADAPT_BOX_WORST set).
  *   adapt_box -dll_append libhdimesh_petsc.so -dm_adaptor hdimesh [-metric iso|aniso|uniform]
- *             [-n 4] [-h 0.12] */
+ *             [-n 4] [-h 0.12] [-jitter 0] */
 #include <petscdmplex.h>
 
 static const char help[] = "Adapts a DMPlex box with -dm_adaptor hdimesh and checks it.\n";
@@ -194,7 +196,7 @@ static PetscReal ShapeQuality(const PetscScalar *x)
 static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBool uniform)
 {
   PetscInt  cStart, cEnd, fStart, fEnd, eStart, eEnd, bad = 0, in_range = 0, seen[8] = {0}, counts[3];
-  PetscReal volume = 0, min_qe = 1, digest = 0;
+  PetscReal volume = 0, min_qe = 1, min_metric_qe = 1, digest = 0;
   DMLabel   bd, rg, outer;
   DM        cdm;
   Vec       coords;
@@ -220,10 +222,21 @@ static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBoo
     PetscInt     value, nx = 0;
     PetscScalar *cx = NULL;
     PetscCall(DMPlexVecGetClosure(cdm, cs, coords, c, &nx, &cx));
-    if (ShapeQuality(cx) < min_qe) {
-      min_qe = ShapeQuality(cx);
-      if (getenv("ADAPT_BOX_WORST")) PetscCall(PetscPrintf(PETSC_COMM_SELF, "worse: %g at %g %g %g\n", (double)min_qe, (double)PetscRealPart(cx[0]), (double)PetscRealPart(cx[1]), (double)PetscRealPart(cx[2])));
+    { /* the shape in the metric: the cell scaled by the sizes at its centroid */
+      PetscScalar y[12];
+      PetscReal   g[3] = {0, 0, 0}, s[3];
+      for (PetscInt k = 0; k < 12; ++k) g[k % 3] += PetscRealPart(cx[k]) / 4;
+      sizes_at(g, h, aniso, s);
+      if (uniform) s[0] = s[1] = s[2] = h;
+      for (PetscInt k = 0; k < 12; ++k) y[k] = cx[k] / s[k % 3];
+      if (ShapeQuality(y) < min_metric_qe && getenv("ADAPT_BOX_WORST")) {
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "worse: %g at", (double)ShapeQuality(y)));
+        for (PetscInt k = 0; k < 12; ++k) PetscCall(PetscPrintf(PETSC_COMM_SELF, " %g%s", (double)PetscRealPart(cx[k]), k % 3 == 2 && k < 11 ? " |" : ""));
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n"));
+      }
+      min_metric_qe = PetscMin(min_metric_qe, ShapeQuality(y));
     }
+    min_qe = PetscMin(min_qe, ShapeQuality(cx));
     PetscCall(DMPlexVecRestoreClosure(cdm, cs, coords, c, &nx, &cx));
     PetscCall(DMPlexComputeCellGeometryFVM(dm, c, &vol, x, normal));
     volume += vol;
@@ -235,6 +248,7 @@ static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBoo
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &digest, 1, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &min_qe, 1, MPIU_REAL, MPI_MIN, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &min_metric_qe, 1, MPIU_REAL, MPI_MIN, PETSC_COMM_WORLD));
   PetscCheck(PetscAbsReal(volume - 1) < 1e-10, PETSC_COMM_SELF, PETSC_ERR_PLIB, "volume %g, not 1", (double)volume);
   for (PetscInt f = fStart; f < fEnd; ++f) {
     PetscReal x[3];
@@ -287,7 +301,7 @@ static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBoo
   counts[1] = in_range;
   counts[2] = eEnd - eStart; /* edges on a cut are counted on each rank */
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 3, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapted: %" PetscInt_FMT " tets, min Qe %.6f, %.1f %% of %" PetscInt_FMT " edges in [1/sqrt2, sqrt2], digest %.17g\n", counts[0], (double)min_qe, 100.0 * counts[1] / counts[2], counts[2], (double)digest));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapted: %" PetscInt_FMT " tets, min Qe %.6f, in the metric %.6f, %.1f %% of %" PetscInt_FMT " edges in [1/sqrt2, sqrt2], digest %.17g\n", counts[0], (double)min_qe, (double)min_metric_qe, 100.0 * counts[1] / counts[2], counts[2], (double)digest));
   { /* PETSc's -dm_plex_metric_no_insert reaches the adaptor: no vertex added or removed */
     PetscBool no_insert = PETSC_FALSE;
     PetscInt  vStart, vEnd, nv;

@@ -361,7 +361,7 @@ private:
     bool is_cut(int triangle) const
     {
         return static_cast<std::size_t>(triangle) < mesh_.triangle_refs.size() &&
-               mesh_.triangle_refs[triangle] == kFrozenFaceRef;
+               is_cut_ref(mesh_.triangle_refs[triangle]);
     }
 
     /// The link of a vertex v is the cycle of edges opposite v in its triangles: (a, b, c) at a

@@ -18,6 +18,21 @@ namespace hdimesh::volume
 /// The ref of a block's frozen faces (faces shared with another block or an inactive tet).
 inline constexpr int kFrozenFaceRef = -2147483647;
 
+/// The refs of the faces between one rank's cells and another's (apps/petsc): kRankCutRef, or
+/// kRankCutRef + r for a face that also carries the domain's ref r > 0. Required like a block's
+/// frozen faces, but the refinement splits them (both sides alike: the marks and the face rule
+/// are functions of the edge and the face), and a block's merge keeps them.
+inline constexpr int kRankCutRef = kFrozenFaceRef + 1;
+inline constexpr int kMaxRankCutRef = 1 << 24;
+
+inline constexpr bool is_rank_cut_ref(int ref)
+{
+    return ref >= kRankCutRef && ref <= kRankCutRef + kMaxRankCutRef;
+}
+
+/// A face between pieces: a block's or a rank's.
+inline constexpr bool is_cut_ref(int ref) { return ref == kFrozenFaceRef || is_rank_cut_ref(ref); }
+
 struct BlockPartition
 {
     int num_blocks = 0;

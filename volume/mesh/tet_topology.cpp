@@ -190,6 +190,9 @@ MeshConstraints::MeshConstraints(const TetMesh& mesh)
         free_vertex_[v] = mesh.vertex_classes[v] == VertexClass::Interior;
     for (int v : mesh.required_vertices) free_vertex_[v] = 0;
     for (int v : mesh.corners) free_vertex_[v] = 0;
+    // a required triangle keeps its vertices where they are (Mmg's rule; a rank's cut too)
+    for (int i : mesh.required_triangles)
+        for (int v : mesh.triangles[i]) free_vertex_[v] = 0;
     for (const auto& e : mesh.edges)
         for (int v : e) free_vertex_[v] = 0;
     required_tets_ = mesh.required_tets;
@@ -199,6 +202,8 @@ MeshConstraints::MeshConstraints(const TetMesh& mesh)
         surface_vertex_[v] = mesh.vertex_classes[v] == VertexClass::Surface;
     for (int v : mesh.required_vertices) surface_vertex_[v] = 0;
     for (int v : mesh.corners) surface_vertex_[v] = 0;
+    for (int i : mesh.required_triangles)
+        for (int v : mesh.triangles[i]) surface_vertex_[v] = 0;
     for (const auto& e : mesh.edges)
         for (int v : e) surface_vertex_[v] = 0;
 }

@@ -17,9 +17,12 @@
 namespace hdimesh::volume
 {
 
-int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int b)
+namespace
 {
-    if (a > b) std::swap(a, b);  // fixed order: the result is a function of the face alone
+
+/// The face rule with a before b.
+int diagonal_start_ordered(const std::vector<Vec3>& points, int corner, int a, int b)
+{
     const Vec3& pc = points[corner];
     const Vec3& pa = points[a];
     const Vec3& pb = points[b];
@@ -28,6 +31,22 @@ int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int 
     const double from_a = std::min(triangle_quality(mca, pa, mcb), triangle_quality(pa, pb, mcb));
     const double from_b = std::min(triangle_quality(mca, pa, pb), triangle_quality(mca, pb, mcb));
     return from_b > from_a + 1e-12 * std::max(from_a, from_b) ? b : a;
+}
+
+}  // namespace
+
+int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int b)
+{
+    if (a > b) std::swap(a, b);  // fixed order: the result is a function of the face alone
+    return diagonal_start_ordered(points, corner, a, b);
+}
+
+int quad_diagonal_start_by_position(const std::vector<Vec3>& points, int corner, int a, int b)
+{
+    const Vec3 &pa = points[a], &pb = points[b];
+    if (std::lexicographical_compare(pb.data(), pb.data() + 3, pa.data(), pa.data() + 3))
+        std::swap(a, b);
+    return diagonal_start_ordered(points, corner, a, b);
 }
 
 namespace
@@ -143,8 +162,11 @@ private:
 
     int diagonal_start(int corner, int a, int b) const
     {
-        return rule_ ? (*rule_)(corner, std::min(a, b), std::max(a, b))
-                     : quad_diagonal_start(mesh_.points, corner, a, b);
+        if (rule_) return (*rule_)(corner, std::min(a, b), std::max(a, b));
+        // a face on a rank's cut: the other rank numbers it apart
+        if (!on_rank_cut_.empty() && on_rank_cut_[corner] && on_rank_cut_[a] && on_rank_cut_[b])
+            return quad_diagonal_start_by_position(mesh_.points, corner, a, b);
+        return quad_diagonal_start(mesh_.points, corner, a, b);
     }
 
     int diagonal_bits(const TetSplit& s) const
@@ -225,6 +247,7 @@ private:
 
     std::vector<int> midpoint_;          // per edge slot: vertex id, 1 while only marked, or -1
     std::vector<char> touched_;          // per vertex: an end of a split edge
+    std::vector<char> on_rank_cut_;      // per vertex: on a rank's cut (empty: none)
     std::vector<std::uint16_t> choice_;  // per tet
     std::uint16_t unsplit_ = 0;
     std::vector<int> refined_;                       // the refined tets, increasing
@@ -246,41 +269,19 @@ void add_triangle_edges(const Triangle& tri, std::vector<Edge>& out)
 }
 
 /// The edges a split may not cut: those of required triangles and the required feature edges,
-/// each as {low, high}, sorted.
+/// each as {low, high}, sorted. A cut between ranks is no user's requirement: its edges are
+/// split as any other, and both sides split them alike (blocks.h kRankCutRef); only the
+/// optimizer leaves it.
 std::vector<Edge> locked_edges(const TetMesh& mesh)
 {
     std::vector<Edge> locked;
-    for (int i : mesh.required_triangles) add_triangle_edges(mesh.triangles[i], locked);
+    for (int i : mesh.required_triangles)
+        if (!is_rank_cut_ref(mesh.triangle_refs[i])) add_triangle_edges(mesh.triangles[i], locked);
     for (int i : mesh.required_edges)
         locked.push_back({std::min(mesh.edges[i][0], mesh.edges[i][1]),
                           std::max(mesh.edges[i][0], mesh.edges[i][1])});
     std::sort(locked.begin(), locked.end());
     return locked;
-}
-
-/// The locked edges whose lengths hold the sizes at their ends. A frozen cut between pieces
-/// (blocks, ranks) is no user's requirement: its edges inside the volume hold no size (ParMmg's
-/// nosizreq on its groups; a tet flattened there is mended once the cut moves), but a cut
-/// edge on a boundary or interface triangle that is itself too long does: the splinters of
-/// that triangle no later round could mend.
-std::vector<Edge> sized_edges(const TetMesh& mesh, const SizeField& field,
-                              const std::vector<Edge>& locked)
-{
-    std::vector<Edge> cut, surface;
-    for (int i : mesh.required_triangles)
-        if (mesh.triangle_refs[i] == kFrozenFaceRef) add_triangle_edges(mesh.triangles[i], cut);
-    if (cut.empty()) return locked;
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-        if (mesh.triangle_refs[i] != kFrozenFaceRef) add_triangle_edges(mesh.triangles[i], surface);
-    std::sort(cut.begin(), cut.end());
-    std::sort(surface.begin(), surface.end());
-    std::vector<Edge> sized;
-    for (const Edge& e : locked)
-        if (!std::binary_search(cut.begin(), cut.end(), e) ||
-            (std::binary_search(surface.begin(), surface.end(), e) &&
-             measure_edge(field, mesh.points[e[0]], mesh.points[e[1]]).too_long()))
-            sized.push_back(e);
-    return sized;
 }
 
 int RefinePass::mark_edges(const EdgeTable& edges)
@@ -294,12 +295,11 @@ int RefinePass::mark_edges(const EdgeTable& edges)
     // Mmg sets it: a tet on a coarse required triangle always has an edge as long as its
     // circumradius, and splitting it would only flatten the tets on the triangle, pass after pass.
     std::vector<double> locked_size;
-    const std::vector<Edge> sized = sized_edges(mesh_, field_, locked);
     if (!locked.empty())
     {
         locked_size.assign(nv, 0.0);
         std::vector<int> count(nv, 0);
-        for (const Edge& e : sized)
+        for (const Edge& e : locked)
         {
             const double length = (mesh_.points[e[1]] - mesh_.points[e[0]]).norm();
             for (int v : e) locked_size[v] += length, ++count[v];
@@ -719,6 +719,13 @@ RefinePassResult RefinePass::run()
     }
 #endif
     num_vertices_before_ = mesh_.num_vertices();
+    on_rank_cut_.clear();
+    for (std::size_t i = 0; i < mesh_.triangles.size(); ++i)
+        if (is_rank_cut_ref(mesh_.triangle_refs[i]))
+        {
+            on_rank_cut_.resize(mesh_.num_vertices(), 0);
+            for (int v : mesh_.triangles[i]) on_rank_cut_[v] = 1;
+        }
     RefinePassReport& report = result_.report;
     report.pass = 1;
     {

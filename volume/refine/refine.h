@@ -11,7 +11,9 @@
 // Qe (volume/mesh/geometry.h triangle_quality, computed in the fixed order given by the ids); when
 // the two worse qualities differ by at most 1e-12 relative (a tie: regular or structured meshes),
 // the diagonal starting at the smaller global id (a). A tie therefore never creates a Schönhardt
-// configuration (the ids are totally ordered, the diagonals cannot twist).
+// configuration (the ids are totally ordered, the diagonals cannot twist). A face whose three
+// vertices lie on a rank's cut (blocks.h kRankCutRef), which the rank beyond numbers apart, takes
+// a before b in the lexicographic order of their positions instead: both ranks split it alike.
 
 #include <functional>
 #include <vector>
@@ -55,7 +57,8 @@ struct RefinePassResult
 };
 
 /// One pass: marks every too-long edge (measure_edge(field, a, b).too_long()), interior
-/// and boundary; never an edge of a required triangle or a required edge, and at their vertices
+/// and boundary; never an edge of a required triangle (but a cut between ranks, blocks.h
+/// kRankCutRef) or a required edge, and at their vertices
 /// the size is at least the mean length of those edges), adds one midpoint per
 /// marked edge, rebuilds each tet from the table (children keep the parent's ref), splits
 /// mesh.triangles with the same face rule (children keep the ref), splits feature edges
@@ -124,5 +127,9 @@ RefineResult refine(TetMesh& mesh, const SizeField& field, const RefineOptions& 
 /// or b) the quad diagonal starts from (it ends at the midpoint of the other split edge).
 /// Symmetric in a and b.
 int quad_diagonal_start(const std::vector<Vec3>& points, int corner, int a, int b);
+
+/// The face rule on a rank's cut: ties go to the lexicographically first position, so the
+/// result does not depend on the numbering. Symmetric in a and b.
+int quad_diagonal_start_by_position(const std::vector<Vec3>& points, int corner, int a, int b);
 
 }  // namespace hdimesh::volume
