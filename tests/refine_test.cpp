@@ -575,3 +575,26 @@ TEST_CASE("refine: the two sides of a rank's cut, numbered apart, split it alike
         require_valid(right);
     }
 }
+
+TEST_CASE("refine: a cut edge at the threshold, measured a few ulps apart by the sides, is kept")
+{
+    // the box's edges along the axes are 0.25 long: at h = 0.66 * 0.25 they sit on the
+    // threshold, and each side's field rounds the other way
+    class Rounded : public SizeField
+    {
+    public:
+        explicit Rounded(double factor) : factor_(factor) {}
+        double size(const Vec3&) const override { return 0.66 * 0.25 * factor_; }
+
+    private:
+        double factor_;
+    };
+    TetMesh box = fixtures::box_mesh(4);
+    box.build_adjacency();
+    TetMesh left = side_of_cut(box, true), right = side_of_cut(box, false);
+    refine(left, Rounded(1 - 4e-16));
+    refine(right, Rounded(1 + 4e-16));
+    CHECK(cut_triangles(left) == cut_triangles(right));
+    require_valid(left);
+    require_valid(right);
+}

@@ -58,6 +58,7 @@ using detail::pattern_builds;
 using detail::PatternBuilds;
 
 constexpr int kMaxDeferRounds = 16;  // simulations of a pass, each deferring the stuck tets' edges
+constexpr double kRankCutTieBand = 1e-9;  // relative: L/h this near the threshold is a tie
 
 /// Per split mask: the faces with two split edges, their corner and other two local vertices.
 struct MaskFaces
@@ -326,7 +327,12 @@ int RefinePass::mark_edges(const EdgeTable& edges)
                         continue;
                     edge.size = std::max({edge.size, locked_size[a], locked_size[b]});
                 }
-                too_long[s] = edge.too_long();
+                // on a rank's cut the two sides' fields may differ in the last bits (each
+                // interpolates in its own tets): an edge at the threshold (a lattice) is kept
+                too_long[s] =
+                    !on_rank_cut_.empty() && on_rank_cut_[a] && on_rank_cut_[b]
+                        ? edge.length * kSizeQualityThreshold > edge.size * (1 + kRankCutTieBand)
+                        : edge.too_long();
             }
         }
     });
