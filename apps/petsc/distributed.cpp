@@ -690,8 +690,10 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
     PetscCheck(!refused, comm, PETSC_ERR_ARG_WRONG, "hdimesh: another rank refused its part");
     hdimesh::coupling::AdaptRequest request;
     PetscCall(read_options(dm, request));
-    // a piece's boundary has cuts: no surface pass there, and no sliding of boundary vertices,
-    // whose classes on the piece do not know the domain's sharp edges
+    // a piece's boundary has cuts, required triangles the coupled surface pass refuses: no
+    // surface pass there (where one rank's run has one, the ranks' result is that run's
+    // without it: docs/tuning.md), and no sliding of boundary vertices, whose classes on the
+    // piece do not know the domain's sharp edges
     request.switches.nosurf = true;
     // the first decomposition is ours too: the result depends on the rank count, not on how
     // the DM was distributed

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The adaptor on 2 ranks against 1, on the box of adapt_box.c: the 2-rank result is the same
-# bits on a rerun, its tet count within PERCENT of the 1-rank one, and its min Qe in the metric
-# (Qe itself for a size) no more than PERCENT below the 1-rank one.
-#   ranks_compare.sh MPIEXEC ADAPT_BOX LIBHDIMESH_PETSC METRIC PERCENT [OPTION...]
+# The adaptor on 2 ranks against 1, with adapt_box.c or adapt_file.c (PROGRAM): the 2-rank
+# result is the same bits on a rerun, its tet count within PERCENT of the 1-rank one, and its
+# min Qe in the metric (Qe itself for a size) no more than PERCENT below the 1-rank one.
+#   ranks_compare.sh MPIEXEC PROGRAM LIBHDIMESH_PETSC METRIC PERCENT [OPTION...]
 set -euo pipefail
 mpiexec=$1 box=$2 lib=$3 metric=$4 percent=$5
 shift 5
