@@ -538,7 +538,7 @@ std::set<std::array<std::array<double, 3>, 3>> cut_triangles(const TetMesh& mesh
     std::set<std::array<std::array<double, 3>, 3>> out;
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
     {
-        if (mesh.triangle_refs[i] != kRankCutRef) continue;
+        if (!is_rank_cut_ref(mesh.triangle_refs[i])) continue;
         std::array<std::array<double, 3>, 3> key;
         for (int k = 0; k < 3; ++k)
         {
@@ -597,4 +597,19 @@ TEST_CASE("refine: a cut edge at the threshold, measured a few ulps apart by the
     CHECK(cut_triangles(left) == cut_triangles(right));
     require_valid(left);
     require_valid(right);
+}
+
+TEST_CASE("refine: a rank's cut held whole for a round is not split")
+{
+    TetMesh box = fixtures::box_mesh(4, 0.2);
+    box.build_adjacency();
+    TetMesh left = side_of_cut(box, true);
+    for (int i : left.required_triangles) left.triangle_refs[i] = kHeldCutRef + 3;
+    const auto before = cut_triangles(left);
+    const RadialSize field(Vec3(0.5, 0.3, 0.2), 0.2, 0.2);
+    refine(left, field);
+    CHECK(left.num_live_tets() > 4 * box.num_live_tets() / 2);
+    CHECK(cut_triangles(left) == before);
+    for (int i : left.required_triangles) CHECK(rank_cut_domain_ref(left.triangle_refs[i]) == 3);
+    require_valid(left);
 }

@@ -197,10 +197,10 @@ PetscErrorCode read_part(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgLabel, Pa
 /// Freezes the faces this rank shares with another (required triangles of kRankCutRef, plus
 /// the domain's ref of a labelled one; their vertices required: the refinement splits them,
 /// both sides alike, nothing else changes them) and adds the boundary faces no label marks
-/// (boundary_ref).
-void freeze_cut(MPI_Comm comm, Part& p, int boundary_ref)
+/// (boundary_ref). `hold`: the refinement may not split them either (kHeldCutRef).
+void freeze_cut(MPI_Comm comm, Part& p, int boundary_ref, bool hold)
 {
-    using hdimesh::volume::kRankCutRef;
+    const int cut_ref = hold ? hdimesh::volume::kHeldCutRef : hdimesh::volume::kRankCutRef;
     TetMesh& mesh = p.mesh;
     mesh.build_adjacency();
     struct Open
@@ -240,11 +240,11 @@ void freeze_cut(MPI_Comm comm, Part& p, int boundary_ref)
         const bool cut = std::binary_search(others.begin(), others.end(), o.key);
         const auto it = triangle_of.find(o.key);
         int index = it != triangle_of.end() ? it->second : -1;
-        if (index < 0) index = mesh.add_triangle(o.face, cut ? kRankCutRef : boundary_ref);
+        if (index < 0) index = mesh.add_triangle(o.face, cut ? cut_ref : boundary_ref);
         if (!cut) continue;
         // the cut is checked and modelled as a cut, a label on it kept in its ref
         int& ref = mesh.triangle_refs[index];
-        if (!hdimesh::volume::is_rank_cut_ref(ref)) ref = kRankCutRef + std::max(ref, 0);
+        if (!hdimesh::volume::is_rank_cut_ref(ref)) ref = cut_ref + std::max(ref, 0);
         mesh.required_triangles.push_back(index);
         for (int v : o.face) frozen[v] = 1;
     }
@@ -258,7 +258,7 @@ bool domain_ref(const TetMesh& mesh, std::size_t i, int& ref)
 {
     ref = mesh.triangle_refs[i];
     if (!hdimesh::volume::is_rank_cut_ref(ref)) return true;
-    ref -= hdimesh::volume::kRankCutRef;
+    ref = hdimesh::volume::rank_cut_domain_ref(ref);
     return ref > 0;
 }
 
@@ -402,11 +402,11 @@ void number(MPI_Comm comm, Part& p)
         }
 }
 
-/// Every face of the ranks' cuts came back from both sides, split alike; else the refinement
-/// marked an edge of the cut on one side only (a deferred split, a stalled pass).
-PetscErrorCode check_cut(MPI_Comm comm, const Part& p, PetscInt round)
+/// The faces of the ranks' cuts that did not come back from both sides split alike (on every
+/// rank): the refinement marked an edge of the cut on one side only (a deferred split, a stalled
+/// pass).
+int cut_mismatches(MPI_Comm comm, const Part& p)
 {
-    PetscFunctionBeginUser;
     std::vector<Key> mine;
     for (const auto& t : p.cut) mine.push_back(face_key(p, t));
     std::sort(mine.begin(), mine.end());
@@ -418,12 +418,8 @@ PetscErrorCode check_cut(MPI_Comm comm, const Part& p, PetscInt round)
         const auto range = std::equal_range(all.begin(), all.end(), k);
         unmatched += range.second - range.first != 2;
     }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unmatched, 1, MPI_INT, MPI_SUM, comm));
-    PetscCheck(unmatched == 0, comm, PETSC_ERR_PLIB,
-               "hdimesh: round %" PetscInt_FMT
-               ": %d faces between ranks came back split on one side only",
-               round, unmatched);
-    PetscFunctionReturn(0);
+    MPI_Allreduce(MPI_IN_PLACE, &unmatched, 1, MPI_INT, MPI_SUM, comm);
+    return unmatched;
 }
 
 /// The rank of each tet on a Morton curve of the centroids over every rank's tets, in equal
@@ -706,24 +702,35 @@ PetscErrorCode adapt_distributed(DM dm, Vec metric, DMLabel bdLabel, DMLabel rgL
     for (PetscInt round = 0; round < all_rounds; ++round)
     {
         if (round == rounds) request.switches.optim = true;
-        freeze_cut(comm, part, bdLabel ? 0 : face_refs.ref(1));
-        if (round == 0) request.geometry = gather_boundary(comm, part);
-        request.size.vertex_sizes.clear();
-        request.size.vertex_metrics.clear();
-        (part.components == 1 ? request.size.vertex_sizes : request.size.vertex_metrics) =
-            part.metric;
-        hdimesh::coupling::AdaptResult result;
-        const std::string failure = run_request(std::move(part.mesh), request, result);
-        // every rank learns of a failure, so none waits in the next exchange
-        int failed = failure.empty() ? 0 : 1;
-        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));
-        PetscCheck(failure.empty(), PETSC_COMM_SELF, PETSC_ERR_LIB, "hdimesh: round %d: %s",
-                   static_cast<int>(round), failure.c_str());
-        PetscCheck(!failed, comm, PETSC_ERR_LIB, "hdimesh: another rank failed in round %d",
-                   static_cast<int>(round));
-        part = adapted_part(result, part.components);
-        number(comm, part);
-        PetscCall(check_cut(comm, part, round));
+        // a round whose cut came back split on one side only runs again with the cut held
+        const Part before = part;
+        for (bool hold = false;; hold = true)
+        {
+            freeze_cut(comm, part, bdLabel ? 0 : face_refs.ref(1), hold);
+            if (!request.geometry) request.geometry = gather_boundary(comm, part);
+            request.size.vertex_sizes.clear();
+            request.size.vertex_metrics.clear();
+            (part.components == 1 ? request.size.vertex_sizes : request.size.vertex_metrics) =
+                part.metric;
+            hdimesh::coupling::AdaptResult result;
+            const std::string failure = run_request(std::move(part.mesh), request, result);
+            // every rank learns of a failure, so none waits in the next exchange
+            int failed = failure.empty() ? 0 : 1;
+            PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));
+            PetscCheck(failure.empty(), PETSC_COMM_SELF, PETSC_ERR_LIB, "hdimesh: round %d: %s",
+                       static_cast<int>(round), failure.c_str());
+            PetscCheck(!failed, comm, PETSC_ERR_LIB, "hdimesh: another rank failed in round %d",
+                       static_cast<int>(round));
+            part = adapted_part(result, part.components);
+            number(comm, part);
+            const int mismatched = cut_mismatches(comm, part);
+            if (mismatched == 0) break;
+            PetscCheck(!hold, comm, PETSC_ERR_PLIB,
+                       "hdimesh: round %d: %d faces between ranks came back split on one side "
+                       "only, the cut held",
+                       static_cast<int>(round), mismatched);
+            part = before;
+        }
         if (round + 1 < all_rounds) migrate(comm, part, morton_ranks(comm, part, round + 1));
     }
     PetscCall(write_distributed(comm, part, face_refs, cell_refs, bd_name, rg_name, dmNew));

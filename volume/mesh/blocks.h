@@ -21,13 +21,26 @@ inline constexpr int kFrozenFaceRef = -2147483647;
 /// The refs of the faces between one rank's cells and another's (apps/petsc): kRankCutRef, or
 /// kRankCutRef + r for a face that also carries the domain's ref r > 0. Required like a block's
 /// frozen faces, but the refinement splits them (both sides alike: the marks and the face rule
-/// are functions of the edge and the face), and a block's merge keeps them.
+/// are functions of the edge and the face), and a block's merge keeps them. A cut held whole
+/// for a round (kHeldCutRef + r) is not split either.
 inline constexpr int kRankCutRef = kFrozenFaceRef + 1;
 inline constexpr int kMaxRankCutRef = 1 << 24;
+inline constexpr int kHeldCutRef = kRankCutRef + kMaxRankCutRef + 1;
+
+inline constexpr bool is_held_cut_ref(int ref)
+{
+    return ref >= kHeldCutRef && ref <= kHeldCutRef + kMaxRankCutRef;
+}
 
 inline constexpr bool is_rank_cut_ref(int ref)
 {
-    return ref >= kRankCutRef && ref <= kRankCutRef + kMaxRankCutRef;
+    return (ref >= kRankCutRef && ref <= kRankCutRef + kMaxRankCutRef) || is_held_cut_ref(ref);
+}
+
+/// The domain's ref r a rank's cut face carries (0: none).
+inline constexpr int rank_cut_domain_ref(int ref)
+{
+    return ref - (is_held_cut_ref(ref) ? kHeldCutRef : kRankCutRef);
 }
 
 /// A face between pieces: a block's or a rank's.

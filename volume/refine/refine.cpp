@@ -271,13 +271,14 @@ void add_triangle_edges(const Triangle& tri, std::vector<Edge>& out)
 
 /// The edges a split may not cut: those of required triangles and the required feature edges,
 /// each as {low, high}, sorted. A cut between ranks is no user's requirement: its edges are
-/// split as any other, and both sides split them alike (blocks.h kRankCutRef); only the
-/// optimizer leaves it.
+/// split as any other, and both sides split them alike (blocks.h kRankCutRef; a held one is
+/// locked); only the optimizer leaves it.
 std::vector<Edge> locked_edges(const TetMesh& mesh)
 {
     std::vector<Edge> locked;
     for (int i : mesh.required_triangles)
-        if (!is_rank_cut_ref(mesh.triangle_refs[i])) add_triangle_edges(mesh.triangles[i], locked);
+        if (!is_rank_cut_ref(mesh.triangle_refs[i]) || is_held_cut_ref(mesh.triangle_refs[i]))
+            add_triangle_edges(mesh.triangles[i], locked);
     for (int i : mesh.required_edges)
         locked.push_back({std::min(mesh.edges[i][0], mesh.edges[i][1]),
                           std::max(mesh.edges[i][0], mesh.edges[i][1])});
