@@ -60,17 +60,6 @@ bool flat_at(const TetMesh& mesh, const std::vector<int>& ball, int v, std::size
     return !normals.empty();
 }
 
-/// Required vertices and those of required triangles stay where they are (Mmg's rule; a rank's
-/// cut lies inside the domain, far from the model, and its two sides must agree on it).
-std::vector<char> held_vertices(const TetMesh& mesh)
-{
-    std::vector<char> held(mesh.num_vertices(), 0);
-    for (int v : mesh.required_vertices) held[v] = 1;
-    for (int i : mesh.required_triangles)
-        for (int v : mesh.triangles[i]) held[v] = 1;
-    return held;
-}
-
 }  // namespace
 
 ProjectionReport BoundaryProjector::project(TetMesh& mesh, const std::vector<int>& vertices) const

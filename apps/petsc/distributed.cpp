@@ -42,7 +42,6 @@ struct Part
     std::vector<double> metric;  ///< per vertex: a size, or 6 values in Medit's order
     int components = 1;          ///< 1 or 6
     std::vector<char> owned;     ///< after number(): this rank gives the vertex to PETSc
-    std::vector<char> shared;    ///< after a round: on its cut, numbered by position
     std::vector<hdimesh::volume::Triangle> cut;  ///< after a round: its cut's faces
 };
 
@@ -103,7 +102,9 @@ Key face_key(const Part& p, const hdimesh::volume::Triangle& t)
     return sorted_key(p.gid[t[0]], p.gid[t[1]], p.gid[t[2]]);
 }
 
-std::array<double, 3> position(const Vec3& x) { return {x[0], x[1], x[2]}; }
+using Point = std::array<double, 3>;
+
+Point position(const Vec3& x) { return {x[0], x[1], x[2]}; }
 
 /// The label values of every rank, as one LabelRefs.
 LabelRefs global_refs(MPI_Comm comm, const LabelRefs& local)
@@ -307,9 +308,9 @@ std::shared_ptr<const TetMesh> gather_boundary(MPI_Comm comm, const Part& p)
     return geometry;
 }
 
-/// The adapted cells as the next round's part, to be numbered: the cut's vertices shared (the
-/// old ones and the midpoints both sides added), the metric the field's at the vertices, the
-/// cut's faces kept aside and dropped but labelled ones.
+/// The adapted cells as the next round's part, to be numbered: the metric the field's at the
+/// vertices, the cut's faces (old ones and the children both sides made) kept aside and
+/// dropped but labelled ones.
 Part adapted_part(hdimesh::coupling::AdaptResult& result, int components)
 {
     Part p;
@@ -317,7 +318,6 @@ Part adapted_part(hdimesh::coupling::AdaptResult& result, int components)
     p.mesh.compact();
     TetMesh& mesh = p.mesh;
     p.gid.assign(mesh.num_vertices(), -1);
-    p.shared.assign(mesh.num_vertices(), 0);
     p.components = components;
     hdimesh::Solutions at = hdimesh::volume::field_at_vertices(mesh, *result.field);
     p.metric = std::move(at.solutions.at(0).values);
@@ -326,10 +326,7 @@ Part adapted_part(hdimesh::coupling::AdaptResult& result, int components)
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
     {
         if (hdimesh::volume::is_rank_cut_ref(mesh.triangle_refs[i]))
-        {
             p.cut.push_back(mesh.triangles[i]);
-            for (int v : mesh.triangles[i]) p.shared[v] = 1;
-        }
         int ref;
         if (!domain_ref(mesh, i, ref)) continue;
         triangles.push_back(mesh.triangles[i]);
@@ -342,8 +339,6 @@ Part adapted_part(hdimesh::coupling::AdaptResult& result, int components)
     mesh.required_vertices.clear();
     return p;
 }
-
-using Point = std::array<double, 3>;
 
 /// A shared vertex's position and its new global id.
 struct Named
@@ -361,9 +356,12 @@ void number(MPI_Comm comm, Part& p)
     int rank;
     MPI_Comm_rank(comm, &rank);
     const int nv = p.mesh.num_vertices();
+    std::vector<char> shared(nv, 0);  // on the cut
+    for (const auto& t : p.cut)
+        for (int v : t) shared[v] = 1;
     std::vector<Point> mine;
     for (int v = 0; v < nv; ++v)
-        if (p.shared[v]) mine.push_back(position(p.mesh.points[v]));
+        if (shared[v]) mine.push_back(position(p.mesh.points[v]));
     std::sort(mine.begin(), mine.end());
     std::vector<int> counts;
     const std::vector<Point> all = allgather(comm, mine, &counts);
@@ -375,8 +373,7 @@ void number(MPI_Comm comm, Part& p)
     PetscInt n_owned = 0;
     for (int v = 0; v < nv; ++v)
     {
-        if (p.shared[v] &&
-            std::binary_search(lower.begin(), lower.end(), position(p.mesh.points[v])))
+        if (shared[v] && std::binary_search(lower.begin(), lower.end(), position(p.mesh.points[v])))
             p.owned[v] = 0;
         n_owned += p.owned[v];
     }
@@ -388,7 +385,7 @@ void number(MPI_Comm comm, Part& p)
         if (p.owned[v])
         {
             p.gid[v] = first + next++;
-            if (p.shared[v]) named.push_back({position(p.mesh.points[v]), p.gid[v]});
+            if (shared[v]) named.push_back({position(p.mesh.points[v]), p.gid[v]});
         }
     std::vector<Named> every = allgather(comm, named, nullptr);
     std::sort(every.begin(), every.end());

@@ -236,6 +236,7 @@ std::string run_request(TetMesh mesh, const hdimesh::coupling::AdaptRequest& req
     }
     return {};
 }
+
 PetscErrorCode attach_labels(DM dm, const TetMesh& mesh, const std::vector<PetscInt>& point,
                              const LabelRefs& face_refs, const LabelRefs& cell_refs,
                              const char* bd_name, const char* rg_name)

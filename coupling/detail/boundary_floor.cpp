@@ -159,10 +159,7 @@ BoundaryFloorReport raise_boundary_floor(TetMesh& mesh, const BoundaryModel& mod
 {
     BoundaryFloorReport report;
     // the movable boundary vertices of the tets under the floor, each with a tet of its ball
-    std::vector<char> locked(mesh.num_vertices(), 0);  // required, or on a required entity
-    for (int v : mesh.required_vertices) locked[v] = 1;
-    for (int i : mesh.required_triangles)
-        for (int v : mesh.triangles[i]) locked[v] = 1;
+    std::vector<char> locked = held_vertices(mesh);  // required, or on a required entity
     for (int i : mesh.required_edges)
         for (int v : mesh.edges[i]) locked[v] = 1;
     std::vector<std::pair<int, int>> vertices;  // (vertex, seed tet)

@@ -156,6 +156,15 @@ std::vector<int> vertex_to_tet(const TetMesh& mesh)
     return result;
 }
 
+std::vector<char> held_vertices(const TetMesh& mesh)
+{
+    std::vector<char> held(mesh.num_vertices(), 0);
+    for (int v : mesh.required_vertices) held[v] = 1;
+    for (int i : mesh.required_triangles)
+        for (int v : mesh.triangles[i]) held[v] = 1;
+    return held;
+}
+
 std::array<int, 3> sorted_face(const TetMesh& mesh, int t, int f)
 {
     const auto& fv = tet::kFaceVertices[f];
@@ -185,25 +194,19 @@ MeshConstraints::MeshConstraints(const TetMesh& mesh)
     on_listed_face_.assign(mesh.num_vertices(), 0);
     for (const auto& face : faces_)
         for (int v : face) on_listed_face_[v] = 1;
+    const std::vector<char> held = held_vertices(mesh);
     free_vertex_.assign(mesh.num_vertices(), 0);
     for (int v = 0; v < mesh.num_vertices(); ++v)
-        free_vertex_[v] = mesh.vertex_classes[v] == VertexClass::Interior;
-    for (int v : mesh.required_vertices) free_vertex_[v] = 0;
+        free_vertex_[v] = mesh.vertex_classes[v] == VertexClass::Interior && !held[v];
     for (int v : mesh.corners) free_vertex_[v] = 0;
-    // a required triangle keeps its vertices where they are (Mmg's rule; a rank's cut too)
-    for (int i : mesh.required_triangles)
-        for (int v : mesh.triangles[i]) free_vertex_[v] = 0;
     for (const auto& e : mesh.edges)
         for (int v : e) free_vertex_[v] = 0;
     required_tets_ = mesh.required_tets;
     std::sort(required_tets_.begin(), required_tets_.end());
     surface_vertex_.assign(mesh.num_vertices(), 0);
     for (int v = 0; v < mesh.num_vertices(); ++v)
-        surface_vertex_[v] = mesh.vertex_classes[v] == VertexClass::Surface;
-    for (int v : mesh.required_vertices) surface_vertex_[v] = 0;
+        surface_vertex_[v] = mesh.vertex_classes[v] == VertexClass::Surface && !held[v];
     for (int v : mesh.corners) surface_vertex_[v] = 0;
-    for (int i : mesh.required_triangles)
-        for (int v : mesh.triangles[i]) surface_vertex_[v] = 0;
     for (const auto& e : mesh.edges)
         for (int v : e) surface_vertex_[v] = 0;
 }

@@ -47,6 +47,10 @@ bool edge_shell(const TetMesh& mesh, int seed, int a, int b, EdgeShell& shell);
 /// One live tet per vertex (-1 for a vertex no tet uses), the smallest id.
 std::vector<int> vertex_to_tet(const TetMesh& mesh);
 
+/// Per vertex: required, or a vertex of a required triangle. Such vertices stay where they are
+/// (Mmg's rule; a rank's cut too, whose two sides must agree on it).
+std::vector<char> held_vertices(const TetMesh& mesh);
+
 /// The sorted vertex triple of face f of tet t.
 std::array<int, 3> sorted_face(const TetMesh& mesh, int t, int f);
 

@@ -165,7 +165,7 @@ private:
     {
         if (rule_) return (*rule_)(corner, std::min(a, b), std::max(a, b));
         // a face on a rank's cut: the other rank numbers it apart
-        if (!on_rank_cut_.empty() && on_rank_cut_[corner] && on_rank_cut_[a] && on_rank_cut_[b])
+        if (on_rank_cut(corner) && on_rank_cut(a) && on_rank_cut(b))
             return quad_diagonal_start_by_position(mesh_.points, corner, a, b);
         return quad_diagonal_start(mesh_.points, corner, a, b);
     }
@@ -218,6 +218,8 @@ private:
             if (!(signed_volume6(p[c[0]], p[c[1]], p[c[2]], p[c[3]]) > 0.0)) return false;
         return true;
     }
+
+    bool on_rank_cut(int v) const { return !on_rank_cut_.empty() && on_rank_cut_[v]; }
 
     bool is_refined(int t) const { return choice_[t] != unsplit_; }
     /// Slot of child i of refined tet t: the parent's own slot for child 0, then its extra slots.
@@ -330,10 +332,8 @@ int RefinePass::mark_edges(const EdgeTable& edges)
                 }
                 // on a rank's cut the two sides' fields may differ in the last bits (each
                 // interpolates in its own tets): an edge at the threshold (a lattice) is kept
-                too_long[s] =
-                    !on_rank_cut_.empty() && on_rank_cut_[a] && on_rank_cut_[b]
-                        ? edge.length * kSizeQualityThreshold > edge.size * (1 + kRankCutTieBand)
-                        : edge.too_long();
+                if (on_rank_cut(a) && on_rank_cut(b)) edge.size *= 1 + kRankCutTieBand;
+                too_long[s] = edge.too_long();
             }
         }
     });
