@@ -184,12 +184,13 @@ static PetscErrorCode CheckAdapted(DM dm, PetscReal h, PetscBool aniso, PetscBoo
       sizes_at(g, h, aniso, s);
       if (uniform) s[0] = s[1] = s[2] = h;
       for (PetscInt k = 0; k < 12; ++k) y[k] = cx[k] / s[k % 3];
-      if (ShapeQuality(y) < min_metric_qe && getenv("ADAPT_BOX_WORST")) {
-        PetscCall(PetscPrintf(PETSC_COMM_SELF, "worse: %g at", (double)ShapeQuality(y)));
+      const PetscReal q = ShapeQuality(y);
+      if (q < min_metric_qe && getenv("ADAPT_BOX_WORST")) {
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "worse: %g at", (double)q));
         for (PetscInt k = 0; k < 12; ++k) PetscCall(PetscPrintf(PETSC_COMM_SELF, " %g%s", (double)PetscRealPart(cx[k]), k % 3 == 2 && k < 11 ? " |" : ""));
         PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n"));
       }
-      min_metric_qe = PetscMin(min_metric_qe, ShapeQuality(y));
+      min_metric_qe = PetscMin(min_metric_qe, q);
     }
     min_qe = PetscMin(min_qe, ShapeQuality(cx));
     PetscCall(DMPlexVecRestoreClosure(cdm, cs, coords, c, &nx, &cx));
